@@ -1,0 +1,244 @@
+//! From format-neutral features to a validated [`Farm`]: frame choice, projection, ring
+//! cleaning, polygon validity, size limits. Shared by every field format.
+
+use std::path::Path;
+
+use geo::{Coord, LineString, Polygon};
+
+use crate::error::{Fault, InputError};
+use crate::geometry::validate::{clean_ring, validate_polygon};
+use crate::geometry::{to_utm, UtmZone};
+use crate::model::limits::{MAX_FARM_EXTENT_M, MAX_LOCAL_COORDINATE_M, MAX_POLYGONS, MAX_VERTICES};
+use crate::model::{CoordinateSystem, Farm, Field, Marker, Obstacle};
+use crate::terrain::TerrainSpec;
+
+/// Rings as read: the first is the outer boundary, the rest are holes; positions are
+/// `[x, y]` or `[lon, lat]` as the file has them.
+pub type RawRings = Vec<Vec<[f64; 2]>>;
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum RawGeometry {
+    Polygons(Vec<RawRings>),
+    Point([f64; 2]),
+}
+
+/// One feature of a field file, before any checking.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RawFeature {
+    /// "feature 3" or "Placemark 'North'": how an error message names it.
+    pub place: String,
+    pub name: Option<String>,
+    /// `properties.kind`: `field` when absent, `obstacle` for no-spray zones.
+    pub kind: Option<String>,
+    pub geometry: RawGeometry,
+}
+
+/// Builds the farm. `lon_lat` says whether positions are WGS84 degrees (then they are
+/// projected to the UTM zone of the farm's centre) or local metres.
+pub fn build(
+    path: &Path,
+    features: Vec<RawFeature>,
+    lon_lat: bool,
+    embedded_terrain: Option<TerrainSpec>,
+) -> Result<Farm, InputError> {
+    let polygon_count: usize = features
+        .iter()
+        .map(|feature| match &feature.geometry {
+            RawGeometry::Polygons(polygons) => polygons.len(),
+            RawGeometry::Point(_) => 0,
+        })
+        .sum();
+    if polygon_count > MAX_POLYGONS {
+        return Err(InputError::new(
+            path,
+            Fault::TooLarge(format!(
+                "{polygon_count} polygons (limit {MAX_POLYGONS} per file)"
+            )),
+        ));
+    }
+    let vertex_count: usize = features
+        .iter()
+        .map(|feature| match &feature.geometry {
+            RawGeometry::Polygons(polygons) => polygons.iter().flatten().map(Vec::len).sum(),
+            RawGeometry::Point(_) => 1,
+        })
+        .sum();
+    if vertex_count > MAX_VERTICES {
+        return Err(InputError::new(
+            path,
+            Fault::TooLarge(format!(
+                "{vertex_count} vertices (limit {MAX_VERTICES} per file)"
+            )),
+        ));
+    }
+
+    let coordinate_system = if lon_lat {
+        CoordinateSystem::Utm(zone_of(path, &features)?)
+    } else {
+        CoordinateSystem::Local
+    };
+    let project = |position: [f64; 2]| -> Result<Coord<f64>, Fault> {
+        let [x, y] = position;
+        if !x.is_finite() || !y.is_finite() {
+            return Err(Fault::NonFinite);
+        }
+        match coordinate_system {
+            CoordinateSystem::Local => {
+                if x.abs() > MAX_LOCAL_COORDINATE_M || y.abs() > MAX_LOCAL_COORDINATE_M {
+                    return Err(Fault::InvalidValue {
+                        what: "coordinate".into(),
+                        value: format!("({x}, {y})"),
+                        why: format!(
+                            "local coordinates are metres and must lie within ±{MAX_LOCAL_COORDINATE_M} (is this lon/lat? then drop \"crs\": \"local\")"
+                        ),
+                    });
+                }
+                Ok(Coord { x, y })
+            }
+            CoordinateSystem::Utm(zone) => {
+                let (easting, northing) = to_utm(x, y, zone);
+                Ok(Coord {
+                    x: easting,
+                    y: northing,
+                })
+            }
+        }
+    };
+
+    let mut fields = Vec::new();
+    let mut obstacles = Vec::new();
+    let mut markers = Vec::new();
+    for feature in features {
+        let kind = feature.kind.clone().unwrap_or_else(|| "field".to_string());
+        let fault_here = |fault: Fault| InputError::new(path, fault).at(feature.place.clone());
+        match &feature.geometry {
+            RawGeometry::Point(position) => markers.push(Marker {
+                kind: kind.clone(),
+                name: feature.name.clone().unwrap_or_else(|| kind.clone()),
+                position: project(*position).map_err(fault_here)?,
+            }),
+            RawGeometry::Polygons(polygons) => {
+                let several = polygons.len() > 1;
+                for (part, rings) in polygons.iter().enumerate() {
+                    let part_place = |error: InputError| {
+                        if several {
+                            error.at(format!("polygon {}", part + 1))
+                        } else {
+                            error
+                        }
+                    };
+                    let polygon = build_polygon(rings, &project)
+                        .map_err(|fault| part_place(fault_here(fault)))?;
+                    let base_name = feature.name.clone();
+                    match kind.as_str() {
+                        "field" => {
+                            let number = fields.len() + 1;
+                            let name = match (&base_name, several) {
+                                (Some(name), false) => name.clone(),
+                                (Some(name), true) => format!("{name}.{}", part + 1),
+                                (None, _) => format!("field {number}"),
+                            };
+                            fields.push(Field { name, polygon });
+                        }
+                        "obstacle" => {
+                            let number = obstacles.len() + 1;
+                            obstacles.push(Obstacle {
+                                name: base_name.unwrap_or_else(|| format!("obstacle {number}")),
+                                polygon,
+                            });
+                        }
+                        other => {
+                            return Err(fault_here(Fault::Structure(format!(
+                                "properties.kind is '{other}': a polygon must be a 'field' or an 'obstacle'"
+                            ))))
+                        }
+                    }
+                }
+            }
+        }
+    }
+    if fields.is_empty() {
+        return Err(InputError::new(path, Fault::NoFields));
+    }
+    let farm = Farm {
+        source: path.to_path_buf(),
+        coordinate_system,
+        fields,
+        obstacles,
+        markers,
+        embedded_terrain,
+    };
+    let bounds = farm.bounds();
+    let extent = bounds.width().max(bounds.height());
+    if extent > MAX_FARM_EXTENT_M {
+        return Err(InputError::new(
+            path,
+            Fault::TooLarge(format!(
+                "the fields span {:.0} km (limit {:.0} km): split the farm into work areas",
+                extent / 1000.0,
+                MAX_FARM_EXTENT_M / 1000.0
+            )),
+        ));
+    }
+    Ok(farm)
+}
+
+fn build_polygon(
+    rings: &RawRings,
+    project: &dyn Fn([f64; 2]) -> Result<Coord<f64>, Fault>,
+) -> Result<Polygon<f64>, Fault> {
+    let mut cleaned: Vec<LineString<f64>> = Vec::with_capacity(rings.len());
+    for (index, ring) in rings.iter().enumerate() {
+        let label = |fault: Fault| {
+            if index == 0 {
+                fault
+            } else {
+                Fault::Structure(format!("hole {index}: {fault}"))
+            }
+        };
+        let positions: Vec<Coord<f64>> = ring
+            .iter()
+            .map(|&position| project(position))
+            .collect::<Result<_, _>>()?;
+        cleaned.push(clean_ring(&positions).map_err(label)?);
+    }
+    let mut rings = cleaned.into_iter();
+    let exterior = rings.next().ok_or(Fault::DegenerateRing)?;
+    let polygon = Polygon::new(exterior, rings.collect());
+    validate_polygon(&polygon)?;
+    Ok(polygon)
+}
+
+/// The UTM zone of the farm's centre; every position must be a real longitude/latitude.
+fn zone_of(path: &Path, features: &[RawFeature]) -> Result<UtmZone, InputError> {
+    let (mut sum_lon, mut sum_lat, mut count) = (0.0, 0.0, 0usize);
+    for feature in features {
+        let positions: Box<dyn Iterator<Item = &[f64; 2]>> = match &feature.geometry {
+            RawGeometry::Polygons(polygons) => Box::new(polygons.iter().flatten().flatten()),
+            RawGeometry::Point(position) => Box::new(std::iter::once(position)),
+        };
+        for &[lon, lat] in positions {
+            if !lon.is_finite() || !lat.is_finite() {
+                return Err(InputError::new(path, Fault::NonFinite).at(feature.place.clone()));
+            }
+            if !(-180.0..=180.0).contains(&lon) || !(-80.0..=84.0).contains(&lat) {
+                return Err(
+                    InputError::new(path, Fault::OutOfRange { lon, lat }).at(format!(
+                        "{} (coordinates are read as WGS84 lon/lat; for metres in a local frame use \"crs\": \"local\" or --crs local)",
+                        feature.place
+                    )),
+                );
+            }
+            sum_lon += lon;
+            sum_lat += lat;
+            count += 1;
+        }
+    }
+    if count == 0 {
+        return Err(InputError::new(path, Fault::NoFields));
+    }
+    Ok(UtmZone::containing(
+        sum_lon / count as f64,
+        sum_lat / count as f64,
+    ))
+}

@@ -1,0 +1,282 @@
+//! GeoJSON field files (RFC 7946): FeatureCollection, Feature, or a bare Polygon/MultiPolygon.
+//!
+//! Positions are WGS84 lon/lat unless the top-level object carries the member
+//! `"crs": "local"` (the data files of this project) or the caller forces local metres.
+//! A `properties.kind` of `obstacle` marks a no-spray zone; Points become markers.
+
+use std::path::Path;
+
+use serde_json::{Map, Value};
+
+use super::farm::{build, RawFeature, RawGeometry, RawRings};
+use super::{read_text, CoordinateChoice};
+use crate::error::{Fault, InputError};
+use crate::model::Farm;
+use crate::terrain::TerrainSpec;
+
+/// Reads and validates a GeoJSON field file.
+pub fn read(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputError> {
+    let text = read_text(path)?;
+    parse(path, &text, choice)
+}
+
+/// Parses GeoJSON text; `path` only names the source in errors.
+pub fn parse(path: &Path, text: &str, choice: CoordinateChoice) -> Result<Farm, InputError> {
+    let fail = |fault: Fault| InputError::new(path, fault);
+    let root: Value =
+        serde_json::from_str(text).map_err(|error| fail(Fault::Json(error.to_string())))?;
+    let object = root.as_object().ok_or_else(|| {
+        fail(Fault::Structure(
+            "the top level is not a JSON object".into(),
+        ))
+    })?;
+    let local = match choice {
+        CoordinateChoice::Local => true,
+        CoordinateChoice::FromFile => crs_is_local(object).map_err(fail)?,
+    };
+    let embedded_terrain = match object.get("terrain") {
+        Some(value) => {
+            TerrainSpec::from_embedded(value).map_err(|fault| fail(fault).at("member 'terrain'"))?
+        }
+        None => None,
+    };
+    let features = match type_of(object).map_err(fail)? {
+        "FeatureCollection" => {
+            let list = object
+                .get("features")
+                .and_then(Value::as_array)
+                .ok_or_else(|| {
+                    fail(Fault::Structure(
+                        "FeatureCollection has no 'features' array".into(),
+                    ))
+                })?;
+            let mut features = Vec::with_capacity(list.len());
+            for (index, feature) in list.iter().enumerate() {
+                let place = format!("feature {index}");
+                if let Some(feature) =
+                    read_feature(feature, &place).map_err(|fault| fail(fault).at(place.clone()))?
+                {
+                    features.push(feature);
+                }
+            }
+            features
+        }
+        "Feature" => read_feature(&root, "feature 0")
+            .map_err(|fault| fail(fault).at("feature 0"))?
+            .into_iter()
+            .collect(),
+        _ => vec![RawFeature {
+            place: "geometry".into(),
+            name: None,
+            kind: None,
+            geometry: read_geometry(object).map_err(|fault| fail(fault).at("geometry"))?,
+        }],
+    };
+    build(path, features, !local, embedded_terrain)
+}
+
+/// `"crs": "local"` (this project's convention) or an old-style named CRS that is WGS84.
+fn crs_is_local(object: &Map<String, Value>) -> Result<bool, Fault> {
+    match object.get("crs") {
+        None | Some(Value::Null) => Ok(false),
+        Some(Value::String(name)) if name.eq_ignore_ascii_case("local") => Ok(true),
+        Some(Value::Object(crs)) => {
+            let name = crs
+                .get("properties")
+                .and_then(|properties| properties.get("name"))
+                .and_then(Value::as_str)
+                .unwrap_or("");
+            let wgs84 = ["CRS84", "EPSG:4326", "EPSG::4326"];
+            if wgs84.iter().any(|known| name.to_ascii_uppercase().ends_with(known)) {
+                Ok(false)
+            } else {
+                Err(Fault::Structure(format!(
+                    "crs '{name}' is not supported: give WGS84 lon/lat (RFC 7946) or \"crs\": \"local\" for metres"
+                )))
+            }
+        }
+        Some(other) => Err(Fault::Structure(format!(
+            "crs {other} is not understood: use \"crs\": \"local\" for metres or leave it out for WGS84 lon/lat"
+        ))),
+    }
+}
+
+fn type_of(object: &Map<String, Value>) -> Result<&str, Fault> {
+    object
+        .get("type")
+        .and_then(Value::as_str)
+        .ok_or_else(|| Fault::Structure("object has no 'type' string".into()))
+}
+
+/// A Feature; `None` for a feature without geometry (allowed by the RFC, nothing to plan).
+fn read_feature(value: &Value, place: &str) -> Result<Option<RawFeature>, Fault> {
+    let object = value
+        .as_object()
+        .ok_or_else(|| Fault::Structure("is not a JSON object".into()))?;
+    let kind = type_of(object)?;
+    if kind != "Feature" {
+        return Err(Fault::Structure(format!(
+            "type is '{kind}', expected 'Feature'"
+        )));
+    }
+    let properties = match object.get("properties") {
+        None | Some(Value::Null) => None,
+        Some(Value::Object(properties)) => Some(properties),
+        Some(_) => return Err(Fault::Structure("'properties' is not an object".into())),
+    };
+    let text_property = |key: &str| -> Result<Option<String>, Fault> {
+        match properties.and_then(|properties| properties.get(key)) {
+            None | Some(Value::Null) => Ok(None),
+            Some(Value::String(text)) => Ok(Some(text.clone())),
+            Some(Value::Number(number)) if key == "name" => Ok(Some(number.to_string())),
+            Some(other) => Err(Fault::Structure(format!(
+                "properties.{key} is {other}, expected a string"
+            ))),
+        }
+    };
+    let name = text_property("name")?;
+    let kind = text_property("kind")?.map(|kind| kind.to_ascii_lowercase());
+    let geometry = match object.get("geometry") {
+        None => return Err(Fault::Structure("has no 'geometry' member".into())),
+        Some(Value::Null) => return Ok(None),
+        Some(Value::Object(geometry)) => read_geometry(geometry)?,
+        Some(_) => return Err(Fault::Structure("'geometry' is not an object".into())),
+    };
+    let place = match &name {
+        Some(name) => format!("{place} ({name})"),
+        None => place.to_string(),
+    };
+    Ok(Some(RawFeature {
+        place,
+        name,
+        kind,
+        geometry,
+    }))
+}
+
+fn read_geometry(object: &Map<String, Value>) -> Result<RawGeometry, Fault> {
+    let kind = type_of(object)?;
+    let coordinates = || {
+        object
+            .get("coordinates")
+            .ok_or_else(|| Fault::Structure(format!("{kind} has no 'coordinates'")))
+    };
+    match kind {
+        "Polygon" => Ok(RawGeometry::Polygons(vec![read_polygon(coordinates()?)?])),
+        "MultiPolygon" => {
+            let parts = array(coordinates()?, "MultiPolygon coordinates")?;
+            if parts.is_empty() {
+                return Err(Fault::Structure("MultiPolygon has no polygons".into()));
+            }
+            Ok(RawGeometry::Polygons(
+                parts.iter().map(read_polygon).collect::<Result<_, _>>()?,
+            ))
+        }
+        "Point" => Ok(RawGeometry::Point(read_position(coordinates()?)?)),
+        other => Err(Fault::Structure(format!(
+            "geometry type '{other}' cannot be a field: use Polygon or MultiPolygon (Point for markers)"
+        ))),
+    }
+}
+
+fn array<'a>(value: &'a Value, what: &str) -> Result<&'a Vec<Value>, Fault> {
+    value
+        .as_array()
+        .ok_or_else(|| Fault::Structure(format!("{what} is not an array")))
+}
+
+fn read_polygon(value: &Value) -> Result<RawRings, Fault> {
+    let rings = array(value, "Polygon coordinates")?;
+    if rings.is_empty() {
+        return Err(Fault::Structure("Polygon has no rings".into()));
+    }
+    let mut result = Vec::with_capacity(rings.len());
+    for (index, ring) in rings.iter().enumerate() {
+        let positions = array(ring, "a ring")?
+            .iter()
+            .map(read_position)
+            .collect::<Result<Vec<_>, _>>()?;
+        if positions.len() >= 2 && positions.first() != positions.last() {
+            return Err(if index == 0 {
+                Fault::UnclosedRing
+            } else {
+                Fault::Structure(format!("hole {index}: {}", Fault::UnclosedRing))
+            });
+        }
+        result.push(positions);
+    }
+    Ok(result)
+}
+
+fn read_position(value: &Value) -> Result<[f64; 2], Fault> {
+    let numbers = array(value, "a position")?;
+    if numbers.len() < 2 {
+        return Err(Fault::Structure(format!(
+            "position {value} has fewer than 2 numbers"
+        )));
+    }
+    let number = |value: &Value| {
+        value
+            .as_f64()
+            .ok_or_else(|| Fault::Structure(format!("position holds {value}, not a number")))
+    };
+    Ok([number(&numbers[0])?, number(&numbers[1])?])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::CoordinateSystem;
+
+    fn farm(text: &str) -> Result<Farm, InputError> {
+        parse(Path::new("test.geojson"), text, CoordinateChoice::FromFile)
+    }
+
+    #[test]
+    fn reads_holes_obstacles_and_markers() {
+        let text = r#"{"type":"FeatureCollection","crs":"local","features":[
+          {"type":"Feature","properties":{"name":"A"},"geometry":{"type":"Polygon","coordinates":[
+            [[0,0],[100,0],[100,100],[0,100],[0,0]],[[10,10],[20,10],[20,20],[10,10]]]}},
+          {"type":"Feature","properties":{"kind":"obstacle"},"geometry":{"type":"Polygon","coordinates":[
+            [[50,50],[60,50],[60,60],[50,50]]]}},
+          {"type":"Feature","properties":{"kind":"launch"},"geometry":{"type":"Point","coordinates":[-5,-5]}}]}"#;
+        let farm = farm(text).unwrap();
+        assert_eq!(farm.coordinate_system, CoordinateSystem::Local);
+        assert_eq!(farm.fields.len(), 1);
+        assert_eq!(farm.fields[0].holes(), 1);
+        assert!((farm.fields[0].area_m2() - (10_000.0 - 50.0)).abs() < 1e-9);
+        assert_eq!(farm.obstacles.len(), 1);
+        assert_eq!(farm.markers[0].kind, "launch");
+    }
+
+    #[test]
+    fn lon_lat_is_projected_to_utm() {
+        let text = r#"{"type":"Polygon","coordinates":[[[8.5,47.3],[8.51,47.3],[8.51,47.31],[8.5,47.3]]]}"#;
+        let farm = farm(text).unwrap();
+        let CoordinateSystem::Utm(zone) = farm.coordinate_system else {
+            panic!("expected UTM")
+        };
+        assert_eq!(zone.epsg(), 32632);
+        let corner = farm.fields[0].polygon.exterior().0[0];
+        let (lon, lat) = farm.coordinate_system.to_input(corner.x, corner.y);
+        assert!((lon - 8.5).abs() < 1e-9 && (lat - 47.3).abs() < 1e-9);
+    }
+
+    #[test]
+    fn faults_name_the_feature() {
+        let bow_tie = r#"{"type":"FeatureCollection","crs":"local","features":[
+          {"type":"Feature","properties":{"name":"ok"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}},
+          {"type":"Feature","properties":{"name":"bad"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[10,10],[10,0],[0,10],[0,0]]]}}]}"#;
+        let message = farm(bow_tie).unwrap_err().to_string();
+        assert!(
+            message.starts_with("test.geojson: feature 1 (bad): boundary intersects itself"),
+            "{message}"
+        );
+        let lon_lat_out_of_range =
+            r#"{"type":"Polygon","coordinates":[[[0,0],[500,0],[500,500],[0,0]]]}"#;
+        let message = farm(lon_lat_out_of_range).unwrap_err().to_string();
+        assert!(message.contains("out of range"), "{message}");
+        let line = r#"{"type":"LineString","coordinates":[[0,0],[1,1]]}"#;
+        assert!(farm(line).unwrap_err().to_string().contains("LineString"));
+    }
+}

@@ -1,0 +1,93 @@
+//! Reading what operators have: field files (GeoJSON, KML, KMZ) into a validated [`Farm`].
+//!
+//! Each format parser only turns its syntax into [`RawFeature`]s in the file's own
+//! coordinates; [`farm::build`] then does everything once for all formats: choose the frame,
+//! project, clean rings, validate, apply the size limits.
+
+pub mod farm;
+pub mod geojson;
+pub mod kml;
+
+use std::path::Path;
+
+use crate::error::{Fault, InputError};
+use crate::model::limits::MAX_TEXT_FILE_BYTES;
+use crate::model::Farm;
+
+pub use farm::{RawFeature, RawGeometry};
+
+/// How the coordinates of a field file are to be read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum CoordinateChoice {
+    /// As the file says: GeoJSON is lon/lat unless it carries `"crs": "local"`; KML is lon/lat.
+    #[default]
+    FromFile,
+    /// Metres in a local frame whatever the file says (`--crs local`).
+    Local,
+}
+
+/// Reads a field file of any supported kind, chosen by its extension.
+pub fn read_farm(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputError> {
+    let extension = path
+        .extension()
+        .and_then(|extension| extension.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    match extension.as_str() {
+        "geojson" | "json" => geojson::read(path, choice),
+        "kml" => kml::read_kml(path, choice),
+        "kmz" => kml::read_kmz(path, choice),
+        other => Err(InputError::new(
+            path,
+            Fault::UnknownExtension(other.to_string()),
+        )),
+    }
+}
+
+/// Reads a whole file as bytes, with the size limit and a clear message on failure.
+pub fn read_bytes(path: &Path) -> Result<Vec<u8>, InputError> {
+    let metadata =
+        std::fs::metadata(path).map_err(|error| InputError::new(path, unreadable(&error)))?;
+    if metadata.is_dir() {
+        return Err(InputError::new(
+            path,
+            Fault::Unreadable("it is a folder, not a file".into()),
+        ));
+    }
+    if metadata.len() > MAX_TEXT_FILE_BYTES {
+        return Err(InputError::new(
+            path,
+            Fault::TooLarge(format!(
+                "{} bytes (limit {MAX_TEXT_FILE_BYTES})",
+                metadata.len()
+            )),
+        ));
+    }
+    let bytes = std::fs::read(path).map_err(|error| InputError::new(path, unreadable(&error)))?;
+    if bytes.iter().all(u8::is_ascii_whitespace) {
+        return Err(InputError::new(path, Fault::Empty));
+    }
+    Ok(bytes)
+}
+
+/// Reads a whole text file (UTF-8).
+pub fn read_text(path: &Path) -> Result<String, InputError> {
+    let bytes = read_bytes(path)?;
+    String::from_utf8(bytes).map_err(|error| {
+        InputError::new(
+            path,
+            Fault::Unreadable(format!(
+                "not UTF-8 text (invalid byte at offset {})",
+                error.utf8_error().valid_up_to()
+            )),
+        )
+    })
+}
+
+pub(crate) fn unreadable(error: &std::io::Error) -> Fault {
+    Fault::Unreadable(match error.kind() {
+        std::io::ErrorKind::NotFound => "no such file".to_string(),
+        std::io::ErrorKind::PermissionDenied => "permission denied".to_string(),
+        _ => error.to_string(),
+    })
+}

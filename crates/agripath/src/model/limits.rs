@@ -1,0 +1,17 @@
+//! Sizes past which planning would not finish in bounded time or memory; inputs beyond them
+//! are refused up front with a clear message (see `docs/limits.md`).
+
+/// Fields (and obstacles) in one file.
+pub const MAX_POLYGONS: usize = 20_000;
+/// Vertices over all rings of one file.
+pub const MAX_VERTICES: usize = 2_000_000;
+/// Largest side of a farm's bounding box, metres: a work area, not a country.
+pub const MAX_FARM_EXTENT_M: f64 = 200_000.0;
+/// Largest coordinate magnitude accepted in a local frame, metres.
+pub const MAX_LOCAL_COORDINATE_M: f64 = 1.0e7;
+/// Raster cells a terrain model may hold in memory (4 bytes each: 1.6 GB).
+pub const MAX_TERRAIN_CELLS: u64 = 400_000_000;
+/// Points of an XYZ point cloud.
+pub const MAX_POINT_CLOUD_POINTS: usize = 50_000_000;
+/// Input file size, bytes, for text formats read whole.
+pub const MAX_TEXT_FILE_BYTES: u64 = 2_000_000_000;

@@ -1,0 +1,251 @@
+//! A scenario ties fields, terrain, vehicle and settings together. It comes from a scenario
+//! TOML file (`data/scenarios/*.toml`) or from command-line parts; either way the result is
+//! validated once, and every stage after it can rely on it.
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use super::vehicle::one_line;
+use super::{Farm, Vehicle};
+use crate::error::{Fault, InputError, TerrainError};
+use crate::geometry::validate::point_in_ring;
+use crate::input::{read_farm, read_text, CoordinateChoice};
+use crate::terrain::{Terrain, TerrainSpec};
+
+/// Command-line figures that override the vehicle file.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct VehicleOverrides {
+    pub swath_width_m: Option<f64>,
+    pub spray_height_m: Option<f64>,
+    pub safe_height_m: Option<f64>,
+}
+
+/// The parts of a scenario before loading.
+#[derive(Debug, Clone, Default)]
+pub struct ScenarioParts {
+    pub name: Option<String>,
+    pub fields: PathBuf,
+    pub coordinates: CoordinateChoice,
+    pub terrain: Option<TerrainSpec>,
+    /// Folder relative terrain paths are taken from.
+    pub terrain_base: PathBuf,
+    pub vehicle_file: Option<PathBuf>,
+    /// Vehicle keys given inline (a scenario's `[vehicle]` table), over the vehicle file.
+    pub vehicle_table: Option<toml::Table>,
+    pub overrides: VehicleOverrides,
+}
+
+/// Everything a plan needs, validated.
+pub struct Scenario {
+    pub name: String,
+    pub farm: Farm,
+    pub terrain_spec: TerrainSpec,
+    pub terrain: Box<dyn Terrain>,
+    pub vehicle: Vehicle,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ScenarioFile {
+    name: Option<String>,
+    fields: PathBuf,
+    crs: Option<String>,
+    vehicle_file: Option<PathBuf>,
+    vehicle: Option<toml::Table>,
+    terrain: Option<TerrainSpec>,
+}
+
+impl Scenario {
+    /// Reads a scenario TOML file; paths in it are relative to its folder.
+    pub fn from_file(path: &Path, overrides: VehicleOverrides) -> Result<Self, InputError> {
+        let text = read_text(path)?;
+        let file: ScenarioFile = toml::from_str(&text)
+            .map_err(|error| InputError::new(path, Fault::Toml(one_line(&error))))?;
+        let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
+        let coordinates = match file.crs.as_deref() {
+            None => CoordinateChoice::FromFile,
+            Some("local") => CoordinateChoice::Local,
+            Some(other) => {
+                return Err(InputError::new(
+                    path,
+                    Fault::InvalidValue {
+                        what: "crs".into(),
+                        value: other.into(),
+                        why: "the only setting is \"local\" (leave it out for lon/lat)".into(),
+                    },
+                ))
+            }
+        };
+        Self::load(ScenarioParts {
+            name: file.name,
+            fields: base.join(&file.fields),
+            coordinates,
+            terrain: file.terrain,
+            terrain_base: base.clone(),
+            vehicle_file: file.vehicle_file.map(|vehicle| base.join(vehicle)),
+            vehicle_table: file.vehicle,
+            overrides,
+        })
+        .map_err(|error| {
+            if error.file.as_os_str().is_empty() {
+                InputError {
+                    file: path.to_path_buf(),
+                    ..error
+                }
+            } else {
+                error
+            }
+        })
+    }
+
+    /// Loads and checks every part.
+    pub fn load(parts: ScenarioParts) -> Result<Self, InputError> {
+        let farm = read_farm(&parts.fields, parts.coordinates)?;
+        Self::with_farm(farm, parts)
+    }
+
+    /// Completes a scenario around a farm already read (the embedded demo farm, for one).
+    pub fn with_farm(farm: Farm, parts: ScenarioParts) -> Result<Self, InputError> {
+        let vehicle = load_vehicle(&parts)?;
+        let (terrain_spec, terrain_base) = match (&parts.terrain, &farm.embedded_terrain) {
+            (Some(spec), _) => (spec.clone(), parts.terrain_base.clone()),
+            (None, Some(spec)) => (
+                spec.clone(),
+                farm.source.parent().unwrap_or(Path::new("")).to_path_buf(),
+            ),
+            (None, None) => (
+                TerrainSpec::Flat { height_m: 0.0 },
+                parts.terrain_base.clone(),
+            ),
+        };
+        let terrain = terrain_spec.load(&terrain_base, farm.coordinate_system)?;
+        check_terrain_covers(&farm, terrain.as_ref()).map_err(|(field, fault)| {
+            let file = match &terrain_spec {
+                TerrainSpec::File { path, .. } => terrain_base.join(path),
+                _ => farm.source.clone(),
+            };
+            InputError::new(file, fault).at(format!("field '{field}'"))
+        })?;
+        let name = parts.name.clone().unwrap_or_else(|| {
+            farm.source
+                .file_stem()
+                .map(|stem| stem.to_string_lossy().into_owned())
+                .unwrap_or_else(|| "plan".into())
+        });
+        Ok(Self {
+            name,
+            farm,
+            terrain_spec,
+            terrain,
+            vehicle,
+        })
+    }
+}
+
+fn load_vehicle(parts: &ScenarioParts) -> Result<Vehicle, InputError> {
+    let (mut table, source) = match &parts.vehicle_file {
+        Some(path) => {
+            let text = read_text(path)?;
+            let table: toml::Table = toml::from_str(&text)
+                .map_err(|error| InputError::new(path, Fault::Toml(one_line(&error))))?;
+            (table, path.clone())
+        }
+        None => (toml::Table::new(), PathBuf::new()),
+    };
+    if let Some(inline) = &parts.vehicle_table {
+        for (key, value) in inline {
+            table.insert(key.clone(), value.clone());
+        }
+    }
+    let overrides = [
+        (
+            "swath_width_m",
+            parts.overrides.swath_width_m,
+            "--swath-width",
+        ),
+        (
+            "spray_height_m",
+            parts.overrides.spray_height_m,
+            "--spray-height",
+        ),
+        (
+            "safe_height_m",
+            parts.overrides.safe_height_m,
+            "--safe-height",
+        ),
+    ];
+    let vehicle: Vehicle =
+        toml::Value::Table(table)
+            .try_into()
+            .map_err(|error: toml::de::Error| {
+                InputError::new(&source, Fault::Toml(one_line(&error)))
+            })?;
+    let mut vehicle = vehicle;
+    for (key, value, flag) in overrides {
+        if let Some(value) = value {
+            match key {
+                "swath_width_m" => vehicle.swath_width_m = value,
+                "spray_height_m" => vehicle.spray_height_m = value,
+                _ => vehicle.safe_height_m = value,
+            }
+            // Check the flag on its own, so the message names the flag and not the file.
+            let mut probe = Vehicle::default();
+            match key {
+                "swath_width_m" => probe.swath_width_m = value,
+                "spray_height_m" => probe.spray_height_m = value,
+                _ => probe.safe_height_m = value,
+            }
+            probe
+                .validate()
+                .map_err(|fault| InputError::new(flag, fault))?;
+        }
+    }
+    vehicle
+        .validate()
+        .map_err(|fault| InputError::new(&source, fault))?;
+    Ok(vehicle)
+}
+
+/// Every field must lie on the terrain model: its boundary vertices and a lattice of points
+/// inside it are sampled.
+fn check_terrain_covers(farm: &Farm, terrain: &dyn Terrain) -> Result<(), (String, Fault)> {
+    for field in &farm.fields {
+        let fail = |error: TerrainError| {
+            let (x, y) = match error {
+                TerrainError::Outside { x, y } | TerrainError::NoData { x, y } => (x, y),
+            };
+            let (input_x, input_y) = farm.coordinate_system.to_input(x, y);
+            (
+                field.name.clone(),
+                Fault::Structure(format!(
+                    "the terrain model does not cover the field: {error} (input coordinates {input_x:.6}, {input_y:.6})"
+                )),
+            )
+        };
+        for ring in std::iter::once(field.polygon.exterior()).chain(field.polygon.interiors()) {
+            for point in &ring.0 {
+                terrain.height_m(point.x, point.y).map_err(fail)?;
+            }
+        }
+        let exterior = &field.polygon.exterior().0;
+        let (mut min_x, mut min_y, mut max_x, mut max_y) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+        for point in exterior {
+            min_x = min_x.min(point.x);
+            min_y = min_y.min(point.y);
+            max_x = max_x.max(point.x);
+            max_y = max_y.max(point.y);
+        }
+        let steps = 32;
+        for row in 0..=steps {
+            for column in 0..=steps {
+                let x = min_x + (max_x - min_x) * column as f64 / steps as f64;
+                let y = min_y + (max_y - min_y) * row as f64 / steps as f64;
+                if point_in_ring(geo::Coord { x, y }, exterior) {
+                    terrain.height_m(x, y).map_err(fail)?;
+                }
+            }
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,162 @@
+//! What was read, for people (`agripath validate`) and programs (`--json`).
+
+use serde::Serialize;
+
+use crate::model::Scenario;
+use crate::terrain::Extent;
+
+#[derive(Debug, Clone, Serialize)]
+pub struct FieldSummary {
+    pub name: String,
+    pub area_m2: f64,
+    pub holes: usize,
+    pub vertices: usize,
+    /// Lowest and highest terrain under the field's bounding box, metres.
+    pub terrain_range_m: Option<[f64; 2]>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct ScenarioSummary {
+    pub name: String,
+    pub fields_file: String,
+    pub coordinate_system: String,
+    pub fields: Vec<FieldSummary>,
+    pub obstacles: usize,
+    pub markers: Vec<String>,
+    pub total_area_m2: f64,
+    /// [min_x, min_y, max_x, max_y] of the farm in planning metres.
+    pub farm_bounds_m: [f64; 4],
+    pub terrain: String,
+    /// [min_x, min_y, max_x, max_y] of the terrain model, when it is bounded.
+    pub terrain_extent: Option<[f64; 4]>,
+    pub terrain_range_m: Option<[f64; 2]>,
+    pub vehicle: String,
+    pub swath_width_m: f64,
+    pub spray_height_m: f64,
+    pub safe_height_m: f64,
+}
+
+impl ScenarioSummary {
+    pub fn of(scenario: &Scenario) -> Self {
+        let farm = &scenario.farm;
+        let terrain = scenario.terrain.as_ref();
+        let fields = farm
+            .fields
+            .iter()
+            .map(|field| {
+                let bounds = geo::BoundingRect::bounding_rect(&field.polygon)
+                    .expect("a valid field has a bounding box");
+                FieldSummary {
+                    name: field.name.clone(),
+                    area_m2: field.area_m2(),
+                    holes: field.holes(),
+                    vertices: field.vertices(),
+                    terrain_range_m: terrain
+                        .height_range_m(Extent {
+                            min_x: bounds.min().x,
+                            min_y: bounds.min().y,
+                            max_x: bounds.max().x,
+                            max_y: bounds.max().y,
+                        })
+                        .map(|(low, high)| [low, high]),
+                }
+            })
+            .collect();
+        let bounds = farm.bounds();
+        let farm_extent = Extent {
+            min_x: bounds.min().x,
+            min_y: bounds.min().y,
+            max_x: bounds.max().x,
+            max_y: bounds.max().y,
+        };
+        let terrain_extent = terrain.extent();
+        Self {
+            name: scenario.name.clone(),
+            fields_file: farm.source.display().to_string(),
+            coordinate_system: farm.coordinate_system.describe(),
+            fields,
+            obstacles: farm.obstacles.len(),
+            markers: farm
+                .markers
+                .iter()
+                .map(|marker| format!("{} ({})", marker.name, marker.kind))
+                .collect(),
+            total_area_m2: farm.total_area_m2(),
+            farm_bounds_m: [
+                farm_extent.min_x,
+                farm_extent.min_y,
+                farm_extent.max_x,
+                farm_extent.max_y,
+            ],
+            terrain: terrain.describe(),
+            terrain_extent: terrain_extent.map(|e| [e.min_x, e.min_y, e.max_x, e.max_y]),
+            terrain_range_m: terrain
+                .height_range_m(terrain_extent.unwrap_or(farm_extent))
+                .map(|(low, high)| [low, high]),
+            vehicle: scenario.vehicle.name.clone(),
+            swath_width_m: scenario.vehicle.swath_width_m,
+            spray_height_m: scenario.vehicle.spray_height_m,
+            safe_height_m: scenario.vehicle.safe_height_m,
+        }
+    }
+
+    /// A short text for the terminal.
+    pub fn to_text(&self) -> String {
+        let mut text = String::new();
+        let range = |range: Option<[f64; 2]>| match range {
+            Some([low, high]) => format!("{low:.1}..{high:.1} m"),
+            None => "no data".to_string(),
+        };
+        text.push_str(&format!("scenario  {}\n", self.name));
+        text.push_str(&format!(
+            "fields    {} ({})\n",
+            self.fields_file, self.coordinate_system
+        ));
+        text.push_str(&format!(
+            "          {:<14} {:>10} {:>6} {:>9}  {}\n",
+            "name", "area ha", "holes", "vertices", "terrain"
+        ));
+        for field in &self.fields {
+            text.push_str(&format!(
+                "          {:<14} {:>10.3} {:>6} {:>9}  {}\n",
+                field.name,
+                field.area_m2 / 10_000.0,
+                field.holes,
+                field.vertices,
+                range(field.terrain_range_m)
+            ));
+        }
+        text.push_str(&format!(
+            "          {} field(s), {:.3} ha, {} obstacle(s){}\n",
+            self.fields.len(),
+            self.total_area_m2 / 10_000.0,
+            self.obstacles,
+            if self.markers.is_empty() {
+                String::new()
+            } else {
+                format!(", markers: {}", self.markers.join(", "))
+            }
+        ));
+        let [x0, y0, x1, y1] = self.farm_bounds_m;
+        text.push_str(&format!(
+            "          bounds x {x0:.1}..{x1:.1}, y {y0:.1}..{y1:.1} m ({:.0} × {:.0} m)\n",
+            x1 - x0,
+            y1 - y0
+        ));
+        text.push_str(&format!("terrain   {}\n", self.terrain));
+        if let Some([x0, y0, x1, y1]) = self.terrain_extent {
+            text.push_str(&format!(
+                "          extent x {x0:.1}..{x1:.1}, y {y0:.1}..{y1:.1}\n"
+            ));
+        }
+        text.push_str(&format!(
+            "          heights {}\n",
+            range(self.terrain_range_m)
+        ));
+        text.push_str(&format!(
+            "vehicle   {}: swath {} m, spray height {} m, safe height h {} m\n",
+            self.vehicle, self.swath_width_m, self.spray_height_m, self.safe_height_m
+        ));
+        text
+    }
+}

@@ -1,0 +1,137 @@
+//! Placing a DEM in the planning frame of a farm.
+//!
+//! A farm read in lon/lat is planned in its UTM zone; a DEM may come in that zone, another
+//! UTM zone, or in lon/lat. Queries are converted to the DEM's own coordinates, so no
+//! resampling (and no loss) happens. A farm in local metres uses the DEM's coordinates as they
+//! are: the fields must be drawn in the DEM's frame.
+
+use super::{Extent, Grid, Terrain};
+use crate::error::{Fault, TerrainError};
+use crate::geometry::{from_utm, to_utm, UtmZone};
+use crate::model::CoordinateSystem;
+
+/// The DEM's coordinate system as far as planning needs it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum DemCoordinates {
+    Utm(UtmZone),
+    LonLat,
+}
+
+/// EPSG codes whose coordinates are UTM easting/northing: WGS84 (326zz, 327zz), and the
+/// national grids that are UTM on GRS80 (ETRS89 258zz, NAD83 269zz, GDA94/MGA 283zz,
+/// GDA2020 78xx), whose axes differ from WGS84 UTM by well under the DEM's pixel.
+fn dem_coordinates(epsg: u32) -> Option<DemCoordinates> {
+    let zone = |number: u32, south: bool| {
+        Some(DemCoordinates::Utm(UtmZone {
+            number: number as u8,
+            south,
+        }))
+    };
+    match epsg {
+        4326 | 4258 | 4269 | 4283 | 7844 => Some(DemCoordinates::LonLat),
+        32601..=32660 => zone(epsg - 32600, false),
+        32701..=32760 => zone(epsg - 32700, true),
+        25801..=25860 => zone(epsg - 25800, false),
+        26901..=26923 => zone(epsg - 26900, false),
+        28348..=28358 => zone(epsg - 28300, true),
+        7846..=7859 => zone(epsg - 7800, true),
+        _ => None,
+    }
+}
+
+/// A DEM queried through a change of coordinates.
+struct Reprojected {
+    grid: Grid,
+    plan_zone: UtmZone,
+    dem: DemCoordinates,
+}
+
+impl Terrain for Reprojected {
+    fn height_m(&self, x: f64, y: f64) -> Result<f64, TerrainError> {
+        let (lon, lat) = from_utm(x, y, self.plan_zone);
+        let (dem_x, dem_y) = match self.dem {
+            DemCoordinates::LonLat => (lon, lat),
+            DemCoordinates::Utm(zone) => to_utm(lon, lat, zone),
+        };
+        self.grid
+            .height_m(dem_x, dem_y)
+            .map_err(|_| TerrainError::Outside { x, y })
+    }
+
+    fn extent(&self) -> Option<Extent> {
+        // The DEM's outline in the plan frame is curved; its bounding box from the corners and
+        // edge midpoints is close enough to say where to look.
+        let outer = self.grid.outer_extent();
+        let mut extent: Option<Extent> = None;
+        for (fx, fy) in [
+            (0.0, 0.0),
+            (0.5, 0.0),
+            (1.0, 0.0),
+            (0.0, 0.5),
+            (1.0, 0.5),
+            (0.0, 1.0),
+            (0.5, 1.0),
+            (1.0, 1.0),
+        ] {
+            let dem_x = outer.min_x + fx * outer.width();
+            let dem_y = outer.min_y + fy * outer.height();
+            let (lon, lat) = match self.dem {
+                DemCoordinates::LonLat => (dem_x, dem_y),
+                DemCoordinates::Utm(zone) => from_utm(dem_x, dem_y, zone),
+            };
+            let (x, y) = to_utm(lon, lat, self.plan_zone);
+            extent = Some(match extent {
+                None => Extent {
+                    min_x: x,
+                    min_y: y,
+                    max_x: x,
+                    max_y: y,
+                },
+                Some(e) => Extent {
+                    min_x: e.min_x.min(x),
+                    min_y: e.min_y.min(y),
+                    max_x: e.max_x.max(x),
+                    max_y: e.max_y.max(y),
+                },
+            });
+        }
+        extent
+    }
+
+    fn describe(&self) -> String {
+        format!(
+            "{} (sampled from UTM zone {}{})",
+            self.grid.source,
+            self.plan_zone.number,
+            if self.plan_zone.south { "S" } else { "N" }
+        )
+    }
+
+    fn height_range_m(&self, _within: Extent) -> Option<(f64, f64)> {
+        self.grid.stored_range()
+    }
+}
+
+/// The DEM as a terrain in the farm's planning frame.
+pub fn place(grid: Grid, frame: CoordinateSystem) -> Result<Box<dyn Terrain>, Fault> {
+    let CoordinateSystem::Utm(plan_zone) = frame else {
+        return Ok(Box::new(grid));
+    };
+    let Some(epsg) = grid.epsg else {
+        return Err(Fault::Structure(
+            "the DEM has no coordinate system (no EPSG code) and the fields are in lon/lat: use a georeferenced GeoTIFF, or local fields drawn in the DEM's frame".into(),
+        ));
+    };
+    match dem_coordinates(epsg) {
+        Some(DemCoordinates::Utm(zone)) if zone == plan_zone => Ok(Box::new(grid)),
+        Some(dem) => Ok(Box::new(Reprojected {
+            grid,
+            plan_zone,
+            dem,
+        })),
+        None => Err(Fault::Structure(format!(
+            "the DEM's coordinate system EPSG:{epsg} is not supported: reproject it to UTM or WGS84 lon/lat (for example with gdalwarp -t_srs EPSG:{})",
+            plan_zone.epsg()
+        ))),
+    }
+}

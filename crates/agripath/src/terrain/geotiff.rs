@@ -1,0 +1,266 @@
+//! GeoTIFF DEMs: one band of float32/64 or 8-64-bit integers, strips or tiles, any compression
+//! and predictor the `tiff` crate decodes (none, deflate, LZW; predictors 2 and 3).
+//!
+//! Georeferencing from the GeoTIFF tags: ModelPixelScale + ModelTiepoint, or a
+//! ModelTransformation without rotation (rotated or sheared rasters are refused); GeoKeys
+//! 1025 (PixelIsArea/PixelIsPoint), 3072 (projected EPSG) and 2048 (geographic EPSG);
+//! GDAL_NODATA (tag 42113) marks cells without data.
+
+use std::io::Cursor;
+use std::path::Path;
+
+use tiff::decoder::{Decoder, DecodingResult, Limits};
+use tiff::tags::Tag;
+use tiff::ColorType;
+
+use super::Grid;
+use crate::error::{Fault, InputError};
+use crate::input::read_bytes;
+use crate::model::limits::MAX_TERRAIN_CELLS;
+
+const GT_MODEL_TYPE: u16 = 1024;
+const GT_RASTER_TYPE: u16 = 1025;
+const GEOGRAPHIC_TYPE: u16 = 2048;
+const GEODETIC_DATUM: u16 = 2050;
+const PROJECTED_CS_TYPE: u16 = 3072;
+const PROJECTION: u16 = 3074;
+const DATUM_GDA94: u16 = 6283;
+const RASTER_PIXEL_IS_POINT: u16 = 2;
+const USER_DEFINED: u16 = 32767;
+
+/// Reads a GeoTIFF DEM.
+pub fn read(path: &Path) -> Result<Grid, InputError> {
+    let bytes = read_bytes(path)?;
+    decode(&bytes).map_err(|fault| InputError::new(path, fault))
+}
+
+/// Decodes GeoTIFF bytes into a grid.
+pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
+    let tiff_fault = |error: tiff::TiffError| Fault::Tiff(error.to_string());
+    let mut decoder = Decoder::new(Cursor::new(bytes)).map_err(tiff_fault)?;
+    let (columns, rows) = decoder.dimensions().map_err(tiff_fault)?;
+    let cells = u64::from(columns) * u64::from(rows);
+    if columns == 0 || rows == 0 {
+        return Err(Fault::Tiff("the image has no pixels".into()));
+    }
+    if cells > MAX_TERRAIN_CELLS {
+        return Err(Fault::TooLarge(format!(
+            "{columns} × {rows} cells (limit {MAX_TERRAIN_CELLS}): crop the DEM to the work area"
+        )));
+    }
+    match decoder.colortype().map_err(tiff_fault)? {
+        ColorType::Gray(_) => {}
+        other => {
+            return Err(Fault::Tiff(format!(
+                "a DEM has one band of heights; this image is {other:?}"
+            )))
+        }
+    }
+    let mut limits = Limits::default();
+    limits.decoding_buffer_size = (cells * 8) as usize;
+    limits.intermediate_buffer_size = (cells * 8) as usize;
+    decoder = decoder.with_limits(limits);
+
+    let keys = decoder
+        .find_tag(Tag::GeoKeyDirectoryTag)
+        .map_err(tiff_fault)?
+        .map(|value| value.into_u16_vec())
+        .transpose()
+        .map_err(tiff_fault)?
+        .map(|directory| geo_keys(&directory))
+        .unwrap_or_default();
+    let key = |id: u16| {
+        keys.iter()
+            .find(|(key, _)| *key == id)
+            .map(|(_, value)| *value)
+    };
+    let pixel_is_point = key(GT_RASTER_TYPE) == Some(RASTER_PIXEL_IS_POINT);
+    let epsg = match key(GT_MODEL_TYPE) {
+        Some(2) => key(GEOGRAPHIC_TYPE),
+        _ => key(PROJECTED_CS_TYPE).or(key(GEOGRAPHIC_TYPE)),
+    }
+    .filter(|&code| code != USER_DEFINED && code != 0)
+    .map(u32::from)
+    .or_else(|| user_defined_utm(key(PROJECTION), key(GEODETIC_DATUM)));
+
+    let (first_center_x, first_center_y, cell_x, cell_y) =
+        georeference(&mut decoder, pixel_is_point)?;
+
+    let nodata: Option<f64> = decoder
+        .find_tag(Tag::GdalNodata)
+        .map_err(tiff_fault)?
+        .and_then(|value| value.into_string().ok())
+        .and_then(|text| text.trim_matches(char::from(0)).trim().parse().ok());
+
+    let image = decoder.read_image().map_err(tiff_fault)?;
+    let mut heights = to_f32(image)?;
+    if heights.len() as u64 != cells {
+        return Err(Fault::Tiff(format!(
+            "expected {cells} samples, decoded {}",
+            heights.len()
+        )));
+    }
+    if let Some(nodata) = nodata {
+        let nodata = nodata as f32;
+        for height in &mut heights {
+            if *height == nodata {
+                *height = f32::NAN;
+            }
+        }
+    }
+    for height in &mut heights {
+        if !height.is_finite() {
+            *height = f32::NAN;
+        }
+    }
+    let source = format!(
+        "GeoTIFF {columns} × {rows}, cell {cell_x} × {cell_y}{}, {}{}",
+        if epsg.is_some_and(|code| code == 4326) {
+            "°"
+        } else {
+            " m"
+        },
+        match epsg {
+            Some(code) => format!("EPSG:{code}"),
+            None => "no EPSG code".to_string(),
+        },
+        if pixel_is_point {
+            ", pixel-is-point"
+        } else {
+            ""
+        }
+    );
+    Ok(Grid {
+        columns: columns as usize,
+        rows: rows as usize,
+        first_center_x,
+        first_center_y,
+        cell_x,
+        cell_y,
+        heights,
+        epsg,
+        source,
+    })
+}
+
+/// A user-defined projected CS built from a UTM projection code (EPSG 16001-16060 north,
+/// 16101-16160 south), as GDAL writes for national grids: the equivalent EPSG code, GDA94/MGA
+/// (283zz) on the GDA94 datum and WGS84 UTM otherwise.
+fn user_defined_utm(projection: Option<u16>, datum: Option<u16>) -> Option<u32> {
+    let projection = u32::from(projection?);
+    let (zone, south) = match projection {
+        16001..=16060 => (projection - 16000, false),
+        16101..=16160 => (projection - 16100, true),
+        _ => return None,
+    };
+    Some(match (datum, south) {
+        (Some(DATUM_GDA94), true) => 28300 + zone,
+        (_, true) => 32700 + zone,
+        (_, false) => 32600 + zone,
+    })
+}
+
+/// The GeoKey directory as (key, short value) pairs; keys stored in other tags are skipped
+/// (none of the ones read here are).
+fn geo_keys(directory: &[u16]) -> Vec<(u16, u16)> {
+    if directory.len() < 4 {
+        return Vec::new();
+    }
+    let count = usize::from(directory[3]);
+    directory[4..]
+        .chunks_exact(4)
+        .take(count)
+        .filter(|entry| entry[1] == 0)
+        .map(|entry| (entry[0], entry[3]))
+        .collect()
+}
+
+/// Centre of pixel (0, 0) and the cell size, from the model tags.
+fn georeference(
+    decoder: &mut Decoder<Cursor<&[u8]>>,
+    pixel_is_point: bool,
+) -> Result<(f64, f64, f64, f64), Fault> {
+    let tiff_fault = |error: tiff::TiffError| Fault::Tiff(error.to_string());
+    let doubles =
+        |decoder: &mut Decoder<Cursor<&[u8]>>, tag: Tag| -> Result<Option<Vec<f64>>, Fault> {
+            decoder
+                .find_tag(tag)
+                .map_err(tiff_fault)?
+                .map(|value| value.into_f64_vec().map_err(tiff_fault))
+                .transpose()
+        };
+    // A pixel-is-area raster's tiepoint refers to the pixel's corner, so its centre is half a
+    // pixel further; a pixel-is-point raster's tiepoint is the centre itself.
+    let centre_offset = if pixel_is_point { 0.0 } else { 0.5 };
+    if let Some(matrix) = doubles(decoder, Tag::ModelTransformationTag)? {
+        if matrix.len() < 16 {
+            return Err(Fault::Tiff(
+                "ModelTransformation has fewer than 16 values".into(),
+            ));
+        }
+        if matrix[1] != 0.0 || matrix[4] != 0.0 {
+            return Err(Fault::Tiff(
+                "the raster is rotated or sheared (ModelTransformation): warp it north-up first (gdalwarp)".into(),
+            ));
+        }
+        let (scale_x, offset_x, scale_y, offset_y) = (matrix[0], matrix[3], matrix[5], matrix[7]);
+        if !(scale_x > 0.0 && scale_y < 0.0) {
+            return Err(Fault::Tiff(
+                "the raster is flipped (ModelTransformation): expected x growing east and rows running south".into(),
+            ));
+        }
+        return Ok((
+            offset_x + centre_offset * scale_x,
+            offset_y + centre_offset * scale_y,
+            scale_x,
+            -scale_y,
+        ));
+    }
+    let scale = doubles(decoder, Tag::ModelPixelScaleTag)?;
+    let tiepoint = doubles(decoder, Tag::ModelTiepointTag)?;
+    match (scale, tiepoint) {
+        (Some(scale), Some(tiepoint)) if scale.len() >= 2 && tiepoint.len() >= 6 => {
+            if tiepoint.len() > 6 {
+                return Err(Fault::Tiff(
+                    "the raster has several tiepoints (a warped grid): warp it north-up first (gdalwarp)".into(),
+                ));
+            }
+            let (cell_x, cell_y) = (scale[0], scale[1]);
+            if !(cell_x.is_finite() && cell_y.is_finite() && cell_x > 0.0 && cell_y > 0.0) {
+                return Err(Fault::Tiff(format!(
+                    "ModelPixelScale ({cell_x}, {cell_y}) is not a positive cell size"
+                )));
+            }
+            let [i, j, _, x, y, _] = [
+                tiepoint[0], tiepoint[1], tiepoint[2], tiepoint[3], tiepoint[4], tiepoint[5],
+            ];
+            Ok((
+                x + (centre_offset - i) * cell_x,
+                y - (centre_offset - j) * cell_y,
+                cell_x,
+                cell_y,
+            ))
+        }
+        // No georeferencing: pixel units, centre of the first pixel at (0.5, rows - 0.5) so
+        // that x is the column and y grows north, as a plain image would be read.
+        _ => Err(Fault::Tiff(
+            "no georeferencing (ModelPixelScale/ModelTiepoint or ModelTransformation): this is an image, not a DEM".into(),
+        )),
+    }
+}
+
+fn to_f32(image: DecodingResult) -> Result<Vec<f32>, Fault> {
+    Ok(match image {
+        DecodingResult::F32(values) => values,
+        DecodingResult::F64(values) => values.into_iter().map(|v| v as f32).collect(),
+        DecodingResult::I16(values) => values.into_iter().map(f32::from).collect(),
+        DecodingResult::U16(values) => values.into_iter().map(f32::from).collect(),
+        DecodingResult::I8(values) => values.into_iter().map(f32::from).collect(),
+        DecodingResult::U8(values) => values.into_iter().map(f32::from).collect(),
+        DecodingResult::I32(values) => values.into_iter().map(|v| v as f32).collect(),
+        DecodingResult::U32(values) => values.into_iter().map(|v| v as f32).collect(),
+        DecodingResult::I64(values) => values.into_iter().map(|v| v as f32).collect(),
+        DecodingResult::U64(values) => values.into_iter().map(|v| v as f32).collect(),
+        _ => return Err(Fault::Tiff("unsupported sample format".into())),
+    })
+}

@@ -1,0 +1,229 @@
+//! Terrain models behind one trait: flat ground, the analytic terrains of the seeds, and
+//! rasters read from GeoTIFF, ESRI ASCII grids and XYZ point clouds.
+//!
+//! Every query answers a height above sea level in metres at a planning-frame position, or
+//! says why it cannot ([`TerrainError`]): asking outside a DEM is an error, never a silent 0.
+
+pub mod ascii_grid;
+pub mod composite;
+pub mod flat;
+pub mod frame;
+pub mod geotiff;
+pub mod grid;
+pub mod hillshade;
+pub mod plateaus;
+pub mod xyz;
+
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+
+use crate::error::{Fault, InputError, TerrainError};
+use crate::model::CoordinateSystem;
+
+pub use composite::Composite;
+pub use flat::Flat;
+pub use grid::Grid;
+pub use plateaus::{Plateau, Plateaus};
+
+/// A rectangle of the plane, metres.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Extent {
+    pub min_x: f64,
+    pub min_y: f64,
+    pub max_x: f64,
+    pub max_y: f64,
+}
+
+impl Extent {
+    pub fn width(&self) -> f64 {
+        self.max_x - self.min_x
+    }
+
+    pub fn height(&self) -> f64 {
+        self.max_y - self.min_y
+    }
+
+    pub fn contains(&self, x: f64, y: f64) -> bool {
+        x >= self.min_x && x <= self.max_x && y >= self.min_y && y <= self.max_y
+    }
+}
+
+/// A height field.
+pub trait Terrain: Send + Sync {
+    /// Height above sea level at (x, y), metres.
+    fn height_m(&self, x: f64, y: f64) -> Result<f64, TerrainError>;
+
+    /// Where the model has answers; `None` for models defined everywhere.
+    fn extent(&self) -> Option<Extent>;
+
+    /// One line for people: what was read.
+    fn describe(&self) -> String;
+
+    /// Lowest and highest height over `within`, metres. The default samples a 257 × 257
+    /// lattice; rasters override it with their exact range.
+    fn height_range_m(&self, within: Extent) -> Option<(f64, f64)> {
+        let steps = 256;
+        let mut range: Option<(f64, f64)> = None;
+        for row in 0..=steps {
+            for column in 0..=steps {
+                let x = within.min_x + within.width() * column as f64 / steps as f64;
+                let y = within.min_y + within.height() * row as f64 / steps as f64;
+                if let Ok(height) = self.height_m(x, y) {
+                    range = Some(match range {
+                        Some((low, high)) => (low.min(height), high.max(height)),
+                        None => (height, height),
+                    });
+                }
+            }
+        }
+        range
+    }
+}
+
+/// Which terrain to use, as written in a scenario file, a field file's `terrain` member or
+/// a `--terrain` argument. [`TerrainSpec::load`] turns it into a [`Terrain`].
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum TerrainSpec {
+    /// Level ground at `height_m`.
+    Flat {
+        #[serde(default)]
+        height_m: f64,
+    },
+    /// The composite terrain of seeds 000/002 (`preset` = `seed000` or `seed002`).
+    Composite {
+        #[serde(default = "default_preset")]
+        preset: String,
+    },
+    /// Level ground with circular plateaus (seed 001's S4).
+    #[serde(alias = "flat_with_plateaus")]
+    Plateaus {
+        #[serde(default)]
+        base_m: f64,
+        plateaus: Vec<Plateau>,
+        /// Spacing of the paper's DEM (informational; the model is analytic).
+        #[serde(default)]
+        dem_spacing_m: Option<f64>,
+        #[serde(default)]
+        note: Option<String>,
+    },
+    /// A DEM file: GeoTIFF (.tif/.tiff), ESRI ASCII grid (.asc) or XYZ points (.xyz/.csv).
+    File {
+        path: PathBuf,
+        /// Cell size for gridding an XYZ point cloud, metres (estimated when absent).
+        #[serde(default)]
+        cell_m: Option<f64>,
+    },
+}
+
+fn default_preset() -> String {
+    "seed000".to_string()
+}
+
+impl TerrainSpec {
+    /// Reads a `--terrain` argument: a DEM path, or `flat`, `flat:HEIGHT`, `seed000`, `seed002`.
+    pub fn from_argument(argument: &str) -> Result<Self, InputError> {
+        let fail = |why: &str| {
+            InputError::new(
+                "--terrain",
+                Fault::InvalidValue {
+                    what: "--terrain".into(),
+                    value: argument.into(),
+                    why: why.into(),
+                },
+            )
+        };
+        match argument {
+            "flat" => Ok(Self::Flat { height_m: 0.0 }),
+            "seed000" | "seed002" => Ok(Self::Composite {
+                preset: argument.to_string(),
+            }),
+            _ if argument.starts_with("flat:") => {
+                let height_m: f64 = argument[5..]
+                    .parse()
+                    .map_err(|_| fail("flat:HEIGHT needs a number of metres"))?;
+                if !height_m.is_finite() {
+                    return Err(fail("the height must be finite"));
+                }
+                Ok(Self::Flat { height_m })
+            }
+            _ => Ok(Self::File {
+                path: PathBuf::from(argument),
+                cell_m: None,
+            }),
+        }
+    }
+
+    /// The `terrain` member of a field file. A member of kind `note` only describes the
+    /// ground in words (seed 003's strip): there is no model in it, so `None`.
+    pub fn from_embedded(value: &serde_json::Value) -> Result<Option<Self>, Fault> {
+        if value.get("kind").and_then(|kind| kind.as_str()) == Some("note") {
+            return Ok(None);
+        }
+        serde_json::from_value(value.clone())
+            .map(Some)
+            .map_err(|error| Fault::Structure(error.to_string()))
+    }
+
+    /// Loads the terrain. Relative paths are taken from `base`; `frame` is the planning frame
+    /// of the farm, so that a DEM in another projection is sampled where the fields are.
+    pub fn load(
+        &self,
+        base: &Path,
+        frame: CoordinateSystem,
+    ) -> Result<Box<dyn Terrain>, InputError> {
+        match self {
+            Self::Flat { height_m } => {
+                if !height_m.is_finite() {
+                    return Err(InputError::new(base, Fault::NonFinite).at("terrain height_m"));
+                }
+                Ok(Box::new(Flat::new(*height_m)))
+            }
+            Self::Composite { preset } => match preset.as_str() {
+                "seed000" => Ok(Box::new(Composite::seed000())),
+                "seed002" => Ok(Box::new(Composite::seed002())),
+                other => Err(InputError::new(
+                    base,
+                    Fault::InvalidValue {
+                        what: "terrain preset".into(),
+                        value: other.into(),
+                        why: "known presets are seed000 and seed002".into(),
+                    },
+                )),
+            },
+            Self::Plateaus {
+                base_m, plateaus, ..
+            } => Plateaus::new(*base_m, plateaus.clone())
+                .map(|terrain| Box::new(terrain) as Box<dyn Terrain>)
+                .map_err(|fault| InputError::new(base, fault).at("terrain")),
+            Self::File { path, cell_m } => {
+                let path = if path.is_absolute() {
+                    path.clone()
+                } else {
+                    base.join(path)
+                };
+                let grid = load_grid(&path, *cell_m)?;
+                frame::place(grid, frame).map_err(|fault| InputError::new(&path, fault))
+            }
+        }
+    }
+}
+
+/// Reads a DEM file into a grid, choosing the reader by extension.
+pub fn load_grid(path: &Path, cell_m: Option<f64>) -> Result<Grid, InputError> {
+    let extension = path
+        .extension()
+        .and_then(|extension| extension.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    match extension.as_str() {
+        "tif" | "tiff" => geotiff::read(path),
+        "asc" => ascii_grid::read(path),
+        "xyz" | "csv" | "txt" => xyz::read(path, cell_m),
+        other => Err(InputError::new(
+            path,
+            Fault::UnknownExtension(other.to_string()),
+        )),
+    }
+}
