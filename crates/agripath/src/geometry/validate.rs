@@ -31,7 +31,7 @@ pub fn clean_ring(points: &[Coord<f64>]) -> Result<LineString<f64>, Fault> {
     if cleaned.len() < 3 {
         return Err(Fault::DegenerateRing);
     }
-    if signed_area(&cleaned).abs() <= f64::EPSILON * bounding_scale(&cleaned).powi(2) {
+    if all_collinear(&cleaned) {
         return Err(Fault::ZeroArea);
     }
     cleaned.push(cleaned[0]);
@@ -48,6 +48,25 @@ pub fn signed_area(points: &[Coord<f64>]) -> f64 {
         twice_area += current.x * next.y - next.x * current.y;
     }
     twice_area / 2.0
+}
+
+/// All points on one line (a ring that encloses nothing). A bow tie also has zero signed
+/// area but is not collinear: the validity sweep names it a self-intersection.
+fn all_collinear(points: &[Coord<f64>]) -> bool {
+    let origin = points[0];
+    let far = points
+        .iter()
+        .copied()
+        .max_by(|a, b| {
+            let da = (a.x - origin.x).hypot(a.y - origin.y);
+            let db = (b.x - origin.x).hypot(b.y - origin.y);
+            da.total_cmp(&db)
+        })
+        .expect("a ring has points");
+    let scale = bounding_scale(points);
+    points
+        .iter()
+        .all(|&point| cross(origin, far, point).abs() <= 1e-12 * scale * scale)
 }
 
 fn bounding_scale(points: &[Coord<f64>]) -> f64 {

@@ -264,3 +264,103 @@ fn to_f32(image: DecodingResult) -> Result<Vec<f32>, Fault> {
         _ => return Err(Fault::Tiff("unsupported sample format".into())),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::terrain::Terrain;
+    use std::path::PathBuf;
+
+    const ROWS: usize = 24;
+    const COLUMNS: usize = 40;
+
+    fn fixture(name: &str) -> PathBuf {
+        PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/test/geotiff")).join(name)
+    }
+
+    /// The heights `make_fixtures.py` wrote.
+    fn expected(row: usize, column: usize, float: bool) -> f64 {
+        if float {
+            100.0 + 0.5 * row as f64 - 0.25 * column as f64 + ((row * column) % 7) as f64
+        } else {
+            1000.0 + 3.0 * row as f64 - 2.0 * column as f64
+        }
+    }
+
+    #[test]
+    fn every_encoding_reads_the_stored_values_at_pixel_centres() {
+        for (name, float) in [
+            ("float32_strips_none.tif", true),
+            ("float32_deflate_predictor3.tif", true),
+            ("float32_lzw_predictor3_tiled.tif", true),
+            ("int16_deflate_predictor2_tiled.tif", false),
+            ("int32_lzw_predictor2.tif", false),
+        ] {
+            let grid = read(&fixture(name)).unwrap_or_else(|error| panic!("{error}"));
+            assert_eq!((grid.columns, grid.rows), (COLUMNS, ROWS), "{name}");
+            assert_eq!(grid.epsg, Some(32633), "{name}");
+            for row in 0..ROWS {
+                for column in 0..COLUMNS {
+                    // Pixel-is-area: centre of (row, column) is half a cell in from the tiepoint.
+                    let x = 500_000.0 + (column as f64 + 0.5) * 2.0;
+                    let y = 4_000_000.0 - (row as f64 + 0.5) * 2.0;
+                    let height = grid.height_m(x, y).unwrap();
+                    assert_eq!(height, expected(row, column, float), "{name} at ({row}, {column})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn nodata_and_pixel_is_point() {
+        let grid = read(&fixture("float32_nodata_pixel_is_point.tif")).unwrap();
+        // Pixel-is-point: the tiepoint is the centre of pixel (0, 0).
+        assert_eq!(grid.height_m(500_000.0, 4_000_000.0), Ok(expected(0, 0, true)));
+        let (x, y) = grid.cell_center(3, 4);
+        assert_eq!((x, y), (500_008.0, 3_999_994.0));
+        assert!(matches!(
+            grid.height_m(x, y),
+            Err(crate::error::TerrainError::NoData { .. })
+        ));
+        assert_eq!(grid.valid_cells(), ROWS * COLUMNS - 1);
+    }
+
+    #[test]
+    fn refusals_say_why() {
+        let rotated = read(&fixture("rotated.tif")).unwrap_err().to_string();
+        assert!(rotated.contains("rotated"), "{rotated}");
+        let rgb = read(&fixture("rgb.tif")).unwrap_err().to_string();
+        assert!(rgb.contains("one band"), "{rgb}");
+        let plain = read(&fixture("no_georeference.tif")).unwrap_err().to_string();
+        assert!(plain.contains("no georeferencing"), "{plain}");
+    }
+
+    /// The SPSO DEM is uncompressed float32 strips: its stored values can be read straight
+    /// from the strip bytes, independently of the decoder, and compared at pixel centres.
+    #[test]
+    fn christmas_island_dem_matches_its_raw_strips() {
+        let path = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/spso/ChrismasTerrain.tif"));
+        let bytes = std::fs::read(&path).unwrap();
+        let grid = decode(&bytes).unwrap();
+        assert_eq!((grid.columns, grid.rows), (1045, 879));
+        assert_eq!(grid.epsg, Some(28348), "GDA94 / MGA zone 48");
+        // Strip offsets (tag 273) from the first IFD: every strip is one row of 4180 bytes.
+        let u16_at = |at: usize| u16::from_le_bytes([bytes[at], bytes[at + 1]]) as usize;
+        let u32_at = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+        let ifd = u32_at(4);
+        let entries = u16_at(ifd);
+        let strip_offsets = (0..entries)
+            .map(|index| ifd + 2 + 12 * index)
+            .find(|&entry| u16_at(entry) == 273)
+            .map(|entry| u32_at(entry + 8))
+            .unwrap();
+        for (row, column) in [(0, 0), (0, 1044), (878, 0), (878, 1044), (439, 522), (100, 900)] {
+            let strip = u32_at(strip_offsets + 4 * row);
+            let at = strip + 4 * column;
+            let stored = f32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
+            let x = 566_710.0 + (column as f64 + 0.5) * 5.0;
+            let y = 8_842_640.0 - (row as f64 + 0.5) * 5.0;
+            assert_eq!(grid.height_m(x, y), Ok(f64::from(stored)), "({row}, {column})");
+        }
+    }
+}

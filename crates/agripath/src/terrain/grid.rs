@@ -95,8 +95,19 @@ impl Terrain for Grid {
         let row = (row_position.floor() as usize).min(self.rows.saturating_sub(2));
         let next_column = (column + 1).min(self.columns - 1);
         let next_row = (row + 1).min(self.rows - 1);
-        let tx = column_position - column as f64;
-        let ty = row_position - row as f64;
+        // A query within a billionth of a cell of a centre is at the centre: the stored value
+        // comes back exactly, not blended with rounding noise.
+        let snap = |t: f64| {
+            if t < 1e-9 {
+                0.0
+            } else if t > 1.0 - 1e-9 {
+                1.0
+            } else {
+                t
+            }
+        };
+        let tx = snap(column_position - column as f64);
+        let ty = snap(row_position - row as f64);
         let mut height = 0.0;
         for (r, c, weight) in [
             (row, column, (1.0 - tx) * (1.0 - ty)),

@@ -1,0 +1,54 @@
+"""Writes the GeoTIFF fixtures of the DEM reader's tests with tifffile (an outside writer).
+
+Run: python make_fixtures.py (needs tifffile, numpy, imagecodecs). The heights follow
+h(row, col) below, so the tests know every stored value without reading it back the same way.
+"""
+import numpy as np
+import tifffile
+
+ROWS, COLS = 24, 40
+ORIGIN_X, ORIGIN_Y, CELL = 500000.0, 4000000.0, 2.0
+
+
+def heights(dtype):
+    r, c = np.mgrid[0:ROWS, 0:COLS]
+    if np.issubdtype(dtype, np.floating):
+        return (100.0 + 0.5 * r - 0.25 * c + (r * c % 7)).astype(dtype)
+    return (1000 + 3 * r - 2 * c).astype(dtype)
+
+
+def geo_tags(epsg=32633, pixel_is_point=False, nodata=None, transform=None):
+    keys = [1, 1, 0, 3, 1024, 0, 1, 1, 1025, 0, 1, 2 if pixel_is_point else 1, 3072, 0, 1, epsg]
+    tags = [(34735, "H", len(keys), keys, False)]
+    if transform is None:
+        tags += [
+            (33550, "d", 3, (CELL, CELL, 0.0), False),
+            (33922, "d", 6, (0.0, 0.0, 0.0, ORIGIN_X, ORIGIN_Y, 0.0), False),
+        ]
+    else:
+        tags += [(34264, "d", 16, transform, False)]
+    if nodata is not None:
+        tags += [(42113, "s", 0, str(nodata), False)]
+    return tags
+
+
+def write(name, data, **options):
+    tags = options.pop("tags", geo_tags())
+    tifffile.imwrite(name, data, extratags=tags, photometric="minisblack", **options)
+
+
+write("float32_strips_none.tif", heights(np.float32), rowsperstrip=5)
+write("float32_deflate_predictor3.tif", heights(np.float32), compression="zlib", predictor=3, rowsperstrip=7)
+write("float32_lzw_predictor3_tiled.tif", heights(np.float32), compression="lzw", predictor=3, tile=(16, 16))
+write("int16_deflate_predictor2_tiled.tif", heights(np.int16), compression="zlib", predictor=2, tile=(16, 16))
+write("int32_lzw_predictor2.tif", heights(np.int32), compression="lzw", predictor=2, rowsperstrip=4)
+with_nodata = heights(np.float32)
+with_nodata[3, 4] = -9999.0
+write("float32_nodata_pixel_is_point.tif", with_nodata, tags=geo_tags(pixel_is_point=True, nodata=-9999))
+angle = np.radians(10)
+rotated = (CELL * np.cos(angle), -CELL * np.sin(angle), 0, ORIGIN_X,
+           CELL * np.sin(angle), -CELL * np.cos(angle), 0, ORIGIN_Y,
+           0, 0, 0, 0, 0, 0, 0, 1)
+write("rotated.tif", heights(np.float32), tags=geo_tags(transform=rotated))
+tifffile.imwrite("rgb.tif", np.zeros((8, 8, 3), np.uint8), photometric="rgb", extratags=geo_tags())
+tifffile.imwrite("no_georeference.tif", heights(np.float32), photometric="minisblack")
