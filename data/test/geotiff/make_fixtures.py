@@ -52,3 +52,16 @@ rotated = (CELL * np.cos(angle), -CELL * np.sin(angle), 0, ORIGIN_X,
 write("rotated.tif", heights(np.float32), tags=geo_tags(transform=rotated))
 tifffile.imwrite("rgb.tif", np.zeros((8, 8, 3), np.uint8), photometric="rgb", extratags=geo_tags())
 tifffile.imwrite("no_georeference.tif", heights(np.float32), photometric="minisblack")
+
+# A geographic DEM (EPSG:4326, 0.001° cells from 8.5°E, 47.324°N): heights are linear in
+# lon/lat, h = 1000·(lon − 8.5) + 2000·(lat − 47.3), so bilinear sampling is exact anywhere.
+r, c = np.mgrid[0:24, 0:40]
+lon = 8.5 + (c + 0.5) * 0.001
+lat = 47.324 - (r + 0.5) * 0.001
+linear = (1000 * (lon - 8.5) + 2000 * (lat - 47.3)).astype(np.float64)
+keys = [1, 1, 0, 3, 1024, 0, 1, 2, 1025, 0, 1, 1, 2048, 0, 1, 4326]
+tifffile.imwrite(
+    "lonlat_4326_float64.tif", linear, photometric="minisblack",
+    extratags=[(34735, "H", len(keys), keys, False),
+               (33550, "d", 3, (0.001, 0.001, 0.0), False),
+               (33922, "d", 6, (0.0, 0.0, 0.0, 8.5, 47.324, 0.0), False)])

@@ -137,14 +137,20 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
                             .try_get_attribute("name")
                             .ok()
                             .flatten()
-                            .and_then(|attribute| attribute.normalized_value(quick_xml::XmlVersion::Implicit1_0).ok())
+                            .and_then(|attribute| {
+                                attribute
+                                    .normalized_value(quick_xml::XmlVersion::Implicit1_0)
+                                    .ok()
+                            })
                             .map(|value| value.into_owned());
                     }
                     _ => {}
                 }
                 stack.push(name);
                 if stack.len() > MAX_DEPTH {
-                    return Err(xml_fault(format!("elements nested deeper than {MAX_DEPTH}")));
+                    return Err(xml_fault(format!(
+                        "elements nested deeper than {MAX_DEPTH}"
+                    )));
                 }
                 text_buffer.clear();
             }
@@ -191,18 +197,17 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
                             state.name = Some(content.trim().to_string());
                         }
                     }
-                    "name" if parent == "Folder" => {
-                        if content.trim().eq_ignore_ascii_case("obstacles") {
-                            if let Some(last) = folders.last_mut() {
-                                *last = true;
-                            }
+                    "name"
+                        if parent == "Folder"
+                            && content.trim().eq_ignore_ascii_case("obstacles") =>
+                    {
+                        if let Some(last) = folders.last_mut() {
+                            *last = true;
                         }
                     }
-                    "value" | "SimpleData" => {
-                        if data_name.as_deref() == Some("kind") {
-                            if let Some(state) = placemark.as_mut() {
-                                state.kind = Some(content.trim().to_ascii_lowercase());
-                            }
+                    "value" | "SimpleData" if data_name.as_deref() == Some("kind") => {
+                        if let Some(state) = placemark.as_mut() {
+                            state.kind = Some(content.trim().to_ascii_lowercase());
                         }
                     }
                     "coordinates" => {
@@ -284,7 +289,9 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
         )));
     }
     if !saw_kml {
-        return Err(xml_fault("no <kml> element: this is not a KML document".into()));
+        return Err(xml_fault(
+            "no <kml> element: this is not a KML document".into(),
+        ));
     }
     Ok(features)
 }
@@ -338,7 +345,10 @@ mod tests {
         // 0.01° × 0.01° at 47.3° N is about 754 m × 1112 m, less a triangular hole of
         // 0.002° × 0.002° (about 151 m × 222 m / 2).
         let area = farm.fields[0].area_m2();
-        assert!((area - (754.0 * 1112.0 - 151.0 * 222.0 / 2.0)).abs() < 3_000.0, "{area}");
+        assert!(
+            (area - (754.0 * 1112.0 - 151.0 * 222.0 / 2.0)).abs() < 3_000.0,
+            "{area}"
+        );
     }
 
     #[test]

@@ -249,3 +249,72 @@ fn check_terrain_covers(farm: &Farm, terrain: &dyn Terrain) -> Result<(), (Strin
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geometry::from_utm;
+    use crate::model::CoordinateSystem;
+
+    fn data(relative: &str) -> PathBuf {
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../../data")
+            .join(relative)
+    }
+
+    /// Lon/lat fields planned in UTM 32N over a DEM in EPSG:4326: each query goes back to
+    /// lon/lat, and the DEM's linear heights come back exactly.
+    #[test]
+    fn lon_lat_dem_is_sampled_where_the_fields_are() {
+        let folder = std::env::temp_dir().join(format!("agripath-lonlat-{}", std::process::id()));
+        std::fs::create_dir_all(&folder).unwrap();
+        let fields = folder.join("fields.geojson");
+        std::fs::write(
+            &fields,
+            r#"{"type":"Polygon","coordinates":[[[8.505,47.305],[8.52,47.305],[8.52,47.315],[8.505,47.305]]]}"#,
+        )
+        .unwrap();
+        let scenario = Scenario::load(ScenarioParts {
+            fields: fields.clone(),
+            terrain: Some(TerrainSpec::File {
+                path: data("test/geotiff/lonlat_4326_float64.tif"),
+                cell_m: None,
+            }),
+            ..ScenarioParts::default()
+        })
+        .unwrap();
+        std::fs::remove_dir_all(&folder).unwrap();
+        let CoordinateSystem::Utm(zone) = scenario.farm.coordinate_system else {
+            panic!("lon/lat fields are planned in UTM")
+        };
+        for point in &scenario.farm.fields[0].polygon.exterior().0 {
+            let (lon, lat) = from_utm(point.x, point.y, zone);
+            let expected = 1000.0 * (lon - 8.5) + 2000.0 * (lat - 47.3);
+            let height = scenario.terrain.height_m(point.x, point.y).unwrap();
+            assert!((height - expected).abs() < 1e-6, "{height} vs {expected}");
+        }
+    }
+
+    #[test]
+    fn every_example_scenario_loads() {
+        for entry in std::fs::read_dir(data("scenarios")).unwrap() {
+            let path = entry.unwrap().path();
+            Scenario::from_file(&path, VehicleOverrides::default())
+                .unwrap_or_else(|error| panic!("{error}"));
+        }
+    }
+
+    #[test]
+    fn flags_override_the_vehicle_file() {
+        let scenario = Scenario::from_file(
+            &data("scenarios/seed001_farm.toml"),
+            VehicleOverrides {
+                swath_width_m: Some(6.5),
+                ..VehicleOverrides::default()
+            },
+        )
+        .unwrap();
+        assert_eq!(scenario.vehicle.swath_width_m, 6.5);
+        assert_eq!(scenario.vehicle.safe_height_m, 18.0);
+    }
+}

@@ -275,7 +275,11 @@ mod tests {
     const COLUMNS: usize = 40;
 
     fn fixture(name: &str) -> PathBuf {
-        PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/test/geotiff")).join(name)
+        PathBuf::from(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../data/test/geotiff"
+        ))
+        .join(name)
     }
 
     /// The heights `make_fixtures.py` wrote.
@@ -305,7 +309,11 @@ mod tests {
                     let x = 500_000.0 + (column as f64 + 0.5) * 2.0;
                     let y = 4_000_000.0 - (row as f64 + 0.5) * 2.0;
                     let height = grid.height_m(x, y).unwrap();
-                    assert_eq!(height, expected(row, column, float), "{name} at ({row}, {column})");
+                    assert_eq!(
+                        height,
+                        expected(row, column, float),
+                        "{name} at ({row}, {column})"
+                    );
                 }
             }
         }
@@ -315,7 +323,10 @@ mod tests {
     fn nodata_and_pixel_is_point() {
         let grid = read(&fixture("float32_nodata_pixel_is_point.tif")).unwrap();
         // Pixel-is-point: the tiepoint is the centre of pixel (0, 0).
-        assert_eq!(grid.height_m(500_000.0, 4_000_000.0), Ok(expected(0, 0, true)));
+        assert_eq!(
+            grid.height_m(500_000.0, 4_000_000.0),
+            Ok(expected(0, 0, true))
+        );
         let (x, y) = grid.cell_center(3, 4);
         assert_eq!((x, y), (500_008.0, 3_999_994.0));
         assert!(matches!(
@@ -331,7 +342,9 @@ mod tests {
         assert!(rotated.contains("rotated"), "{rotated}");
         let rgb = read(&fixture("rgb.tif")).unwrap_err().to_string();
         assert!(rgb.contains("one band"), "{rgb}");
-        let plain = read(&fixture("no_georeference.tif")).unwrap_err().to_string();
+        let plain = read(&fixture("no_georeference.tif"))
+            .unwrap_err()
+            .to_string();
         assert!(plain.contains("no georeferencing"), "{plain}");
     }
 
@@ -339,7 +352,10 @@ mod tests {
     /// from the strip bytes, independently of the decoder, and compared at pixel centres.
     #[test]
     fn christmas_island_dem_matches_its_raw_strips() {
-        let path = PathBuf::from(concat!(env!("CARGO_MANIFEST_DIR"), "/../../data/spso/ChrismasTerrain.tif"));
+        let path = PathBuf::from(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/../../data/spso/ChrismasTerrain.tif"
+        ));
         let bytes = std::fs::read(&path).unwrap();
         let grid = decode(&bytes).unwrap();
         assert_eq!((grid.columns, grid.rows), (1045, 879));
@@ -354,13 +370,24 @@ mod tests {
             .find(|&entry| u16_at(entry) == 273)
             .map(|entry| u32_at(entry + 8))
             .unwrap();
-        for (row, column) in [(0, 0), (0, 1044), (878, 0), (878, 1044), (439, 522), (100, 900)] {
+        for (row, column) in [
+            (0, 0),
+            (0, 1044),
+            (878, 0),
+            (878, 1044),
+            (439, 522),
+            (100, 900),
+        ] {
             let strip = u32_at(strip_offsets + 4 * row);
             let at = strip + 4 * column;
             let stored = f32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
             let x = 566_710.0 + (column as f64 + 0.5) * 5.0;
             let y = 8_842_640.0 - (row as f64 + 0.5) * 5.0;
-            assert_eq!(grid.height_m(x, y), Ok(f64::from(stored)), "({row}, {column})");
+            assert_eq!(
+                grid.height_m(x, y),
+                Ok(f64::from(stored)),
+                "({row}, {column})"
+            );
         }
     }
 }
