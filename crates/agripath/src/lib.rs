@@ -3,12 +3,19 @@
 //! The data flows one way (see `docs/architecture.md`): inputs ([`input`], [`terrain`]) become
 //! validated models ([`model`]), which the planning stages turn into missions.
 
+pub mod coverage;
 pub mod demo;
 pub mod error;
 pub mod geometry;
 pub mod input;
+pub mod mission;
 pub mod model;
 pub mod output;
+pub mod pipeline;
+pub mod plot;
+pub mod report;
+pub mod repro;
+pub mod sequence;
 pub mod summary;
 pub mod terrain;
 

@@ -25,6 +25,22 @@ pub enum Command {
         #[arg(long, default_value = "agripath-demo")]
         out: PathBuf,
     },
+    /// Plan full coverage of the fields: swaths at the best heading, edge passes, route.
+    /// Writes DIR/plan.geojson, DIR/report.json and DIR/plan.svg.
+    Plan {
+        #[command(flatten)]
+        inputs: Inputs,
+        #[command(flatten)]
+        coverage: CoverageArgs,
+        /// Output folder (replaced as a whole when planning succeeds).
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Recompute a table of the papers beside the paper's figures.
+    Repro {
+        #[arg(value_enum)]
+        table: ReproTable,
+    },
     /// Read a scenario (or fields, terrain and vehicle) and say what was read or what is wrong.
     Validate {
         #[command(flatten)]
@@ -66,6 +82,40 @@ pub struct Inputs {
     /// Safe transfer height h, metres (overrides the vehicle).
     #[arg(long, allow_negative_numbers = true)]
     pub safe_height: Option<f64>,
+}
+
+/// How coverage is laid out.
+#[derive(Debug, Args)]
+pub struct CoverageArgs {
+    /// Edge passes around each boundary and hole; 0 gives seed 001's layout (interior only).
+    #[arg(long, default_value_t = 1)]
+    pub headland: usize,
+    /// Swath heading: `auto` (seed 001's E), `swaths` (fewest), `length` (shortest), or
+    /// degrees from east, counter-clockwise.
+    #[arg(long, default_value = "auto", allow_negative_numbers = true)]
+    pub heading: String,
+    /// Weights ω_N,ω_L of seed 001's E.
+    #[arg(long, value_delimiter = ',', num_args = 2, default_values_t = [0.5, 0.5])]
+    pub weights: Vec<f64>,
+    /// Keep the best 1° heading (the seed's) instead of refining it to 0.1°.
+    #[arg(long)]
+    pub no_refine: bool,
+    /// Seed 001's a: spacing of the terrain samples along swaths, metres.
+    #[arg(long, default_value_t = 20.0, allow_negative_numbers = true)]
+    pub drape_spacing: f64,
+    /// Distance kept from field boundaries, metres.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub boundary_margin: f64,
+    /// Distance kept from obstacles, metres.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub obstacle_margin: f64,
+}
+
+#[derive(Debug, Clone, Copy, clap::ValueEnum)]
+pub enum ReproTable {
+    /// Seed 001 Table 7: headings, swath counts and lengths of the five-field farm.
+    #[value(name = "seed001-table7")]
+    Seed001Table7,
 }
 
 #[derive(Debug, Subcommand)]

@@ -11,12 +11,46 @@ use agripath::terrain::hillshade::hillshade;
 use agripath::terrain::{Extent, Terrain, TerrainSpec};
 use agripath::{Fault, InputError};
 
-use crate::args::{Arguments, Command, Inputs, TerrainAction};
+use agripath::coverage::heading::HeadingObjective;
+use agripath::coverage::CoverageSettings;
+use agripath::pipeline::{plan_mission, render};
+
+use crate::args::{Arguments, Command, CoverageArgs, Inputs, ReproTable, TerrainAction};
 use crate::Failure;
+
+/// Writes to stdout; a closed pipe (`agripath … | head`) ends the program quietly, as Unix
+/// tools do, instead of panicking.
+pub fn emit_text(text: &str) {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    if let Err(error) = stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.flush())
+    {
+        if error.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+    }
+}
+
+macro_rules! emit {
+    ($($argument:tt)*) => { emit_text(&format!($($argument)*)) };
+}
+
+macro_rules! emitln {
+    () => { emit_text("\n") };
+    ($($argument:tt)*) => { emit_text(&(format!($($argument)*) + "\n")) };
+}
 
 pub fn run(arguments: Arguments) -> Result<(), Failure> {
     match arguments.command {
         Command::Demo { out } => demo(&out),
+        Command::Plan {
+            inputs,
+            coverage,
+            out,
+        } => plan(&inputs, &coverage, &out),
+        Command::Repro { table } => repro(table),
         Command::Validate { inputs, json } => validate(&inputs, json),
         Command::Terrain { action } => terrain(action),
     }
@@ -28,8 +62,9 @@ fn output_failure(path: &Path, error: std::io::Error) -> Failure {
 
 fn demo(out: &Path) -> Result<(), Failure> {
     let scenario = agripath::demo::scenario()?;
-    let summary = ScenarioSummary::of(&scenario);
-    let text = summary.to_text();
+    let settings = CoverageSettings::default();
+    let mission = plan_mission(&scenario, &settings)
+        .map_err(|fault| InputError::new(agripath::demo::FARM_LABEL, fault))?;
     let bounds = scenario.farm.bounds();
     let margin = 20.0;
     let extent = Extent {
@@ -39,22 +74,108 @@ fn demo(out: &Path) -> Result<(), Failure> {
         max_y: bounds.max().y + margin,
     };
     let shaded = hillshade(scenario.terrain.as_ref(), extent, 1024, 5.0);
+    let mut files = render(&scenario, &mission);
+    files.push(("terrain.png", shaded.to_png()));
+    let written = write_folder(out, &files)?;
+    emit!("{}", mission.report.to_text());
+    emitln!(
+        "wrote {}/: {}",
+        written.display(),
+        files
+            .iter()
+            .map(|(name, _)| *name)
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    Ok(())
+}
+
+/// Writes every file into a staged folder and moves it into place.
+fn write_folder(out: &Path, files: &[(&str, Vec<u8>)]) -> Result<PathBuf, Failure> {
     let staged = StagedFolder::new(out).map_err(|error| output_failure(out, error))?;
-    let json = serde_json::to_string_pretty(&summary).expect("a summary serialises");
-    staged
-        .write("summary.json", json.as_bytes())
-        .and_then(|()| staged.write("summary.txt", text.as_bytes()))
-        .and_then(|()| staged.write("terrain.png", &shaded.to_png()))
-        .map_err(|error| output_failure(out, error))?;
-    let written = staged
-        .commit()
-        .map_err(|error| output_failure(out, error))?;
-    print!("{text}");
-    println!(
-        "wrote {}/summary.json, summary.txt, terrain.png (hillshade, heights × 5)",
+    for (name, bytes) in files {
+        staged
+            .write(name, bytes)
+            .map_err(|error| output_failure(out, error))?;
+    }
+    staged.commit().map_err(|error| output_failure(out, error))
+}
+
+fn coverage_settings(arguments: &CoverageArgs) -> Result<CoverageSettings, InputError> {
+    let heading = match arguments.heading.as_str() {
+        "auto" => HeadingObjective::Seed {
+            count_weight: arguments.weights[0],
+            length_weight: arguments.weights[1],
+        },
+        "swaths" | "turns" => HeadingObjective::Swaths,
+        "length" => HeadingObjective::Length,
+        degrees => match degrees.parse::<f64>() {
+            Ok(heading_deg) if heading_deg.is_finite() => HeadingObjective::Fixed {
+                heading_deg: heading_deg.rem_euclid(180.0),
+            },
+            _ => {
+                return Err(InputError::new(
+                    "--heading",
+                    Fault::InvalidValue {
+                        what: "--heading".into(),
+                        value: degrees.into(),
+                        why: "expected auto, swaths, length or a number of degrees".into(),
+                    },
+                ))
+            }
+        },
+    };
+    let settings = CoverageSettings {
+        headland_passes: arguments.headland,
+        boundary_margin_m: arguments.boundary_margin,
+        obstacle_margin_m: arguments.obstacle_margin,
+        drape_spacing_m: arguments.drape_spacing,
+        heading,
+        refine_heading: !arguments.no_refine,
+    };
+    settings
+        .validate()
+        .map_err(|fault| InputError::new("arguments", fault))?;
+    Ok(settings)
+}
+
+fn plan(inputs: &Inputs, coverage: &CoverageArgs, out: &Path) -> Result<(), Failure> {
+    let settings = coverage_settings(coverage)?;
+    let scenario = load_scenario(inputs)?;
+    let mission = plan_mission(&scenario, &settings)
+        .map_err(|fault| InputError::new(&scenario.farm.source, fault))?;
+    let files = render(&scenario, &mission);
+    let written = write_folder(out, &files)?;
+    emit!("{}", mission.report.to_text());
+    emitln!(
+        "wrote {}/: plan.geojson, report.json, plan.svg",
         written.display()
     );
     Ok(())
+}
+
+fn repro(table: ReproTable) -> Result<(), Failure> {
+    match table {
+        ReproTable::Seed001Table7 => {
+            let scenario = agripath::demo::scenario()?;
+            let references: serde_json::Value = serde_json::from_str(agripath::demo::FARM_GEOJSON)
+                .expect("the embedded farm is JSON");
+            emitln!("Seed 001, Table 7: paper beside agripath");
+            for (width, paper) in [(5.0, &references), (6.5, &serde_json::Value::Null)] {
+                let table = agripath::repro::seed001_table7::table7(&scenario, paper, width)
+                    .map_err(|fault| InputError::new(agripath::demo::FARM_LABEL, fault))?;
+                emitln!();
+                emit!("{}", table.to_text());
+            }
+            emitln!();
+            emitln!("The paper gives figures for w = 5 m only. 'ΔL' is ours against the paper's length; '0.1°'");
+            emitln!("is our refinement of E; coverage is of the sprayable area (seed layout vs one edge pass).");
+            emitln!("S4 holds the 3 m plateau: at the paper's 87° we find its 47 swaths and its length to 0.03 %,");
+            emitln!("but our analytic plateau (5 m rim) drapes 1° to 45 swaths and 7118 m, a lower E (0.064 vs 0.079);");
+            emitln!("the paper's 20 m DEM is not published, and L varies by ±1 % between neighbouring headings there.");
+            Ok(())
+        }
+    }
 }
 
 fn load_scenario(inputs: &Inputs) -> Result<Scenario, InputError> {
@@ -109,13 +230,13 @@ fn validate(inputs: &Inputs, json: bool) -> Result<(), Failure> {
     let scenario = load_scenario(inputs)?;
     let summary = ScenarioSummary::of(&scenario);
     if json {
-        println!(
+        emitln!(
             "{}",
             serde_json::to_string_pretty(&summary).expect("a summary serialises")
         );
     } else {
-        print!("{}", summary.to_text());
-        println!("valid");
+        emit!("{}", summary.to_text());
+        emitln!("valid");
     }
     Ok(())
 }
@@ -145,14 +266,14 @@ fn terrain(action: TerrainAction) -> Result<(), Failure> {
                     "extent": extent.map(|e| [e.min_x, e.min_y, e.max_x, e.max_y]),
                     "height_range_m": range.map(|(low, high)| [low, high]),
                 });
-                println!(
+                emitln!(
                     "{}",
                     serde_json::to_string_pretty(&value).expect("JSON value")
                 );
             } else {
-                println!("{}", model.describe());
+                emitln!("{}", model.describe());
                 match extent {
-                    Some(e) => println!(
+                    Some(e) => emitln!(
                         "extent x {:.3}..{:.3}, y {:.3}..{:.3} ({:.1} × {:.1})",
                         e.min_x,
                         e.max_x,
@@ -161,10 +282,10 @@ fn terrain(action: TerrainAction) -> Result<(), Failure> {
                         e.width(),
                         e.height()
                     ),
-                    None => println!("extent unbounded"),
+                    None => emitln!("extent unbounded"),
                 }
                 if let Some((low, high)) = range {
-                    println!("heights {low:.3}..{high:.3} m");
+                    emitln!("heights {low:.3}..{high:.3} m");
                 }
             }
             Ok(())
@@ -189,7 +310,7 @@ fn terrain(action: TerrainAction) -> Result<(), Failure> {
                     .map_err(|error| InputError::new(&terrain, Fault::Terrain(error)))?;
                 lines.push(format!("{} {} {}", pair[0], pair[1], height));
             }
-            println!("{}", lines.join("\n"));
+            emitln!("{}", lines.join("\n"));
             Ok(())
         }
         TerrainAction::Hillshade {
@@ -257,7 +378,7 @@ fn terrain(action: TerrainAction) -> Result<(), Failure> {
             let shaded = hillshade(model.as_ref(), area, size, exaggeration);
             write_file_atomically(&out, &shaded.to_png())
                 .map_err(|error| output_failure(&out, error))?;
-            println!(
+            emitln!(
                 "wrote {} ({} × {} pixels)",
                 out.display(),
                 shaded.width,

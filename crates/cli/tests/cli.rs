@@ -38,25 +38,28 @@ fn stdout(output: &Output) -> String {
 fn demo_writes_its_folder_and_is_byte_identical_when_run_again() {
     let folder = scratch("demo");
     let text = stdout(&agripath(&["demo"], &folder));
-    assert!(text.contains("S4"), "{text}");
+    assert!(text.contains("S4") && text.contains("covered"), "{text}");
     let out = folder.join("agripath-demo");
-    let first: Vec<Vec<u8>> = ["summary.json", "summary.txt", "terrain.png"]
+    let names = ["plan.geojson", "plan.svg", "terrain.png"];
+    let first: Vec<Vec<u8>> = names
         .iter()
         .map(|name| std::fs::read(out.join(name)).unwrap())
         .collect();
-    let summary: serde_json::Value = serde_json::from_slice(&first[0]).unwrap();
-    assert_eq!(summary["fields"].as_array().unwrap().len(), 5);
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["fields"].as_array().unwrap().len(), 5);
+    assert!(report["covered_fraction"].as_f64().unwrap() >= 0.99);
     stdout(&agripath(&["demo", "--out", "again"], &folder));
-    for (index, name) in ["summary.json", "summary.txt", "terrain.png"]
-        .iter()
-        .enumerate()
-    {
+    for (index, name) in names.iter().enumerate() {
         assert_eq!(
             std::fs::read(folder.join("again").join(name)).unwrap(),
             first[index],
             "{name}"
         );
     }
+    let again: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("again/report.json")).unwrap()).unwrap();
+    assert_eq!(without_runtime(report), without_runtime(again));
     // Nothing but the two output folders: no staging left behind.
     let mut entries: Vec<String> = std::fs::read_dir(&folder)
         .unwrap()
@@ -188,5 +191,170 @@ fn help_and_version_exit_0_and_usage_errors_exit_2() {
             .code(),
         Some(2)
     );
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+fn without_runtime(mut report: serde_json::Value) -> serde_json::Value {
+    report.as_object_mut().unwrap().remove("runtime_s");
+    report
+}
+
+#[test]
+fn plan_writes_the_contract_files_and_repeats_byte_for_byte() {
+    let folder = scratch("plan");
+    let scenario = data("scenarios/seed001_farm.toml");
+    let text = stdout(&agripath(
+        &["plan", scenario.to_str().unwrap(), "--out", "first"],
+        &folder,
+    ));
+    assert!(text.contains("S4"), "{text}");
+    stdout(&agripath(
+        &["plan", scenario.to_str().unwrap(), "--out", "second"],
+        &folder,
+    ));
+    let read = |run: &str, name: &str| std::fs::read(folder.join(run).join(name)).unwrap();
+    assert_eq!(
+        read("first", "plan.geojson"),
+        read("second", "plan.geojson")
+    );
+    assert_eq!(read("first", "plan.svg"), read("second", "plan.svg"));
+    let report: serde_json::Value = serde_json::from_slice(&read("first", "report.json")).unwrap();
+    let again: serde_json::Value = serde_json::from_slice(&read("second", "report.json")).unwrap();
+    assert_eq!(without_runtime(report.clone()), without_runtime(again));
+    for key in [
+        "spray_length_m",
+        "transfer_length_m",
+        "turns",
+        "sorties",
+        "non_spray_time_s",
+        "total_time_s",
+        "runtime_s",
+    ] {
+        assert!(report.get(key).is_some(), "report.json lacks {key}");
+    }
+    let fields = report["fields"].as_array().unwrap();
+    assert_eq!(fields.len(), 5);
+    for field in fields {
+        for key in ["name", "heading_deg", "swaths", "spray_length_m"] {
+            assert!(field.get(key).is_some(), "field lacks {key}");
+        }
+        assert!(field["covered_fraction"].as_f64().unwrap() >= 0.99);
+    }
+    // plan.geojson: kinds, seq from 0 without gaps, 3D positions, swaths run as flown.
+    let plan: serde_json::Value = serde_json::from_slice(&read("first", "plan.geojson")).unwrap();
+    assert_eq!(plan["crs"], "local");
+    let features = plan["features"].as_array().unwrap();
+    let mut seqs: Vec<u64> = features
+        .iter()
+        .filter_map(|f| f["properties"]["seq"].as_u64())
+        .collect();
+    seqs.sort();
+    assert_eq!(seqs, (0..seqs.len() as u64).collect::<Vec<_>>());
+    let kinds = |kind: &str| {
+        features
+            .iter()
+            .filter(|f| f["properties"]["kind"] == kind)
+            .count()
+    };
+    assert_eq!(kinds("field"), 5);
+    let swaths: u64 = fields.iter().map(|f| f["swaths"].as_u64().unwrap()).sum();
+    assert_eq!(kinds("swath") as u64, swaths);
+    assert!(kinds("edge") >= 5 && kinds("transfer") > 0);
+    let swath = features
+        .iter()
+        .find(|f| f["properties"]["kind"] == "swath")
+        .unwrap();
+    let first = &swath["geometry"]["coordinates"][0];
+    assert_eq!(first.as_array().unwrap().len(), 3);
+    // Flat ground: altitude = spray height (2 m).
+    assert_eq!(first[2].as_f64().unwrap(), 2.0);
+    // Transfer lengths in the report are the sum of the legs.
+    let legs: f64 = features
+        .iter()
+        .filter(|f| f["properties"]["kind"] == "transfer")
+        .map(|f| f["properties"]["length_m"].as_f64().unwrap())
+        .sum();
+    assert!(
+        (legs - report["transfer_length_m"].as_f64().unwrap()).abs() < 1e-2,
+        "{legs}"
+    );
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+#[test]
+fn plan_in_lon_lat_comes_back_in_lon_lat_over_the_real_dem() {
+    let folder = scratch("plan-lonlat");
+    let scenario = data("scenarios/christmas_island.toml");
+    stdout(&agripath(
+        &["plan", scenario.to_str().unwrap(), "--out", "island"],
+        &folder,
+    ));
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("island/plan.geojson")).unwrap())
+            .unwrap();
+    assert!(
+        plan.get("crs").is_none(),
+        "lon/lat output is plain RFC 7946"
+    );
+    let features = plan["features"].as_array().unwrap();
+    let field = features
+        .iter()
+        .find(|f| f["properties"]["kind"] == "field")
+        .unwrap();
+    let corner = &field["geometry"]["coordinates"][0][0];
+    // The KML's first corner, back within 1e-8° (about 1 mm).
+    assert!(
+        (corner[0].as_f64().unwrap() - 105.62142073).abs() < 1e-8,
+        "{corner}"
+    );
+    assert!(
+        (corner[1].as_f64().unwrap() + 10.49762784).abs() < 1e-8,
+        "{corner}"
+    );
+    let swath = features
+        .iter()
+        .find(|f| f["properties"]["kind"] == "swath")
+        .unwrap();
+    let altitude = swath["geometry"]["coordinates"][0][2].as_f64().unwrap();
+    assert!(
+        (100.0..260.0).contains(&altitude),
+        "terrain + 2.5 m: {altitude}"
+    );
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+#[test]
+fn headland_0_is_the_seed_layout_and_repro_prints_table_7() {
+    let folder = scratch("repro");
+    let text = stdout(&agripath(&["repro", "seed001-table7"], &folder));
+    assert!(
+        text.contains("S1    |     98     16     1781 |     16   1781.0 |     98     16   1781.0"),
+        "{text}"
+    );
+    let fields = data("seed001_farm.geojson");
+    stdout(&agripath(
+        &[
+            "plan",
+            "--fields",
+            fields.to_str().unwrap(),
+            "--headland",
+            "0",
+            "--no-refine",
+            "--out",
+            "seed",
+        ],
+        &folder,
+    ));
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("seed/report.json")).unwrap()).unwrap();
+    let s2 = report["fields"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["name"] == "S2")
+        .unwrap();
+    assert_eq!(s2["heading_deg"], 3.0);
+    assert_eq!(s2["swaths"], 32);
+    assert_eq!(s2["edge_passes"], 0);
     std::fs::remove_dir_all(&folder).unwrap();
 }

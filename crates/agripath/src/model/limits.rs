@@ -15,3 +15,5 @@ pub const MAX_TERRAIN_CELLS: u64 = 400_000_000;
 pub const MAX_POINT_CLOUD_POINTS: usize = 50_000_000;
 /// Input file size, bytes, for text formats read whole.
 pub const MAX_TEXT_FILE_BYTES: u64 = 2_000_000_000;
+/// Scan lines across one field (its diagonal over the swath width).
+pub const MAX_SCAN_LINES: usize = 200_000;

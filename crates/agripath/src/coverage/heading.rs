@@ -1,0 +1,215 @@
+//! Choosing each field's swath heading (seed 001 §2.2, eq. 1).
+//!
+//! E(θ) = ω_N · (N − N_min)/(N_max − N_min) + ω_L · (L − L_min)/(L_max − L_min)   (1)
+//!
+//! N is the number of swaths and L = Σ L_i their total draped (3D) length at heading θ; the
+//! minima and maxima are over the headings tried, 0..179° in 1° steps. MISSION.md decision 2:
+//! a term whose max equals its min is 0; ties go to the smaller heading. Then, our addition,
+//! a local refinement tries θ* ± 0.1..0.9° and keeps a heading only if it lowers E (with the
+//! same normalisation); both the integer and the refined heading are reported.
+
+use serde::Serialize;
+
+/// What a heading is chosen for.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "objective", rename_all = "snake_case")]
+pub enum HeadingObjective {
+    /// Seed 001's E with weights ω_N (swath count) and ω_L (length).
+    Seed {
+        count_weight: f64,
+        length_weight: f64,
+    },
+    /// Fewest swaths (each one is a headland U-turn, so also fewest turns); ties: shorter.
+    Swaths,
+    /// Shortest total draped length.
+    Length,
+    /// A heading given by the user, degrees.
+    Fixed { heading_deg: f64 },
+}
+
+impl Default for HeadingObjective {
+    fn default() -> Self {
+        Self::Seed {
+            count_weight: 0.5,
+            length_weight: 0.5,
+        }
+    }
+}
+
+/// What one heading gives.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct HeadingSample {
+    pub heading_deg: f64,
+    pub swaths: usize,
+    pub length_m: f64,
+}
+
+/// The chosen heading and how it was found.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct HeadingChoice {
+    pub heading_deg: f64,
+    /// Best of the 1° scan (the seed's answer).
+    pub integer_heading_deg: f64,
+    /// E at the integer heading and at the chosen one (both 0 for fixed headings).
+    pub integer_objective: f64,
+    pub objective: f64,
+    pub swaths: usize,
+    pub length_m: f64,
+}
+
+/// Normalisation of eq. (1) over a scan.
+struct Normalisation {
+    count: (f64, f64),
+    length: (f64, f64),
+}
+
+impl Normalisation {
+    fn of(samples: &[HeadingSample]) -> Self {
+        let fold = |values: &mut dyn Iterator<Item = f64>| {
+            values.fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), v| {
+                (low.min(v), high.max(v))
+            })
+        };
+        Self {
+            count: fold(&mut samples.iter().map(|sample| sample.swaths as f64)),
+            length: fold(&mut samples.iter().map(|sample| sample.length_m)),
+        }
+    }
+
+    fn term((low, high): (f64, f64), value: f64) -> f64 {
+        if high > low {
+            (value - low) / (high - low)
+        } else {
+            0.0
+        }
+    }
+}
+
+fn score(
+    objective: HeadingObjective,
+    normalisation: &Normalisation,
+    sample: &HeadingSample,
+) -> f64 {
+    match objective {
+        HeadingObjective::Seed {
+            count_weight,
+            length_weight,
+        } => {
+            count_weight * Normalisation::term(normalisation.count, sample.swaths as f64)
+                + length_weight * Normalisation::term(normalisation.length, sample.length_m)
+        }
+        // Count first; the length term (in [0, 1)) only breaks ties.
+        HeadingObjective::Swaths => {
+            sample.swaths as f64 + 0.5 * Normalisation::term(normalisation.length, sample.length_m)
+        }
+        HeadingObjective::Length => Normalisation::term(normalisation.length, sample.length_m),
+        HeadingObjective::Fixed { .. } => 0.0,
+    }
+}
+
+/// Picks the heading. `evaluate(θ)` gives the swaths and length at θ degrees.
+pub fn choose_heading<E>(
+    objective: HeadingObjective,
+    refine: bool,
+    mut evaluate: impl FnMut(f64) -> Result<HeadingSample, E>,
+) -> Result<(HeadingChoice, Vec<HeadingSample>), E> {
+    if let HeadingObjective::Fixed { heading_deg } = objective {
+        let sample = evaluate(heading_deg)?;
+        return Ok((
+            HeadingChoice {
+                heading_deg,
+                integer_heading_deg: heading_deg,
+                integer_objective: 0.0,
+                objective: 0.0,
+                swaths: sample.swaths,
+                length_m: sample.length_m,
+            },
+            vec![sample],
+        ));
+    }
+    let samples = (0..180)
+        .map(|degree| evaluate(f64::from(degree)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let normalisation = Normalisation::of(&samples);
+    // Strictly lower wins, so ties keep the smaller heading.
+    let mut best = (samples[0], score(objective, &normalisation, &samples[0]));
+    for sample in &samples[1..] {
+        let value = score(objective, &normalisation, sample);
+        if value < best.1 {
+            best = (*sample, value);
+        }
+    }
+    let integer = best;
+    if refine {
+        for tenth in (-9..=9).filter(|tenth| *tenth != 0) {
+            let heading = (integer.0.heading_deg + f64::from(tenth) / 10.0).rem_euclid(180.0);
+            let sample = evaluate(heading)?;
+            let value = score(objective, &normalisation, &sample);
+            if value < best.1 - 1e-12 {
+                best = (sample, value);
+            }
+        }
+    }
+    Ok((
+        HeadingChoice {
+            heading_deg: best.0.heading_deg,
+            integer_heading_deg: integer.0.heading_deg,
+            integer_objective: integer.1,
+            objective: best.1,
+            swaths: best.0.swaths,
+            length_m: best.0.length_m,
+        },
+        samples,
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn normalised_e_with_ties_to_the_smaller_heading() {
+        // Swaths fewest at 30..=40; length shortest at 35.
+        let evaluate = |heading: f64| -> Result<HeadingSample, ()> {
+            Ok(HeadingSample {
+                heading_deg: heading,
+                swaths: if (30.0..=40.0).contains(&heading) {
+                    10
+                } else {
+                    12
+                },
+                length_m: 1000.0 + (heading - 35.0).abs(),
+            })
+        };
+        let (choice, samples) =
+            choose_heading(HeadingObjective::default(), false, evaluate).unwrap();
+        assert_eq!(samples.len(), 180);
+        assert_eq!(choice.heading_deg, 35.0);
+        assert_eq!(choice.objective, 0.0);
+        // Equal E everywhere: the smallest heading.
+        let flat = |heading: f64| -> Result<HeadingSample, ()> {
+            Ok(HeadingSample {
+                heading_deg: heading,
+                swaths: 5,
+                length_m: 100.0,
+            })
+        };
+        let (choice, _) = choose_heading(HeadingObjective::default(), true, flat).unwrap();
+        assert_eq!(choice.heading_deg, 0.0);
+    }
+
+    #[test]
+    fn refinement_keeps_only_improvements() {
+        let evaluate = |heading: f64| -> Result<HeadingSample, ()> {
+            Ok(HeadingSample {
+                heading_deg: heading,
+                swaths: 10,
+                length_m: 1000.0 + (heading - 35.3).abs(),
+            })
+        };
+        let (choice, _) = choose_heading(HeadingObjective::Length, true, evaluate).unwrap();
+        assert_eq!(choice.integer_heading_deg, 35.0);
+        assert!((choice.heading_deg - 35.3).abs() < 1e-9);
+        assert!(choice.objective < choice.integer_objective);
+    }
+}

@@ -1,0 +1,83 @@
+//! The sprayable region of a field and its headland: what is sprayed, the edge passes around
+//! every boundary and hole, and the interior the swaths fill.
+//!
+//! sprayable = field − holes − obstacles (grown by the obstacle margin), shrunk by the
+//! boundary margin. Edge pass k (k = 0..n) runs along the boundary of `sprayable` shrunk by
+//! (k + ½)·w, so its strip covers the band [k·w, (k+1)·w] from every edge; the interior
+//! swaths then fill the region inside the innermost pass line and reach it, so that no sliver
+//! is left where a swath end meets a slanted edge (the seed's layout leaves 2-4 % there).
+
+use geo::algorithm::buffer::{Buffer, BufferStyle, LineJoin};
+use geo::{BooleanOps, BoundingRect, Coord, Intersects, MultiPolygon, Polygon};
+
+use crate::model::{Field, Obstacle};
+
+/// Sharpest corner kept sharp by offsets, radians: real field corners are kept, only spikes
+/// are bevelled.
+const MITER_LIMIT_ANGLE_RAD: f64 = 0.2;
+
+/// Grows (distance > 0) or shrinks (< 0) a region with mitred corners.
+pub fn offset(region: &MultiPolygon<f64>, distance: f64) -> MultiPolygon<f64> {
+    if distance == 0.0 {
+        return region.clone();
+    }
+    region.buffer_with_style(
+        BufferStyle::new(distance).line_join(LineJoin::Miter(MITER_LIMIT_ANGLE_RAD)),
+    )
+}
+
+/// The field less its obstacles, shrunk by the boundary margin.
+pub fn sprayable_region(
+    field: &Field,
+    obstacles: &[Obstacle],
+    boundary_margin_m: f64,
+    obstacle_margin_m: f64,
+) -> MultiPolygon<f64> {
+    let mut region = MultiPolygon::new(vec![field.polygon.clone()]);
+    let field_box = field.polygon.bounding_rect();
+    let touching: Vec<&Polygon<f64>> = obstacles
+        .iter()
+        .map(|obstacle| &obstacle.polygon)
+        .filter(|polygon| match (polygon.bounding_rect(), field_box) {
+            (Some(obstacle_box), Some(field_box)) => {
+                let grown = obstacle_margin_m.max(0.0);
+                obstacle_box.min().x - grown <= field_box.max().x
+                    && obstacle_box.max().x + grown >= field_box.min().x
+                    && obstacle_box.min().y - grown <= field_box.max().y
+                    && obstacle_box.max().y + grown >= field_box.min().y
+            }
+            _ => false,
+        })
+        .filter(|polygon| obstacle_margin_m > 0.0 || polygon.intersects(&field.polygon))
+        .collect();
+    // Boolean operations snap coordinates to a fine integer grid; a field without obstacles
+    // or margins keeps its exact vertices (Table 7 is computed on them).
+    for polygon in touching {
+        let grown = offset(&MultiPolygon::new(vec![polygon.clone()]), obstacle_margin_m);
+        region = region.difference(&grown);
+    }
+    offset(&region, -boundary_margin_m)
+}
+
+/// The closed rings of a region (outer boundaries and holes), first point repeated last.
+pub fn rings(region: &MultiPolygon<f64>) -> Vec<Vec<Coord<f64>>> {
+    region
+        .0
+        .iter()
+        .flat_map(|polygon| std::iter::once(polygon.exterior()).chain(polygon.interiors()))
+        .filter(|ring| ring.0.len() >= 4)
+        .map(|ring| ring.0.clone())
+        .collect()
+}
+
+/// Edge pass regions (the lines are their rings) for `passes` passes of width `width_m`.
+pub fn edge_pass_regions(
+    sprayable: &MultiPolygon<f64>,
+    passes: usize,
+    width_m: f64,
+) -> Vec<MultiPolygon<f64>> {
+    (0..passes)
+        .map(|pass| offset(sprayable, -(pass as f64 + 0.5) * width_m))
+        .filter(|region| !region.0.is_empty())
+        .collect()
+}

@@ -1,0 +1,158 @@
+//! `plan.geojson`: the plan as a FeatureCollection (contract in MISSION.md and `docs/cli.md`).
+//!
+//! Features carry `properties.kind`: `field`, `obstacle`, `edge`, `swath`, `transfer`. Passes
+//! and legs carry `seq` (their place in the flight, from 0) and `sortie`; a pass's coordinates
+//! run in the direction flown; positions are `[x, y, z]` in the input's coordinate system
+//! (lon/lat or local metres) with z the altitude above sea level (terrain + spray height).
+
+use serde_json::{json, Map, Value};
+
+use crate::coverage::drape::GroundPoint;
+use crate::coverage::CoveragePlan;
+use crate::model::{CoordinateSystem, Farm};
+use crate::sequence::{Pass, Route};
+
+/// Decimal places kept: 1e-9° (0.1 mm) for lon/lat, 0.1 mm for metres, 1 mm in height.
+fn position(system: CoordinateSystem, x: f64, y: f64, z: Option<f64>) -> Value {
+    let (a, b) = system.to_input(x, y);
+    let decimals = match system {
+        CoordinateSystem::Local => 4,
+        CoordinateSystem::Utm(_) => 9,
+    };
+    let fixed = |value: f64, places: usize| -> Value {
+        let text = format!("{value:.places$}");
+        serde_json::from_str(&text).unwrap_or(Value::Null)
+    };
+    match z {
+        Some(z) => Value::Array(vec![fixed(a, decimals), fixed(b, decimals), fixed(z, 3)]),
+        None => Value::Array(vec![fixed(a, decimals), fixed(b, decimals)]),
+    }
+}
+
+fn polygon_coordinates(system: CoordinateSystem, polygon: &geo::Polygon<f64>) -> Value {
+    Value::Array(
+        std::iter::once(polygon.exterior())
+            .chain(polygon.interiors())
+            .map(|ring| {
+                Value::Array(
+                    ring.0
+                        .iter()
+                        .map(|point| position(system, point.x, point.y, None))
+                        .collect(),
+                )
+            })
+            .collect(),
+    )
+}
+
+fn feature(properties: Map<String, Value>, geometry: Value) -> Value {
+    json!({"type": "Feature", "properties": properties, "geometry": geometry})
+}
+
+fn line(system: CoordinateSystem, points: &[GroundPoint], lift_m: f64) -> Value {
+    json!({
+        "type": "LineString",
+        "coordinates": points.iter().map(|p| position(system, p.x, p.y, Some(p.ground_m + lift_m))).collect::<Vec<_>>(),
+    })
+}
+
+/// Builds the FeatureCollection.
+pub fn plan_geojson(
+    farm: &Farm,
+    plan: &CoveragePlan,
+    route: &Route,
+    spray_height_m: f64,
+    safe_height_m: f64,
+) -> Value {
+    let system = farm.coordinate_system;
+    let mut features = Vec::new();
+    for (index, field) in farm.fields.iter().enumerate() {
+        let mut properties = Map::new();
+        properties.insert("kind".into(), json!("field"));
+        properties.insert("name".into(), json!(field.name));
+        properties.insert("field".into(), json!(index));
+        if let Some(coverage) = plan.fields.get(index) {
+            properties.insert(
+                "heading_deg".into(),
+                json!(crate::report::round(coverage.heading.heading_deg, 1e-9)),
+            );
+        }
+        features.push(feature(
+            properties,
+            json!({"type": "Polygon", "coordinates": polygon_coordinates(system, &field.polygon)}),
+        ));
+    }
+    for obstacle in &farm.obstacles {
+        let mut properties = Map::new();
+        properties.insert("kind".into(), json!("obstacle"));
+        properties.insert("name".into(), json!(obstacle.name));
+        features.push(feature(properties, json!({"type": "Polygon", "coordinates": polygon_coordinates(system, &obstacle.polygon)})));
+    }
+    let mut seq = 0;
+    for (index, visit) in route.visits.iter().enumerate() {
+        let mut properties = Map::new();
+        match visit.pass {
+            Pass::Swath { field, swath } => {
+                let swath = &plan.fields[field].swaths[swath];
+                properties.insert("kind".into(), json!("swath"));
+                properties.insert("field".into(), json!(plan.fields[field].name));
+                properties.insert("line".into(), json!(swath.line));
+                properties.insert(
+                    "length_m".into(),
+                    json!(crate::report::round(swath.length_m, 1e-4)),
+                );
+            }
+            Pass::Edge { field, edge } => {
+                let edge = &plan.fields[field].edges[edge];
+                properties.insert("kind".into(), json!("edge"));
+                properties.insert("field".into(), json!(plan.fields[field].name));
+                properties.insert("pass".into(), json!(edge.pass));
+                properties.insert(
+                    "length_m".into(),
+                    json!(crate::report::round(edge.length_m, 1e-4)),
+                );
+            }
+        }
+        properties.insert("seq".into(), json!(seq));
+        properties.insert("sortie".into(), json!(0));
+        features.push(feature(
+            properties,
+            line(system, &visit.points, spray_height_m),
+        ));
+        seq += 1;
+        if let Some(transfer) = route.transfers.get(index) {
+            let mut properties = Map::new();
+            properties.insert("kind".into(), json!("transfer"));
+            properties.insert("seq".into(), json!(seq));
+            properties.insert("sortie".into(), json!(0));
+            properties.insert("climbs".into(), json!(transfer.climbs));
+            properties.insert(
+                "length_m".into(),
+                json!(crate::report::round(transfer.cost_m, 1e-4)),
+            );
+            let lift = |point: GroundPoint, extra: f64| GroundPoint {
+                ground_m: point.ground_m + extra,
+                ..point
+            };
+            let points = if transfer.climbs {
+                vec![
+                    transfer.from,
+                    lift(transfer.from, safe_height_m),
+                    lift(transfer.to, safe_height_m),
+                    transfer.to,
+                ]
+            } else {
+                vec![transfer.from, transfer.to]
+            };
+            features.push(feature(properties, line(system, &points, spray_height_m)));
+            seq += 1;
+        }
+    }
+    let mut collection = Map::new();
+    collection.insert("type".into(), json!("FeatureCollection"));
+    if system == CoordinateSystem::Local {
+        collection.insert("crs".into(), json!("local"));
+    }
+    collection.insert("features".into(), Value::Array(features));
+    Value::Object(collection)
+}

@@ -1,0 +1,224 @@
+//! `plan.svg`: a map of the plan people can look at — fields, holes and obstacles, the
+//! strips each pass sprays (swath-wide, translucent, so gaps and overlaps show), flight lines,
+//! transfers (climbing ones in red), labels, legend, scale bar and north arrow.
+
+use std::fmt::Write;
+
+use geo::{Centroid, Polygon};
+
+use crate::coverage::drape::GroundPoint;
+use crate::coverage::CoveragePlan;
+use crate::model::Farm;
+use crate::sequence::{Pass, Route};
+
+const WIDTH_PX: f64 = 1200.0;
+const PAD_PX: f64 = 40.0;
+const LEGEND_PX: f64 = 70.0;
+
+struct Canvas {
+    min_x: f64,
+    max_y: f64,
+    scale: f64,
+}
+
+impl Canvas {
+    fn x(&self, x: f64) -> f64 {
+        PAD_PX + (x - self.min_x) * self.scale
+    }
+
+    fn y(&self, y: f64) -> f64 {
+        PAD_PX + (self.max_y - y) * self.scale
+    }
+
+    fn path(&self, points: impl Iterator<Item = (f64, f64)>, close: bool) -> String {
+        let mut data = String::new();
+        for (index, (x, y)) in points.enumerate() {
+            let _ = write!(
+                data,
+                "{}{:.2},{:.2}",
+                if index == 0 { "M" } else { " L" },
+                self.x(x),
+                self.y(y)
+            );
+        }
+        if close {
+            data.push_str(" Z");
+        }
+        data
+    }
+
+    fn polygon(&self, polygon: &Polygon<f64>) -> String {
+        std::iter::once(polygon.exterior())
+            .chain(polygon.interiors())
+            .map(|ring| self.path(ring.0.iter().map(|p| (p.x, p.y)), true))
+            .collect::<Vec<_>>()
+            .join(" ")
+    }
+
+    fn line(&self, points: &[GroundPoint]) -> String {
+        self.path(points.iter().map(|p| (p.x, p.y)), false)
+    }
+}
+
+/// A round scale-bar length near a fifth of the map width.
+fn scale_bar_m(width_m: f64) -> f64 {
+    let target = width_m / 5.0;
+    let magnitude = 10f64.powf(target.log10().floor());
+    [1.0, 2.0, 5.0, 10.0]
+        .iter()
+        .map(|step| step * magnitude)
+        .rfind(|length| *length <= target)
+        .unwrap_or(magnitude)
+}
+
+/// Draws the plan. `title` heads the map.
+pub fn plan_svg(farm: &Farm, plan: &CoveragePlan, route: &Route, title: &str) -> String {
+    let bounds = farm.bounds();
+    let span_x = bounds.width().max(1.0);
+    let span_y = bounds.height().max(1.0);
+    let scale = (WIDTH_PX - 2.0 * PAD_PX) / span_x;
+    let height_px = span_y * scale + 2.0 * PAD_PX + LEGEND_PX;
+    let canvas = Canvas {
+        min_x: bounds.min().x,
+        max_y: bounds.max().y,
+        scale,
+    };
+    let strip_px = plan.swath_width_m * scale;
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH_PX:.0}" height="{height_px:.0}" viewBox="0 0 {WIDTH_PX:.0} {height_px:.0}" font-family="Helvetica, Arial, sans-serif">"##
+    );
+    let _ = writeln!(
+        svg,
+        r##"<rect width="100%" height="100%" fill="#fbfbf8"/>"##
+    );
+    let _ = writeln!(
+        svg,
+        r##"<text x="{PAD_PX}" y="24" font-size="16" fill="#222">{}</text>"##,
+        escape(title)
+    );
+    let _ = writeln!(svg, r##"<g id="fields">"##);
+    for field in &farm.fields {
+        let _ = writeln!(
+            svg,
+            r##"<path d="{}" fill="#e3efcf" fill-rule="evenodd" stroke="#4a7a2a" stroke-width="1.2"/>"##,
+            canvas.polygon(&field.polygon)
+        );
+    }
+    for obstacle in &farm.obstacles {
+        let _ = writeln!(
+            svg,
+            r##"<path d="{}" fill="#c62828" fill-opacity="0.35" stroke="#8e0000" stroke-width="1"/>"##,
+            canvas.polygon(&obstacle.polygon)
+        );
+    }
+    let _ = writeln!(svg, "</g>");
+    // Strips first, lines over them.
+    let _ = writeln!(
+        svg,
+        r##"<g id="strips" fill="none" stroke-linecap="butt" stroke-linejoin="miter" stroke-opacity="0.22">"##
+    );
+    for visit in &route.visits {
+        let colour = match visit.pass {
+            Pass::Swath { .. } => "#1565c0",
+            Pass::Edge { .. } => "#2e7d32",
+        };
+        let _ = writeln!(
+            svg,
+            r##"<path d="{}" stroke="{colour}" stroke-width="{strip_px:.2}"/>"##,
+            canvas.line(&visit.points)
+        );
+    }
+    let _ = writeln!(svg, "</g>");
+    let _ = writeln!(svg, r##"<g id="passes" fill="none" stroke-width="1">"##);
+    for visit in &route.visits {
+        let colour = match visit.pass {
+            Pass::Swath { .. } => "#0d47a1",
+            Pass::Edge { .. } => "#1b5e20",
+        };
+        let _ = writeln!(
+            svg,
+            r##"<path d="{}" stroke="{colour}"/>"##,
+            canvas.line(&visit.points)
+        );
+    }
+    let _ = writeln!(svg, "</g>");
+    let _ = writeln!(
+        svg,
+        r##"<g id="transfers" fill="none" stroke-width="1.1" stroke-dasharray="4 3">"##
+    );
+    for transfer in &route.transfers {
+        let colour = if transfer.climbs {
+            "#d32f2f"
+        } else {
+            "#ef6c00"
+        };
+        let _ = writeln!(
+            svg,
+            r##"<path d="{}" stroke="{colour}"/>"##,
+            canvas.line(&[transfer.from, transfer.to])
+        );
+    }
+    let _ = writeln!(svg, "</g>");
+    let _ = writeln!(
+        svg,
+        r##"<g id="labels" font-size="13" fill="#111" text-anchor="middle">"##
+    );
+    for (index, field) in farm.fields.iter().enumerate() {
+        if let (Some(centre), Some(coverage)) = (field.polygon.centroid(), plan.fields.get(index)) {
+            let _ = writeln!(
+                svg,
+                r##"<text x="{:.2}" y="{:.2}" stroke="#fbfbf8" stroke-width="3" paint-order="stroke">{} {:.1}°</text>"##,
+                canvas.x(centre.x()),
+                canvas.y(centre.y()),
+                escape(&field.name),
+                coverage.heading.heading_deg
+            );
+        }
+    }
+    let _ = writeln!(svg, "</g>");
+    // Legend, scale bar, north arrow along the bottom.
+    let base = height_px - LEGEND_PX + 25.0;
+    let items = [
+        ("#1565c0", "swath", ""),
+        ("#2e7d32", "edge pass", ""),
+        ("#ef6c00", "transfer", "4 3"),
+        ("#d32f2f", "transfer climbing h", "4 3"),
+    ];
+    for (index, (colour, label, dash)) in items.iter().enumerate() {
+        let x = PAD_PX + index as f64 * 170.0;
+        let _ = writeln!(
+            svg,
+            r##"<line x1="{x:.0}" y1="{base:.0}" x2="{:.0}" y2="{base:.0}" stroke="{colour}" stroke-width="3" stroke-dasharray="{dash}"/><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">{label}</text>"##,
+            x + 28.0,
+            x + 34.0,
+            base + 4.0
+        );
+    }
+    let bar_m = scale_bar_m(span_x);
+    let bar_x = WIDTH_PX - PAD_PX - bar_m * scale - 60.0;
+    let _ = writeln!(
+        svg,
+        r##"<g id="scale"><rect x="{bar_x:.2}" y="{:.0}" width="{:.2}" height="5" fill="#222"/><text x="{:.2}" y="{:.0}" font-size="12" text-anchor="middle" fill="#222">{bar_m} m</text></g>"##,
+        base - 3.0,
+        bar_m * scale,
+        bar_x + bar_m * scale / 2.0,
+        base + 18.0
+    );
+    let north_x = WIDTH_PX - PAD_PX - 15.0;
+    let _ = writeln!(
+        svg,
+        r##"<g id="north"><path d="M{north_x:.0},{:.0} l8,22 l-8,-6 l-8,6 Z" fill="#222"/><text x="{north_x:.0}" y="{:.0}" font-size="12" text-anchor="middle">N</text></g>"##,
+        base - 20.0,
+        base + 18.0
+    );
+    svg.push_str("</svg>\n");
+    svg
+}
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}

@@ -1,0 +1,3 @@
+//! Pictures: maps of plans.
+
+pub mod map_svg;

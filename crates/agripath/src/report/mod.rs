@@ -1,0 +1,210 @@
+//! `report.json`: the plan's figures per field and in total (contract in `docs/cli.md`).
+
+use serde::Serialize;
+
+use crate::coverage::heading::HeadingObjective;
+use crate::coverage::{CoveragePlan, CoverageSettings};
+use crate::model::{Scenario, Vehicle};
+use crate::sequence::Route;
+
+#[derive(Debug, Clone, Serialize)]
+pub struct FieldReport {
+    pub name: String,
+    /// Chosen heading, degrees from east, counter-clockwise, 0..180.
+    pub heading_deg: f64,
+    /// The best heading of the 1° scan (seed 001's answer).
+    pub heading_integer_deg: f64,
+    /// Objective at the chosen and at the integer heading (eq. 1 for the seed objective).
+    pub objective: f64,
+    pub objective_integer: f64,
+    /// Interior swaths (seed 001's N) and their draped length (its L), metres.
+    pub swaths: usize,
+    pub spray_length_m: f64,
+    pub edge_passes: usize,
+    pub edge_length_m: f64,
+    pub sprayable_area_m2: f64,
+    pub covered_fraction: f64,
+    pub overlap_m2: f64,
+    pub outside_m2: f64,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Report {
+    pub scenario: String,
+    pub coordinate_system: String,
+    pub vehicle: String,
+    pub swath_width_m: f64,
+    pub spray_height_m: f64,
+    pub safe_height_m: f64,
+    pub settings: CoverageSettings,
+    pub route: &'static str,
+    pub fields: Vec<FieldReport>,
+    /// Interior swaths, metres.
+    pub spray_length_m: f64,
+    /// Edge passes, metres.
+    pub edge_length_m: f64,
+    /// Transfers with their 2h climbs (seed 001 eq. 8), metres.
+    pub transfer_length_m: f64,
+    pub transfers: usize,
+    pub climbing_transfers: usize,
+    /// Changes of direction along the flight (every angle counts) and U-turns among them.
+    pub turns: usize,
+    pub u_turns: usize,
+    pub sorties: usize,
+    pub sprayable_area_m2: f64,
+    pub covered_fraction: f64,
+    pub overlap_m2: f64,
+    pub spray_time_s: f64,
+    pub non_spray_time_s: f64,
+    pub total_time_s: f64,
+    /// Wall time of planning; the one figure that differs between identical runs.
+    pub runtime_s: f64,
+}
+
+/// Flight time of the transfers: legs inside a field at turn speed; climbing legs at transit
+/// speed plus the 2h climb and descent at climb speed.
+pub fn transfer_time_s(route: &Route, vehicle: &Vehicle) -> f64 {
+    route
+        .transfers
+        .iter()
+        .map(|transfer| {
+            if transfer.climbs {
+                (transfer.cost_m - 2.0 * vehicle.safe_height_m) / vehicle.transit_speed_mps
+                    + 2.0 * vehicle.safe_height_m / vehicle.climb_speed_mps
+            } else {
+                transfer.cost_m / vehicle.turn_speed_mps
+            }
+        })
+        .sum()
+}
+
+impl Report {
+    pub fn new(scenario: &Scenario, plan: &CoveragePlan, route: &Route, runtime_s: f64) -> Self {
+        let vehicle = &scenario.vehicle;
+        let fields: Vec<FieldReport> = plan
+            .fields
+            .iter()
+            .map(|field| FieldReport {
+                name: field.name.clone(),
+                heading_deg: round(field.heading.heading_deg, 1e-9),
+                heading_integer_deg: field.heading.integer_heading_deg,
+                objective: round(field.heading.objective, 1e-9),
+                objective_integer: round(field.heading.integer_objective, 1e-9),
+                swaths: field.swaths.len(),
+                spray_length_m: round(field.spray_length_m(), 1e-4),
+                edge_passes: field.edges.len(),
+                edge_length_m: round(field.edge_length_m(), 1e-4),
+                sprayable_area_m2: round(field.measure.sprayable_area_m2, 1e-4),
+                covered_fraction: round(field.measure.covered_fraction, 1e-6),
+                overlap_m2: round(field.measure.overlap_m2, 1e-4),
+                outside_m2: round(field.measure.outside_m2, 1e-4),
+            })
+            .collect();
+        let spray_length_m: f64 = plan.fields.iter().map(|field| field.spray_length_m()).sum();
+        let edge_length_m: f64 = plan.fields.iter().map(|field| field.edge_length_m()).sum();
+        let sprayable: f64 = plan
+            .fields
+            .iter()
+            .map(|field| field.measure.sprayable_area_m2)
+            .sum();
+        let covered: f64 = plan
+            .fields
+            .iter()
+            .map(|field| field.measure.covered_fraction * field.measure.sprayable_area_m2)
+            .sum();
+        let (turns, u_turns) = route.turns();
+        let spray_time_s = (spray_length_m + edge_length_m) / vehicle.spray_speed_mps;
+        let non_spray_time_s = transfer_time_s(route, vehicle);
+        Self {
+            scenario: scenario.name.clone(),
+            coordinate_system: scenario.farm.coordinate_system.describe(),
+            vehicle: vehicle.name.clone(),
+            swath_width_m: vehicle.swath_width_m,
+            spray_height_m: vehicle.spray_height_m,
+            safe_height_m: vehicle.safe_height_m,
+            settings: plan.settings,
+            route: "plain: fields in file order, edge passes first, then swaths boustrophedon by scan line (sequencing issue pending)",
+            fields,
+            spray_length_m: round(spray_length_m, 1e-4),
+            edge_length_m: round(edge_length_m, 1e-4),
+            transfer_length_m: round(route.transfer_length_m(), 1e-4),
+            transfers: route.transfers.len(),
+            climbing_transfers: route.transfers.iter().filter(|transfer| transfer.climbs).count(),
+            turns,
+            u_turns,
+            sorties: 1,
+            sprayable_area_m2: round(sprayable, 1e-4),
+            covered_fraction: round(if sprayable > 0.0 { covered / sprayable } else { 0.0 }, 1e-6),
+            overlap_m2: round(plan.fields.iter().map(|field| field.measure.overlap_m2).sum(), 1e-4),
+            spray_time_s: round(spray_time_s, 1e-3),
+            non_spray_time_s: round(non_spray_time_s, 1e-3),
+            total_time_s: round(spray_time_s + non_spray_time_s, 1e-3),
+            runtime_s,
+        }
+    }
+
+    pub fn heading_label(settings: &CoverageSettings) -> String {
+        match settings.heading {
+            HeadingObjective::Seed {
+                count_weight,
+                length_weight,
+            } => {
+                format!("E (ω_N = {count_weight}, ω_L = {length_weight})")
+            }
+            HeadingObjective::Swaths => "fewest swaths".into(),
+            HeadingObjective::Length => "shortest length".into(),
+            HeadingObjective::Fixed { heading_deg } => format!("fixed {heading_deg}°"),
+        }
+    }
+
+    /// The short table the CLI prints.
+    pub fn to_text(&self) -> String {
+        let mut text = format!(
+            "{}: {} field(s), swath {} m, heading by {}, {} edge pass(es)\n",
+            self.scenario,
+            self.fields.len(),
+            self.swath_width_m,
+            Self::heading_label(&self.settings),
+            self.settings.headland_passes
+        );
+        text.push_str(&format!(
+            "{:<10} {:>9} {:>7} {:>7} {:>11} {:>10} {:>9} {:>10}\n",
+            "field", "heading°", "(1° )", "swaths", "spray m", "edge m", "covered", "overlap m²"
+        ));
+        for field in &self.fields {
+            text.push_str(&format!(
+                "{:<10} {:>9.1} {:>7.0} {:>7} {:>11.1} {:>10.1} {:>8.2}% {:>10.1}\n",
+                field.name,
+                field.heading_deg,
+                field.heading_integer_deg,
+                field.swaths,
+                field.spray_length_m,
+                field.edge_length_m,
+                100.0 * field.covered_fraction,
+                field.overlap_m2
+            ));
+        }
+        text.push_str(&format!(
+            "total: spray {:.1} m + edges {:.1} m, transfers {:.1} m ({} climbing), {} turns ({} U-turns), covered {:.2}%, {:.1} min ({:.1} min not spraying), planned in {:.3} s\n",
+            self.spray_length_m,
+            self.edge_length_m,
+            self.transfer_length_m,
+            self.climbing_transfers,
+            self.turns,
+            self.u_turns,
+            100.0 * self.covered_fraction,
+            self.total_time_s / 60.0,
+            self.non_spray_time_s / 60.0,
+            self.runtime_s
+        ));
+        text
+    }
+}
+
+/// Rounds to a step so that reports are stable and readable (no 17-digit noise).
+pub fn round(value: f64, step: f64) -> f64 {
+    let rounded = (value / step).round() * step;
+    // Strip the binary noise the multiplication leaves by printing through a short decimal.
+    let decimals = (-step.log10()).ceil().max(0.0) as usize;
+    format!("{rounded:.decimals$}").parse().unwrap_or(rounded)
+}

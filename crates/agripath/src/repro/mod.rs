@@ -1,0 +1,3 @@
+//! The papers' tables, recomputed. Each function computes rows; the CLI prints them.
+
+pub mod seed001_table7;
