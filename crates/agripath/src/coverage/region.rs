@@ -89,25 +89,51 @@ mod tests {
 
     fn square(min: f64, max: f64) -> Polygon<f64> {
         Polygon::new(
-            LineString::from(vec![(min, min), (max, min), (max, max), (min, max), (min, min)]),
+            LineString::from(vec![
+                (min, min),
+                (max, min),
+                (max, max),
+                (min, max),
+                (min, min),
+            ]),
             vec![],
         )
     }
 
     #[test]
     fn obstacles_and_margins_shrink_the_sprayable_area() {
-        let field = Field { name: "f".into(), polygon: square(0.0, 100.0) };
-        let obstacle = Obstacle { name: "o".into(), polygon: square(40.0, 60.0) };
+        let field = Field {
+            name: "f".into(),
+            polygon: square(0.0, 100.0),
+        };
+        let obstacle = Obstacle {
+            name: "o".into(),
+            polygon: square(40.0, 60.0),
+        };
         let plain = sprayable_region(&field, &[obstacle.clone()], 0.0, 0.0);
         assert!((plain.unsigned_area() - (10_000.0 - 400.0)).abs() < 1e-6);
         // A 5 m safety margin grows the obstacle to 30 × 30 m (mitred corners stay square).
         let kept_away = sprayable_region(&field, &[obstacle.clone()], 0.0, 5.0);
-        assert!((kept_away.unsigned_area() - (10_000.0 - 900.0)).abs() < 1.0, "{}", kept_away.unsigned_area());
+        assert!(
+            (kept_away.unsigned_area() - (10_000.0 - 900.0)).abs() < 1.0,
+            "{}",
+            kept_away.unsigned_area()
+        );
         // A 2 m boundary margin shrinks the field to 96 × 96 m.
         let inset = sprayable_region(&field, &[obstacle], 2.0, 0.0);
-        assert!((inset.unsigned_area() - (96.0 * 96.0 - 24.0 * 24.0)).abs() < 1.0, "{}", inset.unsigned_area());
+        assert!(
+            (inset.unsigned_area() - (96.0 * 96.0 - 24.0 * 24.0)).abs() < 1.0,
+            "{}",
+            inset.unsigned_area()
+        );
         // An obstacle off the field changes nothing.
-        let far = Obstacle { name: "far".into(), polygon: square(200.0, 210.0) };
-        assert_eq!(sprayable_region(&field, &[far], 0.0, 0.0).unsigned_area(), 10_000.0);
+        let far = Obstacle {
+            name: "far".into(),
+            polygon: square(200.0, 210.0),
+        };
+        assert_eq!(
+            sprayable_region(&field, &[far], 0.0, 0.0).unsigned_area(),
+            10_000.0
+        );
     }
 }
