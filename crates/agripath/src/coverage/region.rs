@@ -110,10 +110,10 @@ mod tests {
             name: "o".into(),
             polygon: square(40.0, 60.0),
         };
-        let plain = sprayable_region(&field, &[obstacle.clone()], 0.0, 0.0);
+        let plain = sprayable_region(&field, std::slice::from_ref(&obstacle), 0.0, 0.0);
         assert!((plain.unsigned_area() - (10_000.0 - 400.0)).abs() < 1e-6);
         // A 5 m safety margin grows the obstacle to 30 × 30 m (mitred corners stay square).
-        let kept_away = sprayable_region(&field, &[obstacle.clone()], 0.0, 5.0);
+        let kept_away = sprayable_region(&field, std::slice::from_ref(&obstacle), 0.0, 5.0);
         assert!(
             (kept_away.unsigned_area() - (10_000.0 - 900.0)).abs() < 1.0,
             "{}",
