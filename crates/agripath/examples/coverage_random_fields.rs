@@ -8,11 +8,10 @@
 use agripath::coverage::{cover_field, CoverageSettings};
 use agripath::terrain::Flat;
 use geo::{Coord, LineString, MultiPolygon, Polygon};
-use rand_xoshiro::rand_core::Rng;
-use swarm::random::run_stream;
+use swarm::random::{below, run_stream};
 
 fn uniform(stream: &mut swarm::RunStream, low: f64, high: f64) -> f64 {
-    low + (high - low) * (stream.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    low + (high - low) * swarm::uniform(stream)
 }
 
 fn star(
@@ -42,12 +41,12 @@ fn main() {
     let fields = 200;
     for index in 0..fields {
         let mut stream = run_stream(2026, index);
-        let count = 5 + (stream.next_u64() % 9) as usize;
+        let count = 5 + below(&mut stream, 9);
         let shell = star(&mut stream, (0.0, 0.0), 80.0, 150.0, count);
-        let holes = (0..(stream.next_u64() % 4))
+        let holes = (0..below(&mut stream, 4))
             .map(|hole| {
                 let angle = hole as f64 * std::f64::consts::TAU / 3.0;
-                let count = 3 + (stream.next_u64() % 4) as usize;
+                let count = 3 + below(&mut stream, 4);
                 star(
                     &mut stream,
                     (40.0 * angle.cos(), 40.0 * angle.sin()),

@@ -3,13 +3,49 @@
 
 use std::time::Instant;
 
+use crate::coverage::drape::GroundPoint;
 use crate::coverage::{plan_coverage, CoveragePlan, CoverageSettings};
 use crate::error::Fault;
 use crate::mission::plan_geojson::plan_geojson;
 use crate::model::Scenario;
 use crate::plot::map_svg::plan_svg;
 use crate::report::Report;
-use crate::sequence::{plain_route, Route, TransferModel};
+use crate::sequence::{route, Route, Sequencer, TransferModel};
+
+/// Everything a coverage plan is asked for.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct PlanSettings {
+    pub coverage: CoverageSettings,
+    pub sequencer: Sequencer,
+    /// Launch point in planning metres; `None`: a `launch` or `supply` marker of the field
+    /// file, else a free start.
+    pub start: Option<[f64; 2]>,
+}
+
+/// The start point of the flight: the given one, else the field file's `launch`/`supply`
+/// marker, else none (free start).
+pub fn start_point(
+    scenario: &Scenario,
+    settings: &PlanSettings,
+) -> Result<Option<GroundPoint>, Fault> {
+    let position = settings.start.or_else(|| {
+        scenario
+            .farm
+            .markers
+            .iter()
+            .find(|marker| matches!(marker.kind.as_str(), "launch" | "supply" | "start"))
+            .map(|marker| [marker.position.x, marker.position.y])
+    });
+    position
+        .map(|[x, y]| {
+            Ok(GroundPoint {
+                x,
+                y,
+                ground_m: scenario.terrain.height_m(x, y)?,
+            })
+        })
+        .transpose()
+}
 
 /// A planned coverage mission.
 pub struct PlannedMission {
@@ -19,21 +55,19 @@ pub struct PlannedMission {
 }
 
 /// Plans the scenario's fields with `settings`.
-pub fn plan_mission(
-    scenario: &Scenario,
-    settings: &CoverageSettings,
-) -> Result<PlannedMission, Fault> {
+pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<PlannedMission, Fault> {
     let started = Instant::now();
+    let start = start_point(scenario, settings)?;
     let coverage = plan_coverage(
         &scenario.farm,
         scenario.terrain.as_ref(),
         &scenario.vehicle,
-        settings,
+        &settings.coverage,
     )?;
     let model = TransferModel::new(&scenario.farm, scenario.vehicle.safe_height_m);
-    let route = plain_route(&coverage, &model);
+    let route = route(&coverage, &model, start, &settings.sequencer);
     let runtime_s = crate::report::round(started.elapsed().as_secs_f64(), 1e-4);
-    let report = Report::new(scenario, &coverage, &route, runtime_s);
+    let report = Report::new(scenario, &coverage, &route, settings, runtime_s);
     Ok(PlannedMission {
         coverage,
         route,

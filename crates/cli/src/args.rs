@@ -32,6 +32,8 @@ pub enum Command {
         inputs: Inputs,
         #[command(flatten)]
         coverage: CoverageArgs,
+        #[command(flatten)]
+        order: OrderArgs,
         /// Output folder (replaced as a whole when planning succeeds).
         #[arg(long)]
         out: PathBuf,
@@ -95,7 +97,7 @@ pub struct CoverageArgs {
     #[arg(long, default_value = "auto", allow_negative_numbers = true)]
     pub heading: String,
     /// Weights ω_N,ω_L of seed 001's E.
-    #[arg(long, value_delimiter = ',', num_args = 2, default_values_t = [0.5, 0.5])]
+    #[arg(long, value_delimiter = ',', default_values_t = [0.5, 0.5])]
     pub weights: Vec<f64>,
     /// Keep the best 1° heading (the seed's) instead of refining it to 0.1°.
     #[arg(long)]
@@ -111,11 +113,35 @@ pub struct CoverageArgs {
     pub obstacle_margin: f64,
 }
 
+/// How the passes are ordered.
+#[derive(Debug, Args)]
+pub struct OrderArgs {
+    /// `best` (ours: local search), `greedy` or `aco` (seed 001's ant colony).
+    #[arg(long, default_value = "best", value_parser = ["best", "greedy", "aco"])]
+    pub sequencer: String,
+    /// Launch point X,Y in the input's coordinates (lon,lat or local metres); default: the
+    /// field file's `launch`/`supply` marker, else a free start (closed tour).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    pub start: Option<Vec<f64>>,
+    /// Seed of the stochastic sequencers (same seed, same plan).
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Ant colony batches (seed 001: 100 or 200).
+    #[arg(long, default_value_t = 200)]
+    pub batches: usize,
+    /// Ants per batch (seed 001: 50).
+    #[arg(long, default_value_t = 50)]
+    pub ants: usize,
+}
+
 #[derive(Debug, Clone, Copy, clap::ValueEnum)]
 pub enum ReproTable {
     /// Seed 001 Table 7: headings, swath counts and lengths of the five-field farm.
     #[value(name = "seed001-table7")]
     Seed001Table7,
+    /// Seed 001 Table 8: transfer lengths of greedy, ant colony and ours from its start points.
+    #[value(name = "seed001-table8")]
+    Seed001Table8,
 }
 
 #[derive(Debug, Subcommand)]

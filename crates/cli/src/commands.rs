@@ -13,9 +13,12 @@ use agripath::{Fault, InputError};
 
 use agripath::coverage::heading::HeadingObjective;
 use agripath::coverage::CoverageSettings;
-use agripath::pipeline::{plan_mission, render};
+use agripath::pipeline::{plan_mission, render, PlanSettings};
+use agripath::sequence::ant_colony::AntColonySettings;
+use agripath::sequence::local_search::LocalSearchSettings;
+use agripath::sequence::Sequencer;
 
-use crate::args::{Arguments, Command, CoverageArgs, Inputs, ReproTable, TerrainAction};
+use crate::args::{Arguments, Command, CoverageArgs, Inputs, OrderArgs, ReproTable, TerrainAction};
 use crate::Failure;
 
 /// Writes to stdout; a closed pipe (`agripath … | head`) ends the program quietly, as Unix
@@ -48,8 +51,9 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
         Command::Plan {
             inputs,
             coverage,
+            order,
             out,
-        } => plan(&inputs, &coverage, &out),
+        } => plan(&inputs, &coverage, &order, &out),
         Command::Repro { table } => repro(table),
         Command::Validate { inputs, json } => validate(&inputs, json),
         Command::Terrain { action } => terrain(action),
@@ -62,7 +66,11 @@ fn output_failure(path: &Path, error: std::io::Error) -> Failure {
 
 fn demo(out: &Path) -> Result<(), Failure> {
     let scenario = agripath::demo::scenario()?;
-    let settings = CoverageSettings::default();
+    // The seed's Table 8 start C1 (0, 0): a corner of S1.
+    let settings = PlanSettings {
+        start: Some([0.0, 0.0]),
+        ..PlanSettings::default()
+    };
     let mission = plan_mission(&scenario, &settings)
         .map_err(|fault| InputError::new(agripath::demo::FARM_LABEL, fault))?;
     let bounds = scenario.farm.bounds();
@@ -102,6 +110,12 @@ fn write_folder(out: &Path, files: &[(&str, Vec<u8>)]) -> Result<PathBuf, Failur
 }
 
 fn coverage_settings(arguments: &CoverageArgs) -> Result<CoverageSettings, InputError> {
+    if arguments.weights.len() != 2 {
+        return Err(InputError::new(
+            "--weights",
+            Fault::Structure("expected two weights ω_N,ω_L".into()),
+        ));
+    }
     let heading = match arguments.heading.as_str() {
         "auto" => HeadingObjective::Seed {
             count_weight: arguments.weights[0],
@@ -139,9 +153,67 @@ fn coverage_settings(arguments: &CoverageArgs) -> Result<CoverageSettings, Input
     Ok(settings)
 }
 
-fn plan(inputs: &Inputs, coverage: &CoverageArgs, out: &Path) -> Result<(), Failure> {
-    let settings = coverage_settings(coverage)?;
+fn sequencer(order: &OrderArgs) -> Result<Sequencer, InputError> {
+    Ok(match order.sequencer.as_str() {
+        "greedy" => Sequencer::Greedy,
+        "aco" => {
+            if order.ants == 0 || order.batches == 0 {
+                return Err(InputError::new(
+                    "--ants/--batches",
+                    Fault::InvalidValue {
+                        what: "--ants × --batches".into(),
+                        value: format!("{} × {}", order.ants, order.batches),
+                        why: "both must be at least 1".into(),
+                    },
+                ));
+            }
+            Sequencer::AntColony(AntColonySettings {
+                ants: order.ants,
+                batches: order.batches,
+                seed: order.seed,
+                ..AntColonySettings::default()
+            })
+        }
+        _ => Sequencer::Best(LocalSearchSettings {
+            seed: order.seed,
+            ..LocalSearchSettings::default()
+        }),
+    })
+}
+
+fn plan(
+    inputs: &Inputs,
+    coverage: &CoverageArgs,
+    order: &OrderArgs,
+    out: &Path,
+) -> Result<(), Failure> {
     let scenario = load_scenario(inputs)?;
+    let start = match &order.start {
+        Some(values) if values.len() == 2 && values.iter().all(|value| value.is_finite()) => {
+            let (x, y) = scenario
+                .farm
+                .coordinate_system
+                .to_plan(values[0], values[1]);
+            Some([x, y])
+        }
+        Some(values) => {
+            return Err(InputError::new(
+                "--start",
+                Fault::InvalidValue {
+                    what: "--start".into(),
+                    value: format!("{values:?}"),
+                    why: "expected two finite numbers X,Y".into(),
+                },
+            )
+            .into())
+        }
+        None => None,
+    };
+    let settings = PlanSettings {
+        coverage: coverage_settings(coverage)?,
+        sequencer: sequencer(order)?,
+        start,
+    };
     let mission = plan_mission(&scenario, &settings)
         .map_err(|fault| InputError::new(&scenario.farm.source, fault))?;
     let files = render(&scenario, &mission);
@@ -156,6 +228,14 @@ fn plan(inputs: &Inputs, coverage: &CoverageArgs, out: &Path) -> Result<(), Fail
 
 fn repro(table: ReproTable) -> Result<(), Failure> {
     match table {
+        ReproTable::Seed001Table8 => {
+            let scenario = agripath::demo::scenario()?;
+            emitln!("Seed 001, Table 8: transfer path length (m), paper beside agripath");
+            let table = agripath::repro::seed001_table8::table8(&scenario, 1)
+                .map_err(|fault| InputError::new(agripath::demo::FARM_LABEL, fault))?;
+            emit!("{}", table.to_text());
+            Ok(())
+        }
         ReproTable::Seed001Table7 => {
             let scenario = agripath::demo::scenario()?;
             let references: serde_json::Value = serde_json::from_str(agripath::demo::FARM_GEOJSON)
@@ -345,6 +425,13 @@ fn terrain(action: TerrainAction) -> Result<(), Failure> {
             }
             let model = load_terrain(&terrain, cell)?;
             let area = match (extent, model.extent()) {
+                (Some(values), _) if values.len() != 4 => {
+                    return Err(InputError::new(
+                        "--extent",
+                        Fault::Structure("expected MIN_X,MIN_Y,MAX_X,MAX_Y".into()),
+                    )
+                    .into())
+                }
                 (Some(values), _) => {
                     let [min_x, min_y, max_x, max_y] = [values[0], values[1], values[2], values[3]];
                     if !(values.iter().all(|v| v.is_finite()) && max_x > min_x && max_y > min_y) {

@@ -7,4 +7,4 @@
 
 pub mod random;
 
-pub use random::{run_stream, RunStream};
+pub use random::{below, run_stream, uniform, RunStream};

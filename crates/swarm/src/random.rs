@@ -18,10 +18,22 @@ pub fn run_stream(seed: u64, run: u64) -> RunStream {
     stream
 }
 
+/// Draws from a stream (the trait that gives `next_u64`).
+pub use rand_xoshiro::rand_core::Rng;
+
+/// A uniform draw in [0, 1) with 53 random bits.
+pub fn uniform(stream: &mut RunStream) -> f64 {
+    (stream.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+}
+
+/// A uniform draw in 0..n (n > 0), by Lemire's multiply-shift (bias below 2⁻⁶⁴·n).
+pub fn below(stream: &mut RunStream, n: usize) -> usize {
+    ((u128::from(stream.next_u64()) * n as u128) >> 64) as usize
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use rand_xoshiro::rand_core::Rng;
 
     fn first_draws(mut stream: RunStream) -> Vec<u64> {
         (0..8).map(|_| stream.next_u64()).collect()

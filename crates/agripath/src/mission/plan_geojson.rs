@@ -88,7 +88,38 @@ pub fn plan_geojson(
         properties.insert("name".into(), json!(obstacle.name));
         features.push(feature(properties, json!({"type": "Polygon", "coordinates": polygon_coordinates(system, &obstacle.polygon)})));
     }
+    let leg_feature = |transfer: &crate::sequence::Transfer, leg: &str, seq: usize| {
+        let mut properties = Map::new();
+        properties.insert("kind".into(), json!("transfer"));
+        properties.insert("leg".into(), json!(leg));
+        properties.insert("seq".into(), json!(seq));
+        properties.insert("sortie".into(), json!(0));
+        properties.insert("climbs".into(), json!(transfer.climbs));
+        properties.insert(
+            "length_m".into(),
+            json!(crate::report::round(transfer.cost_m, 1e-4)),
+        );
+        let lift = |point: GroundPoint, extra: f64| GroundPoint {
+            ground_m: point.ground_m + extra,
+            ..point
+        };
+        let points = if transfer.climbs {
+            vec![
+                transfer.from,
+                lift(transfer.from, safe_height_m),
+                lift(transfer.to, safe_height_m),
+                transfer.to,
+            ]
+        } else {
+            vec![transfer.from, transfer.to]
+        };
+        feature(properties, line(system, &points, spray_height_m))
+    };
     let mut seq = 0;
+    if let Some(launch) = &route.launch {
+        features.push(leg_feature(launch, "launch", seq));
+        seq += 1;
+    }
     for (index, visit) in route.visits.iter().enumerate() {
         let mut properties = Map::new();
         match visit.pass {
@@ -121,32 +152,12 @@ pub fn plan_geojson(
         ));
         seq += 1;
         if let Some(transfer) = route.transfers.get(index) {
-            let mut properties = Map::new();
-            properties.insert("kind".into(), json!("transfer"));
-            properties.insert("seq".into(), json!(seq));
-            properties.insert("sortie".into(), json!(0));
-            properties.insert("climbs".into(), json!(transfer.climbs));
-            properties.insert(
-                "length_m".into(),
-                json!(crate::report::round(transfer.cost_m, 1e-4)),
-            );
-            let lift = |point: GroundPoint, extra: f64| GroundPoint {
-                ground_m: point.ground_m + extra,
-                ..point
-            };
-            let points = if transfer.climbs {
-                vec![
-                    transfer.from,
-                    lift(transfer.from, safe_height_m),
-                    lift(transfer.to, safe_height_m),
-                    transfer.to,
-                ]
-            } else {
-                vec![transfer.from, transfer.to]
-            };
-            features.push(feature(properties, line(system, &points, spray_height_m)));
+            features.push(leg_feature(transfer, "between", seq));
             seq += 1;
         }
+    }
+    if let Some(home) = &route.home {
+        features.push(leg_feature(home, "home", seq));
     }
     let mut collection = Map::new();
     collection.insert("type".into(), json!("FeatureCollection"));

@@ -26,6 +26,14 @@ impl CoordinateSystem {
         }
     }
 
+    /// A position given in the input's coordinate system, in the planning frame.
+    pub fn to_plan(self, a: f64, b: f64) -> (f64, f64) {
+        match self {
+            Self::Local => (a, b),
+            Self::Utm(zone) => crate::geometry::to_utm(a, b, zone),
+        }
+    }
+
     pub fn describe(self) -> String {
         match self {
             Self::Local => "local metres".to_string(),

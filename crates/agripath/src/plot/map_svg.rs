@@ -148,7 +148,7 @@ pub fn plan_svg(farm: &Farm, plan: &CoveragePlan, route: &Route, title: &str) ->
         svg,
         r##"<g id="transfers" fill="none" stroke-width="1.1" stroke-dasharray="4 3">"##
     );
-    for transfer in &route.transfers {
+    for transfer in route.legs() {
         let colour = if transfer.climbs {
             "#d32f2f"
         } else {

@@ -5,7 +5,9 @@ use serde::Serialize;
 use crate::coverage::heading::HeadingObjective;
 use crate::coverage::{CoveragePlan, CoverageSettings};
 use crate::model::{Scenario, Vehicle};
-use crate::sequence::Route;
+use crate::pipeline::PlanSettings;
+use crate::sequence::ant_colony::AntColonySettings;
+use crate::sequence::{Route, Sequencer};
 
 #[derive(Debug, Clone, Serialize)]
 pub struct FieldReport {
@@ -37,14 +39,20 @@ pub struct Report {
     pub spray_height_m: f64,
     pub safe_height_m: f64,
     pub settings: CoverageSettings,
-    pub route: &'static str,
+    pub sequencer: Sequencer,
+    /// Launch point in the input's coordinates, when the flight has one.
+    pub start: Option<[f64; 2]>,
     pub fields: Vec<FieldReport>,
     /// Interior swaths, metres.
     pub spray_length_m: f64,
     /// Edge passes, metres.
     pub edge_length_m: f64,
-    /// Transfers with their 2h climbs (seed 001 eq. 8), metres.
+    /// Every leg flown (from the launch point, between passes, home) with their 2h climbs
+    /// (seed 001 eq. 8), metres.
     pub transfer_length_m: f64,
+    /// What the sequencer minimised: from the launch point through every pass (no leg home),
+    /// or the closed tour for a free start (seed 001 Table 8's measure), metres.
+    pub tour_cost_m: f64,
     pub transfers: usize,
     pub climbing_transfers: usize,
     /// Changes of direction along the flight (every angle counts) and U-turns among them.
@@ -65,8 +73,7 @@ pub struct Report {
 /// speed plus the 2h climb and descent at climb speed.
 pub fn transfer_time_s(route: &Route, vehicle: &Vehicle) -> f64 {
     route
-        .transfers
-        .iter()
+        .legs()
         .map(|transfer| {
             if transfer.climbs {
                 (transfer.cost_m - 2.0 * vehicle.safe_height_m) / vehicle.transit_speed_mps
@@ -79,7 +86,13 @@ pub fn transfer_time_s(route: &Route, vehicle: &Vehicle) -> f64 {
 }
 
 impl Report {
-    pub fn new(scenario: &Scenario, plan: &CoveragePlan, route: &Route, runtime_s: f64) -> Self {
+    pub fn new(
+        scenario: &Scenario,
+        plan: &CoveragePlan,
+        route: &Route,
+        settings: &PlanSettings,
+        runtime_s: f64,
+    ) -> Self {
         let vehicle = &scenario.vehicle;
         let fields: Vec<FieldReport> = plan
             .fields
@@ -123,19 +136,40 @@ impl Report {
             spray_height_m: vehicle.spray_height_m,
             safe_height_m: vehicle.safe_height_m,
             settings: plan.settings,
-            route: "plain: fields in file order, edge passes first, then swaths boustrophedon by scan line (sequencing issue pending)",
+            sequencer: settings.sequencer,
+            start: route.launch.map(|leg| {
+                let (x, y) = scenario
+                    .farm
+                    .coordinate_system
+                    .to_input(leg.from.x, leg.from.y);
+                [round(x, 1e-9), round(y, 1e-9)]
+            }),
             fields,
             spray_length_m: round(spray_length_m, 1e-4),
             edge_length_m: round(edge_length_m, 1e-4),
             transfer_length_m: round(route.transfer_length_m(), 1e-4),
-            transfers: route.transfers.len(),
-            climbing_transfers: route.transfers.iter().filter(|transfer| transfer.climbs).count(),
+            tour_cost_m: round(route.tour_cost_m, 1e-4),
+            transfers: route.legs().count(),
+            climbing_transfers: route.legs().filter(|transfer| transfer.climbs).count(),
             turns,
             u_turns,
             sorties: 1,
             sprayable_area_m2: round(sprayable, 1e-4),
-            covered_fraction: round(if sprayable > 0.0 { covered / sprayable } else { 0.0 }, 1e-6),
-            overlap_m2: round(plan.fields.iter().map(|field| field.measure.overlap_m2).sum(), 1e-4),
+            covered_fraction: round(
+                if sprayable > 0.0 {
+                    covered / sprayable
+                } else {
+                    0.0
+                },
+                1e-6,
+            ),
+            overlap_m2: round(
+                plan.fields
+                    .iter()
+                    .map(|field| field.measure.overlap_m2)
+                    .sum(),
+                1e-4,
+            ),
             spray_time_s: round(spray_time_s, 1e-3),
             non_spray_time_s: round(non_spray_time_s, 1e-3),
             total_time_s: round(spray_time_s + non_spray_time_s, 1e-3),
@@ -157,15 +191,34 @@ impl Report {
         }
     }
 
+    pub fn sequencer_label(sequencer: &Sequencer) -> String {
+        match sequencer {
+            Sequencer::Greedy => "greedy".into(),
+            Sequencer::AntColony(AntColonySettings {
+                ants,
+                batches,
+                seed,
+                ..
+            }) => {
+                format!("ant colony ({ants} ants × {batches} batches, seed {seed})")
+            }
+            Sequencer::Best(settings) => format!(
+                "best (local search, {} kicks, seed {})",
+                settings.kicks, settings.seed
+            ),
+        }
+    }
+
     /// The short table the CLI prints.
     pub fn to_text(&self) -> String {
         let mut text = format!(
-            "{}: {} field(s), swath {} m, heading by {}, {} edge pass(es)\n",
+            "{}: {} field(s), swath {} m, heading by {}, {} edge pass(es), order by {}\n",
             self.scenario,
             self.fields.len(),
             self.swath_width_m,
             Self::heading_label(&self.settings),
-            self.settings.headland_passes
+            self.settings.headland_passes,
+            Self::sequencer_label(&self.sequencer)
         );
         text.push_str(&format!(
             "{:<10} {:>9} {:>7} {:>7} {:>11} {:>10} {:>9} {:>10}\n",

@@ -1,18 +1,24 @@
-//! The flight through a coverage plan: which pass comes when, in which direction, and the
-//! transfer legs between passes (seed 001 eq. 8, MISSION.md decision 3).
-//!
-//! A transfer between two pass ends costs its 3D length, plus 2h when the straight segment is
-//! not inside the closed field polygon (its boundary counts as inside; holes and obstacles do
-//! not): the drone climbs h above spray height to leave the work area and comes back down.
-//! Until the sequencing issue lands its optimisers, the order is the plain one: each field in
-//! file order, its edge passes first, then its swaths boustrophedon in scan-line order.
+//! The flight through a coverage plan: the order of the passes, the end each is entered by,
+//! and the transfer legs between them (seed 001 §3). Sequencers, chosen by value:
+//! `greedy` (the seed's baseline), `aco` (the seed's improved ant colony) and `best` (ours:
+//! construction, 2-opt with end flips, Or-opt, iterated kicks). Every one returns a tour of
+//! [`tour::Step`]s that [`route`] turns into the flight, with eq. (8)'s transfers.
 
-use geo::{Coord, Line, Polygon, Relate};
+pub mod ant_colony;
+pub mod greedy;
+pub mod local_search;
+pub mod tour;
+pub mod transfer;
+
+use geo::Coord;
 use serde::Serialize;
 
 use crate::coverage::drape::GroundPoint;
 use crate::coverage::CoveragePlan;
-use crate::model::Farm;
+use ant_colony::{ant_colony, AntColonySettings};
+use local_search::{best_tour, LocalSearchSettings};
+use tour::{is_permutation, OrderingProblem, Start, Step};
+pub use transfer::{Transfer, TransferModel};
 
 /// A pass of the plan.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
@@ -32,28 +38,30 @@ pub struct Visit {
     pub points: Vec<GroundPoint>,
 }
 
-/// A transfer leg between two pass ends.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct Transfer {
-    pub from: GroundPoint,
-    pub to: GroundPoint,
-    /// True when the leg leaves the field and climbs h.
-    pub climbs: bool,
-    /// 3D length plus 2h when it climbs, metres (eq. 8).
-    pub cost_m: f64,
-}
-
-/// The flight: passes in order with the transfers between them (`transfers[i]` leads from
-/// `visits[i]` to `visits[i + 1]`).
+/// The flight: an optional leg from the launch point, the passes in order with the transfers
+/// between them (`transfers[i]` leads from `visits[i]` to `visits[i + 1]`), and the leg home.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Route {
+    pub launch: Option<Transfer>,
     pub visits: Vec<Visit>,
     pub transfers: Vec<Transfer>,
+    pub home: Option<Transfer>,
+    /// The tour cost the sequencer minimised: from the start point (without the leg home), or
+    /// the closed tour for a free start (seed 001's Table 8 measure), metres.
+    pub tour_cost_m: f64,
 }
 
 impl Route {
+    /// Every leg flown: launch, transfers, home.
+    pub fn legs(&self) -> impl Iterator<Item = &Transfer> {
+        self.launch
+            .iter()
+            .chain(&self.transfers)
+            .chain(self.home.iter())
+    }
+
     pub fn transfer_length_m(&self) -> f64 {
-        self.transfers.iter().map(|transfer| transfer.cost_m).sum()
+        self.legs().map(|leg| leg.cost_m).sum()
     }
 
     /// Changes of direction at path points along the flown polyline (every angle counts, as
@@ -98,131 +106,281 @@ impl Route {
 
 /// Whether the next pass runs back against this one (a U-turn at the headland).
 fn reverses(points: &[GroundPoint], next: &[GroundPoint]) -> bool {
+    let open = |points: &[GroundPoint]| points.len() >= 2 && points[0] != points[points.len() - 1];
+    if !open(points) || !open(next) {
+        return false;
+    }
     let direction = |points: &[GroundPoint]| {
         let (first, last) = (points[0], points[points.len() - 1]);
         let length = (last.x - first.x).hypot(last.y - first.y);
         ((last.x - first.x) / length, (last.y - first.y) / length)
     };
-    if points.len() < 2
-        || next.len() < 2
-        || points[0] == points[points.len() - 1]
-        || next[0] == next[next.len() - 1]
-    {
-        return false;
-    }
     let (a, b) = (direction(points), direction(next));
     a.0 * b.0 + a.1 * b.1 < -0.99
 }
 
-/// The transfer model of decision 3, shared by every sequencer and the report.
-pub struct TransferModel<'a> {
-    farm: &'a Farm,
-    safe_height_m: f64,
+/// Which sequencer orders the passes.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[serde(tag = "sequencer", rename_all = "snake_case")]
+pub enum Sequencer {
+    Greedy,
+    #[serde(rename = "aco")]
+    AntColony(AntColonySettings),
+    Best(LocalSearchSettings),
 }
 
-impl<'a> TransferModel<'a> {
-    pub fn new(farm: &'a Farm, safe_height_m: f64) -> Self {
-        Self {
-            farm,
-            safe_height_m,
-        }
-    }
-
-    /// The leg from `from` to `to` (pass ends, heights on the ground: both fly at spray height
-    /// above it, so the climb between them is the ground's).
-    pub fn transfer(&self, from: GroundPoint, to: GroundPoint) -> Transfer {
-        let length = ((to.x - from.x).powi(2)
-            + (to.y - from.y).powi(2)
-            + (to.ground_m - from.ground_m).powi(2))
-        .sqrt();
-        let climbs = !self.inside_a_field(from, to);
-        Transfer {
-            from,
-            to,
-            climbs,
-            cost_m: length
-                + if climbs {
-                    2.0 * self.safe_height_m
-                } else {
-                    0.0
-                },
-        }
-    }
-
-    /// The straight segment lies in one closed field polygon (boundary included), crossing no
-    /// hole and no obstacle.
-    fn inside_a_field(&self, from: GroundPoint, to: GroundPoint) -> bool {
-        let line = Line::new(
-            Coord {
-                x: from.x,
-                y: from.y,
-            },
-            Coord { x: to.x, y: to.y },
-        );
-        let covered_by = |polygon: &Polygon<f64>| {
-            if line.start == line.end {
-                polygon.relate(&geo::Point::from(line.start)).is_covers()
-            } else {
-                polygon.relate(&line).is_covers()
-            }
-        };
-        let crosses_obstacle = || {
-            self.farm.obstacles.iter().any(|obstacle| {
-                obstacle.polygon.relate(&line).is_intersects()
-                    && !touches_only(&obstacle.polygon, &line)
-            })
-        };
-        self.farm
-            .fields
-            .iter()
-            .any(|field| covered_by(&field.polygon))
-            && !crosses_obstacle()
+impl Default for Sequencer {
+    fn default() -> Self {
+        Self::Best(LocalSearchSettings::default())
     }
 }
 
-/// The segment meets the obstacle only on its boundary (flying along its edge is allowed).
-fn touches_only(polygon: &Polygon<f64>, line: &Line<f64>) -> bool {
-    polygon.relate(line).is_touches()
-}
-
-/// The plain order: fields in file order; edge passes first, then swaths by scan line,
-/// alternating direction (boustrophedon).
-pub fn plain_route(plan: &CoveragePlan, model: &TransferModel) -> Route {
-    let mut visits = Vec::new();
+/// The passes of a plan in a fixed numbering, with their points as generated.
+pub fn passes_of(plan: &CoveragePlan) -> Vec<(Pass, &[GroundPoint])> {
+    let mut passes = Vec::new();
     for (field_index, field) in plan.fields.iter().enumerate() {
-        for (edge_index, edge) in field.edges.iter().enumerate() {
-            visits.push(Visit {
-                pass: Pass::Edge {
+        for (edge, pass) in field.edges.iter().enumerate() {
+            passes.push((
+                Pass::Edge {
                     field: field_index,
-                    edge: edge_index,
+                    edge,
                 },
-                points: edge.points.clone(),
-            });
+                pass.points.as_slice(),
+            ));
         }
-        let mut order: Vec<usize> = (0..field.swaths.len()).collect();
-        order.sort_by_key(|&index| field.swaths[index].line);
-        for index in order {
-            let swath = &field.swaths[index];
-            let mut points = swath.points.clone();
-            if swath.line % 2 == 1 {
+        for (swath, pass) in field.swaths.iter().enumerate() {
+            passes.push((
+                Pass::Swath {
+                    field: field_index,
+                    swath,
+                },
+                pass.points.as_slice(),
+            ));
+        }
+    }
+    passes
+}
+
+/// Orders the plan's passes and builds the flight. `start` is a ground point (the launch or
+/// supply point) or `None` for a free start.
+pub fn route(
+    plan: &CoveragePlan,
+    model: &TransferModel,
+    start: Option<GroundPoint>,
+    sequencer: &Sequencer,
+) -> Route {
+    let passes = passes_of(plan);
+    let ends: Vec<[GroundPoint; 2]> = passes
+        .iter()
+        .map(|(_, points)| [points[0], points[points.len() - 1]])
+        .collect();
+    let fields: Vec<usize> = passes
+        .iter()
+        .map(|(pass, _)| match pass {
+            Pass::Swath { field, .. } | Pass::Edge { field, .. } => *field,
+        })
+        .collect();
+    let problem =
+        OrderingProblem::with_fields(ends, fields, start.map_or(Start::Free, Start::Fixed), model);
+    // Groups for the boustrophedon construction: per field, edge passes then swaths by line.
+    let mut groups: Vec<Vec<usize>> = vec![Vec::new(); plan.fields.len()];
+    for (index, (pass, _)) in passes.iter().enumerate() {
+        let field = match pass {
+            Pass::Swath { field, .. } | Pass::Edge { field, .. } => *field,
+        };
+        groups[field].push(index);
+    }
+    for (field, group) in groups.iter_mut().enumerate() {
+        group.sort_by_key(|&index| match passes[index].0 {
+            Pass::Edge { edge, .. } => (0, edge),
+            Pass::Swath { swath, .. } => (1, plan.fields[field].swaths[swath].line),
+        });
+    }
+    let tour: Vec<Step> = match sequencer {
+        Sequencer::Greedy => greedy::greedy(&problem),
+        Sequencer::AntColony(settings) => ant_colony(&problem, settings).0,
+        Sequencer::Best(settings) => best_tour(&problem, &groups, settings),
+    };
+    debug_assert!(is_permutation(&tour, passes.len()));
+    let tour_cost_m = problem.tour_cost(&tour);
+    let visits: Vec<Visit> = tour
+        .iter()
+        .map(|step| {
+            let (pass, points) = passes[step.pass];
+            let mut points = points.to_vec();
+            if step.reversed {
                 points.reverse();
             }
-            visits.push(Visit {
-                pass: Pass::Swath {
-                    field: field_index,
-                    swath: index,
-                },
-                points,
-            });
-        }
-    }
+            Visit { pass, points }
+        })
+        .collect();
     let transfers = visits
         .windows(2)
         .map(|pair| {
-            let from = *pair[0].points.last().expect("a pass has points");
-            let to = pair[1].points[0];
-            model.transfer(from, to)
+            model.transfer(
+                *pair[0].points.last().expect("a pass has points"),
+                pair[1].points[0],
+            )
         })
         .collect();
-    Route { visits, transfers }
+    let launch = start
+        .zip(visits.first())
+        .map(|(start, first)| model.transfer(start, first.points[0]));
+    let home = start.zip(visits.last()).map(|(start, last)| {
+        model.transfer(*last.points.last().expect("a pass has points"), start)
+    });
+    Route {
+        launch,
+        visits,
+        transfers,
+        home,
+        tour_cost_m,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coverage::{plan_coverage, CoverageSettings};
+    use proptest::prelude::*;
+
+    fn demo_plan(headland: usize) -> (crate::model::Scenario, CoveragePlan) {
+        let scenario = crate::demo::scenario().unwrap();
+        let settings = CoverageSettings {
+            headland_passes: headland,
+            ..CoverageSettings::default()
+        };
+        let plan = plan_coverage(
+            &scenario.farm,
+            scenario.terrain.as_ref(),
+            &scenario.vehicle,
+            &settings,
+        )
+        .unwrap();
+        (scenario, plan)
+    }
+
+    fn quick_colony(seed: u64) -> Sequencer {
+        Sequencer::AntColony(AntColonySettings {
+            ants: 10,
+            batches: 10,
+            seed,
+            ..AntColonySettings::default()
+        })
+    }
+
+    #[test]
+    fn every_sequencer_flies_each_pass_once_and_legs_add_up() {
+        let (scenario, plan) = demo_plan(1);
+        let model = TransferModel::new(&scenario.farm, 18.0);
+        let start = Some(GroundPoint {
+            x: 0.0,
+            y: 0.0,
+            ground_m: 0.0,
+        });
+        let total_passes: usize = plan
+            .fields
+            .iter()
+            .map(|f| f.swaths.len() + f.edges.len())
+            .sum();
+        for sequencer in [Sequencer::Greedy, quick_colony(3), Sequencer::default()] {
+            for start in [start, None] {
+                let flight = route(&plan, &model, start, &sequencer);
+                assert_eq!(flight.visits.len(), total_passes);
+                let mut seen: Vec<Pass> = flight.visits.iter().map(|visit| visit.pass).collect();
+                seen.sort_by_key(|pass| format!("{pass:?}"));
+                seen.dedup();
+                assert_eq!(seen.len(), total_passes, "{sequencer:?}: a pass twice");
+                let legs: f64 = flight.legs().map(|leg| leg.cost_m).sum();
+                assert!((legs - flight.transfer_length_m()).abs() < 1e-9);
+                // The tour cost is the legs without the one home (fixed start).
+                if start.is_some() {
+                    let home = flight.home.unwrap().cost_m;
+                    assert!(
+                        (flight.tour_cost_m - (legs - home)).abs() < 1e-6,
+                        "{sequencer:?}"
+                    );
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn ant_colony_is_repeatable_with_a_seed_and_best_beats_greedy() {
+        let (scenario, plan) = demo_plan(0);
+        let model = TransferModel::new(&scenario.farm, 18.0);
+        let start = Some(GroundPoint {
+            x: 0.0,
+            y: 0.0,
+            ground_m: 0.0,
+        });
+        let first = route(&plan, &model, start, &quick_colony(7));
+        let again = route(&plan, &model, start, &quick_colony(7));
+        assert_eq!(first, again);
+        let greedy = route(&plan, &model, start, &Sequencer::Greedy).tour_cost_m;
+        let best = route(&plan, &model, start, &Sequencer::default()).tour_cost_m;
+        assert!(best <= greedy, "best {best} greedy {greedy}");
+    }
+
+    /// Random points as passes: the ordering is a permutation whatever the instance.
+    fn random_problem_tours(points: Vec<(f64, f64, f64, f64)>, free: bool) -> Vec<Vec<tour::Step>> {
+        let farm = crate::demo::scenario().unwrap().farm;
+        let model = TransferModel::new(&farm, 10.0);
+        let ends: Vec<[GroundPoint; 2]> = points
+            .iter()
+            .map(|&(x1, y1, x2, y2)| {
+                [
+                    GroundPoint {
+                        x: x1,
+                        y: y1,
+                        ground_m: 0.0,
+                    },
+                    GroundPoint {
+                        x: x2,
+                        y: y2,
+                        ground_m: 0.0,
+                    },
+                ]
+            })
+            .collect();
+        let start = if free {
+            Start::Free
+        } else {
+            Start::Fixed(GroundPoint {
+                x: 0.0,
+                y: 0.0,
+                ground_m: 0.0,
+            })
+        };
+        let problem = OrderingProblem::new(ends, start, &model);
+        let groups = vec![(0..points.len()).collect::<Vec<_>>()];
+        vec![
+            greedy::greedy(&problem),
+            ant_colony(
+                &problem,
+                &AntColonySettings {
+                    ants: 5,
+                    batches: 5,
+                    ..AntColonySettings::default()
+                },
+            )
+            .0,
+            best_tour(
+                &problem,
+                &groups,
+                &LocalSearchSettings { kicks: 20, seed: 1 },
+            ),
+        ]
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+        #[test]
+        fn tours_are_permutations(points in proptest::collection::vec((-300.0f64..300.0, -300.0f64..300.0, -300.0f64..300.0, -300.0f64..300.0), 1..40), free in any::<bool>()) {
+            let count = points.len();
+            for tour in random_problem_tours(points, free) {
+                prop_assert!(is_permutation(&tour, count));
+            }
+        }
+    }
 }

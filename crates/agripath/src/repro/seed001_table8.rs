@@ -1,0 +1,176 @@
+//! Seed 001 Table 8: total transfer length on the real farm from three start points, the
+//! seed's improved ant colony against greedy, and ours (`best`) beside them.
+//!
+//! The instance is the seed's: its layout (no edge passes), its Table 7 headings fixed per
+//! field (98°, 3°, 93°, 87°, 90°), w = 5 m, a = 20 m, h = 18 m; the ant colony with T = 200,
+//! M = 50, α = 1, β = 5, ρ = 0.1, Q = 100. The measure is the tour from the start point through
+//! every swath (no leg home); for the free start it is the closed tour (§4.2.2).
+
+use serde::Serialize;
+
+use crate::coverage::drape::GroundPoint;
+use crate::coverage::heading::HeadingObjective;
+use crate::coverage::region::sprayable_region;
+use crate::coverage::{cover_field, CoveragePlan, CoverageSettings};
+use crate::error::Fault;
+use crate::model::Scenario;
+use crate::sequence::ant_colony::AntColonySettings;
+use crate::sequence::local_search::LocalSearchSettings;
+use crate::sequence::{route, Sequencer, TransferModel};
+
+/// Table 7's headings, the ones the seed ordered.
+pub const PAPER_HEADINGS_DEG: [f64; 5] = [98.0, 3.0, 93.0, 87.0, 90.0];
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Row {
+    pub start: String,
+    pub paper_aco_m: Option<f64>,
+    pub paper_greedy_m: Option<f64>,
+    pub greedy_m: f64,
+    /// Mean and best of the ant colony runs.
+    pub aco_mean_m: f64,
+    pub aco_best_m: f64,
+    pub best_m: f64,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Table {
+    pub swaths: usize,
+    pub aco_runs: usize,
+    pub rows: Vec<Row>,
+}
+
+/// The seed's instance: Table 7's layout at the paper's headings.
+pub fn instance(scenario: &Scenario) -> Result<CoveragePlan, Fault> {
+    let fields = scenario
+        .farm
+        .fields
+        .iter()
+        .enumerate()
+        .map(|(index, field)| {
+            let settings = CoverageSettings {
+                headland_passes: 0,
+                heading: HeadingObjective::Fixed {
+                    heading_deg: PAPER_HEADINGS_DEG[index % 5],
+                },
+                ..CoverageSettings::default()
+            };
+            let sprayable = sprayable_region(field, &scenario.farm.obstacles, 0.0, 0.0);
+            cover_field(
+                index,
+                &field.name,
+                &sprayable,
+                scenario.terrain.as_ref(),
+                scenario.vehicle.swath_width_m,
+                &settings,
+            )
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    Ok(CoveragePlan {
+        settings: CoverageSettings {
+            headland_passes: 0,
+            ..CoverageSettings::default()
+        },
+        swath_width_m: scenario.vehicle.swath_width_m,
+        fields,
+    })
+}
+
+/// Recomputes Table 8 with `aco_runs` seeded runs of the colony per start.
+pub fn table8(scenario: &Scenario, aco_runs: usize) -> Result<Table, Fault> {
+    let plan = instance(scenario)?;
+    let model = TransferModel::new(&scenario.farm, 18.0);
+    // (label, start point, the paper's ACO and greedy figures)
+    type StartRow<'a> = (&'a str, Option<[f64; 3]>, Option<f64>, Option<f64>);
+    let starts: [StartRow; 4] = [
+        (
+            "C1 (0, 0, 0)",
+            Some([0.0, 0.0, 0.0]),
+            Some(4065.0),
+            Some(4558.0),
+        ),
+        (
+            "A75 (498.6, -58.8, 0)",
+            Some([498.6, -58.8, 0.0]),
+            Some(4001.0),
+            Some(4601.0),
+        ),
+        (
+            "B58 (271.4, 20.3, 0)",
+            Some([271.4, 20.3, 0.0]),
+            Some(4049.0),
+            Some(4368.0),
+        ),
+        ("free start (closed tour)", None, None, None),
+    ];
+    let rows = starts
+        .iter()
+        .map(|(label, start, paper_aco, paper_greedy)| {
+            let start = start.map(|[x, y, z]| GroundPoint { x, y, ground_m: z });
+            let cost = |sequencer: &Sequencer| route(&plan, &model, start, sequencer).tour_cost_m;
+            let aco: Vec<f64> = (0..aco_runs.max(1))
+                .map(|run| {
+                    cost(&Sequencer::AntColony(AntColonySettings {
+                        seed: run as u64 + 1,
+                        ..AntColonySettings::default()
+                    }))
+                })
+                .collect();
+            Row {
+                start: label.to_string(),
+                paper_aco_m: *paper_aco,
+                paper_greedy_m: *paper_greedy,
+                greedy_m: cost(&Sequencer::Greedy),
+                aco_mean_m: aco.iter().sum::<f64>() / aco.len() as f64,
+                aco_best_m: aco.iter().copied().fold(f64::INFINITY, f64::min),
+                best_m: cost(&Sequencer::Best(LocalSearchSettings::default())),
+            }
+        })
+        .collect();
+    Ok(Table {
+        swaths: plan.fields.iter().map(|field| field.swaths.len()).sum(),
+        aco_runs: aco_runs.max(1),
+        rows,
+    })
+}
+
+impl Table {
+    pub fn to_text(&self) -> String {
+        let optional = |value: Option<f64>| match value {
+            Some(value) => format!("{value:>7.0}"),
+            None => format!("{:>7}", "—"),
+        };
+        let mut text = format!(
+            "{} swaths (Table 7's layout and headings), h = 18 m; ant colony: {} seeded run(s) of 200 batches × 50 ants\n",
+            self.swaths, self.aco_runs
+        );
+        text.push_str(&format!(
+            "{:<26}| {:>7} {:>7} | {:>8} {:>9} {:>8} | {:>8} | {:>9} {:>9}\n",
+            "start",
+            "ACO",
+            "greedy",
+            "greedy",
+            "ACO mean",
+            "ACO best",
+            "best",
+            "ACO/gr.",
+            "best/ACO"
+        ));
+        for row in &self.rows {
+            text.push_str(&format!(
+                "{:<26}| {} {} | {:>8.0} {:>9.0} {:>8.0} | {:>8.0} | {:>8.1}% {:>8.1}%\n",
+                row.start,
+                optional(row.paper_aco_m),
+                optional(row.paper_greedy_m),
+                row.greedy_m,
+                row.aco_mean_m,
+                row.aco_best_m,
+                row.best_m,
+                100.0 * (row.aco_mean_m / row.greedy_m - 1.0),
+                100.0 * (row.best_m / row.aco_best_m - 1.0),
+            ));
+        }
+        text.push_str("columns: the paper (ACO, greedy) | ours: greedy, the seed's ACO, best | ACO against greedy, best against the best ACO run\n");
+        text
+    }
+}

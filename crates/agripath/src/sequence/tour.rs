@@ -1,0 +1,165 @@
+//! The ordering problem: passes with two ends each (seed 001 §3: "each swath has two ends; the
+//! drone enters at one and leaves at the other, so two swaths are four distances apart"), a
+//! start, and tours that every sequencer returns and every cost is computed on.
+
+use crate::coverage::drape::GroundPoint;
+
+use super::transfer::TransferModel;
+
+/// An end of a pass: `2·pass` is its first point (A), `2·pass + 1` its last (B).
+pub type End = usize;
+
+/// One pass in a tour: which, and whether it is flown from B to A.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Step {
+    pub pass: usize,
+    pub reversed: bool,
+}
+
+impl Step {
+    pub fn entry(&self) -> End {
+        2 * self.pass + usize::from(self.reversed)
+    }
+
+    pub fn exit(&self) -> End {
+        2 * self.pass + usize::from(!self.reversed)
+    }
+
+    pub fn flipped(self) -> Self {
+        Self {
+            reversed: !self.reversed,
+            ..self
+        }
+    }
+}
+
+/// Where the flight starts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Start {
+    /// From a given point (launch or supply point); the tour is an open path from it.
+    Fixed(GroundPoint),
+    /// Chosen by the sequencer; the tour is closed (it comes back to its first pass's entry),
+    /// as seed 001 §4.2.2 counts it.
+    Free,
+}
+
+/// Pass ends and the transfer cost between them.
+pub struct OrderingProblem<'a> {
+    /// For each pass, its two ends (equal for a closed edge pass).
+    pub ends: Vec<[GroundPoint; 2]>,
+    /// The field each pass lies in, when known (it narrows eq. 8's geometric test).
+    pub fields: Option<Vec<usize>>,
+    pub start: Start,
+    model: &'a TransferModel<'a>,
+    /// Every end-to-end cost, precomputed when there are few enough ends.
+    matrix: Option<Vec<f64>>,
+}
+
+/// Ends up to which all end-to-end costs are precomputed (2000² × 8 bytes = 32 MB).
+const MATRIX_LIMIT_ENDS: usize = 2000;
+
+impl<'a> OrderingProblem<'a> {
+    pub fn new(ends: Vec<[GroundPoint; 2]>, start: Start, model: &'a TransferModel<'a>) -> Self {
+        Self::build(ends, None, start, model)
+    }
+
+    /// As [`Self::new`], knowing the field of each pass.
+    pub fn with_fields(
+        ends: Vec<[GroundPoint; 2]>,
+        fields: Vec<usize>,
+        start: Start,
+        model: &'a TransferModel<'a>,
+    ) -> Self {
+        Self::build(ends, Some(fields), start, model)
+    }
+
+    fn build(
+        ends: Vec<[GroundPoint; 2]>,
+        fields: Option<Vec<usize>>,
+        start: Start,
+        model: &'a TransferModel<'a>,
+    ) -> Self {
+        let count = 2 * ends.len();
+        let mut problem = Self {
+            ends,
+            fields,
+            start,
+            model,
+            matrix: None,
+        };
+        if count <= MATRIX_LIMIT_ENDS {
+            let mut matrix = vec![0.0; count * count];
+            for from in 0..count {
+                for to in 0..from {
+                    let cost = problem.compute(from, to);
+                    matrix[from * count + to] = cost;
+                    matrix[to * count + from] = cost;
+                }
+            }
+            problem.matrix = Some(matrix);
+        }
+        problem
+    }
+
+    fn compute(&self, from: End, to: End) -> f64 {
+        match &self.fields {
+            Some(fields) => self.model.cost_between_fields(
+                self.point(from),
+                self.point(to),
+                fields[from / 2],
+                fields[to / 2],
+            ),
+            None => self.model.cost(self.point(from), self.point(to)),
+        }
+    }
+
+    pub fn passes(&self) -> usize {
+        self.ends.len()
+    }
+
+    pub fn point(&self, end: End) -> GroundPoint {
+        self.ends[end / 2][end % 2]
+    }
+
+    /// Eq. (8) between two ends (symmetric).
+    pub fn cost(&self, from: End, to: End) -> f64 {
+        match &self.matrix {
+            Some(matrix) => matrix[from * 2 * self.ends.len() + to],
+            None => self.compute(from, to),
+        }
+    }
+
+    /// From the start point to an end (0 when the start is free).
+    pub fn cost_from_start(&self, to: End) -> f64 {
+        match self.start {
+            Start::Fixed(point) => self.model.cost(point, self.point(to)),
+            Start::Free => 0.0,
+        }
+    }
+
+    /// Total transfer cost of a tour: from the start, between passes, and back to the first
+    /// pass when the start is free.
+    pub fn tour_cost(&self, tour: &[Step]) -> f64 {
+        let Some(first) = tour.first() else {
+            return 0.0;
+        };
+        let between: f64 = tour
+            .windows(2)
+            .map(|pair| self.cost(pair[0].exit(), pair[1].entry()))
+            .sum();
+        let closing = match self.start {
+            Start::Fixed(_) => self.cost_from_start(first.entry()),
+            Start::Free => self.cost(tour[tour.len() - 1].exit(), first.entry()),
+        };
+        between + closing
+    }
+}
+
+/// Every pass exactly once.
+pub fn is_permutation(tour: &[Step], passes: usize) -> bool {
+    let mut seen = vec![false; passes];
+    tour.len() == passes
+        && tour
+            .iter()
+            .all(|step| step.pass < passes && !std::mem::replace(&mut seen[step.pass], true))
+}

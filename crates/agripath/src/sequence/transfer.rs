@@ -1,0 +1,405 @@
+//! The transfer model of seed 001 eq. (8) (MISSION.md decision 3), shared by every sequencer,
+//! the route and the report.
+//!
+//! d = dist(P, Q) + H,  H = 0 if the segment PQ lies in the work area S, else 2h.
+//!
+//! "Lies in S" follows the seed's two-step test: ① if PQ crosses a boundary edge of S at an
+//! interior point of both, it leaves S; ② otherwise PQ is cut at every point where it meets
+//! the boundary, and the midpoint of each piece must lie in S (ray casting). S is one field's
+//! closed polygon (its boundary counts as inside, its holes do not); a segment that enters an
+//! obstacle leaves the work area too. dist is the 3D distance between the pass ends.
+
+use geo::{Coord, Polygon};
+
+use crate::coverage::drape::GroundPoint;
+use crate::geometry::validate::point_in_ring;
+use crate::model::Farm;
+
+/// A transfer leg between two pass ends.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Transfer {
+    pub from: GroundPoint,
+    pub to: GroundPoint,
+    /// True when the leg leaves the field and climbs h.
+    pub climbs: bool,
+    /// 3D length plus 2h when it climbs, metres (eq. 8).
+    pub cost_m: f64,
+}
+
+/// Distances below this are "on" a boundary, metres.
+const ON_BOUNDARY_M: f64 = 1e-6;
+
+pub struct TransferModel<'a> {
+    farm: &'a Farm,
+    safe_height_m: f64,
+    /// Each field's bounding box: a segment with an end outside it is not in that field.
+    field_boxes: Vec<Bounds>,
+}
+
+struct Bounds {
+    min: Coord<f64>,
+    max: Coord<f64>,
+}
+
+impl Bounds {
+    fn holds(&self, point: Coord<f64>) -> bool {
+        point.x >= self.min.x - ON_BOUNDARY_M
+            && point.x <= self.max.x + ON_BOUNDARY_M
+            && point.y >= self.min.y - ON_BOUNDARY_M
+            && point.y <= self.max.y + ON_BOUNDARY_M
+    }
+}
+
+impl<'a> TransferModel<'a> {
+    pub fn new(farm: &'a Farm, safe_height_m: f64) -> Self {
+        let field_boxes = farm
+            .fields
+            .iter()
+            .map(|field| {
+                let rect =
+                    geo::BoundingRect::bounding_rect(&field.polygon).expect("a field has a box");
+                Bounds {
+                    min: rect.min(),
+                    max: rect.max(),
+                }
+            })
+            .collect();
+        Self {
+            farm,
+            safe_height_m,
+            field_boxes,
+        }
+    }
+
+    pub fn safe_height_m(&self) -> f64 {
+        self.safe_height_m
+    }
+
+    /// The leg from `from` to `to`. Both ends are flown at spray height over the ground, so the
+    /// 3D length uses the ground heights.
+    pub fn transfer(&self, from: GroundPoint, to: GroundPoint) -> Transfer {
+        let length = ((to.x - from.x).powi(2)
+            + (to.y - from.y).powi(2)
+            + (to.ground_m - from.ground_m).powi(2))
+        .sqrt();
+        let climbs = !self.inside_work_area(
+            Coord {
+                x: from.x,
+                y: from.y,
+            },
+            Coord { x: to.x, y: to.y },
+        );
+        Transfer {
+            from,
+            to,
+            climbs,
+            cost_m: length
+                + if climbs {
+                    2.0 * self.safe_height_m
+                } else {
+                    0.0
+                },
+        }
+    }
+
+    /// Eq. (8)'s cost alone.
+    pub fn cost(&self, from: GroundPoint, to: GroundPoint) -> f64 {
+        self.transfer(from, to).cost_m
+    }
+
+    /// Eq. (8)'s cost between two pass ends known to lie in fields `from_field` and
+    /// `to_field`: a segment lies in one field's polygon only if both ends do, so ends in
+    /// different fields always climb and only the common field needs the geometric test.
+    pub fn cost_between_fields(
+        &self,
+        from: GroundPoint,
+        to: GroundPoint,
+        from_field: usize,
+        to_field: usize,
+    ) -> f64 {
+        let length = ((to.x - from.x).powi(2)
+            + (to.y - from.y).powi(2)
+            + (to.ground_m - from.ground_m).powi(2))
+        .sqrt();
+        let (a, b) = (
+            Coord {
+                x: from.x,
+                y: from.y,
+            },
+            Coord { x: to.x, y: to.y },
+        );
+        let inside = from_field == to_field
+            && self
+                .farm
+                .fields
+                .get(from_field)
+                .is_some_and(|field| segment_in_closed_polygon(a, b, &field.polygon))
+            && !self
+                .farm
+                .obstacles
+                .iter()
+                .any(|obstacle| segment_enters_polygon(a, b, &obstacle.polygon));
+        length
+            + if inside {
+                0.0
+            } else {
+                2.0 * self.safe_height_m
+            }
+    }
+
+    fn inside_work_area(&self, from: Coord<f64>, to: Coord<f64>) -> bool {
+        let inside_a_field =
+            self.farm
+                .fields
+                .iter()
+                .zip(&self.field_boxes)
+                .any(|(field, bounds)| {
+                    bounds.holds(from)
+                        && bounds.holds(to)
+                        && segment_in_closed_polygon(from, to, &field.polygon)
+                });
+        inside_a_field
+            && !self
+                .farm
+                .obstacles
+                .iter()
+                .any(|obstacle| segment_enters_polygon(from, to, &obstacle.polygon))
+    }
+}
+
+fn rings(polygon: &Polygon<f64>) -> impl Iterator<Item = &[Coord<f64>]> {
+    std::iter::once(polygon.exterior())
+        .chain(polygon.interiors())
+        .map(|ring| ring.0.as_slice())
+}
+
+fn cross(origin: Coord<f64>, a: Coord<f64>, b: Coord<f64>) -> f64 {
+    (a.x - origin.x) * (b.y - origin.y) - (a.y - origin.y) * (b.x - origin.x)
+}
+
+fn distance_to_segment(point: Coord<f64>, start: Coord<f64>, end: Coord<f64>) -> f64 {
+    let (dx, dy) = (end.x - start.x, end.y - start.y);
+    let length_squared = dx * dx + dy * dy;
+    let t = if length_squared > 0.0 {
+        (((point.x - start.x) * dx + (point.y - start.y) * dy) / length_squared).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (point.x - start.x - t * dx).hypot(point.y - start.y - t * dy)
+}
+
+fn on_boundary(point: Coord<f64>, polygon: &Polygon<f64>) -> bool {
+    rings(polygon).any(|ring| {
+        ring.windows(2)
+            .any(|edge| distance_to_segment(point, edge[0], edge[1]) <= ON_BOUNDARY_M)
+    })
+}
+
+/// Strictly inside the polygon (outside its holes), boundary excluded.
+fn strictly_inside(point: Coord<f64>, polygon: &Polygon<f64>) -> bool {
+    !on_boundary(point, polygon)
+        && point_in_ring(point, &polygon.exterior().0)
+        && polygon
+            .interiors()
+            .iter()
+            .all(|hole| !point_in_ring(point, &hole.0))
+}
+
+/// Where the segment meets the polygon's boundary, as parameters along it; `None` when it
+/// crosses an edge at a point interior to both (step ①).
+fn boundary_cuts(from: Coord<f64>, to: Coord<f64>, polygon: &Polygon<f64>) -> Option<Vec<f64>> {
+    let direction = Coord {
+        x: to.x - from.x,
+        y: to.y - from.y,
+    };
+    let length_squared = direction.x * direction.x + direction.y * direction.y;
+    let parameter = |point: Coord<f64>| {
+        if length_squared == 0.0 {
+            0.0
+        } else {
+            (((point.x - from.x) * direction.x + (point.y - from.y) * direction.y) / length_squared)
+                .clamp(0.0, 1.0)
+        }
+    };
+    let mut cuts = vec![0.0, 1.0];
+    for ring in rings(polygon) {
+        for edge in ring.windows(2) {
+            let (p, q) = (edge[0], edge[1]);
+            let d1 = cross(p, q, from);
+            let d2 = cross(p, q, to);
+            let d3 = cross(from, to, p);
+            let d4 = cross(from, to, q);
+            let scale = (q.x - p.x)
+                .hypot(q.y - p.y)
+                .max(length_squared.sqrt())
+                .max(1.0);
+            let tolerance = 1e-9 * scale * scale;
+            let straddles = |a: f64, b: f64| {
+                (a > tolerance && b < -tolerance) || (a < -tolerance && b > tolerance)
+            };
+            if straddles(d1, d2) && straddles(d3, d4) {
+                return None;
+            }
+            // Touches: an end of one on the other (including collinear overlaps).
+            for point in [p, q] {
+                if distance_to_segment(point, from, to) <= ON_BOUNDARY_M {
+                    cuts.push(parameter(point));
+                }
+            }
+            for (point, t) in [(from, 0.0), (to, 1.0)] {
+                if distance_to_segment(point, p, q) <= ON_BOUNDARY_M {
+                    cuts.push(t);
+                }
+            }
+        }
+    }
+    cuts.sort_by(f64::total_cmp);
+    cuts.dedup_by(|a, b| (*a - *b).abs() < 1e-12);
+    Some(cuts)
+}
+
+fn at(from: Coord<f64>, to: Coord<f64>, t: f64) -> Coord<f64> {
+    Coord {
+        x: from.x + t * (to.x - from.x),
+        y: from.y + t * (to.y - from.y),
+    }
+}
+
+/// The segment lies in the closed polygon (boundary counts as inside, holes do not): step ②.
+pub fn segment_in_closed_polygon(from: Coord<f64>, to: Coord<f64>, polygon: &Polygon<f64>) -> bool {
+    let Some(cuts) = boundary_cuts(from, to, polygon) else {
+        return false;
+    };
+    cuts.windows(2).all(|pair| {
+        let middle = at(from, to, (pair[0] + pair[1]) / 2.0);
+        on_boundary(middle, polygon) || strictly_inside(middle, polygon)
+    }) && [from, to]
+        .iter()
+        .all(|&end| on_boundary(end, polygon) || strictly_inside(end, polygon))
+}
+
+/// The segment passes through the polygon's interior (flying along its edge does not count).
+pub fn segment_enters_polygon(from: Coord<f64>, to: Coord<f64>, polygon: &Polygon<f64>) -> bool {
+    let Some(cuts) = boundary_cuts(from, to, polygon) else {
+        return true;
+    };
+    cuts.windows(2)
+        .any(|pair| strictly_inside(at(from, to, (pair[0] + pair[1]) / 2.0), polygon))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geo::LineString;
+
+    fn notched() -> Polygon<f64> {
+        // A U shape: the notch x 40..60, y 50..100 is outside.
+        Polygon::new(
+            LineString::from(vec![
+                (0.0, 0.0),
+                (100.0, 0.0),
+                (100.0, 100.0),
+                (60.0, 100.0),
+                (60.0, 50.0),
+                (40.0, 50.0),
+                (40.0, 100.0),
+                (0.0, 100.0),
+                (0.0, 0.0),
+            ]),
+            vec![LineString::from(vec![
+                (70.0, 10.0),
+                (90.0, 10.0),
+                (90.0, 30.0),
+                (70.0, 30.0),
+                (70.0, 10.0),
+            ])],
+        )
+    }
+
+    fn c(x: f64, y: f64) -> Coord<f64> {
+        Coord { x, y }
+    }
+
+    #[test]
+    fn inside_outside_boundary_and_holes() {
+        let polygon = notched();
+        assert!(segment_in_closed_polygon(
+            c(10.0, 10.0),
+            c(30.0, 40.0),
+            &polygon
+        ));
+        // Across the notch: leaves.
+        assert!(!segment_in_closed_polygon(
+            c(20.0, 80.0),
+            c(80.0, 80.0),
+            &polygon
+        ));
+        // Along the bottom of the notch (a boundary edge) and along the outer edge: inside.
+        assert!(segment_in_closed_polygon(
+            c(40.0, 50.0),
+            c(60.0, 50.0),
+            &polygon
+        ));
+        assert!(segment_in_closed_polygon(
+            c(0.0, 0.0),
+            c(0.0, 100.0),
+            &polygon
+        ));
+        // From a corner of the notch to another corner across it: outside (its midpoint is).
+        assert!(!segment_in_closed_polygon(
+            c(40.0, 100.0),
+            c(60.0, 100.0),
+            &polygon
+        ));
+        // Through the hole: leaves; along the hole's edge: inside.
+        assert!(!segment_in_closed_polygon(
+            c(60.0, 20.0),
+            c(95.0, 20.0),
+            &polygon
+        ));
+        assert!(segment_in_closed_polygon(
+            c(70.0, 10.0),
+            c(90.0, 10.0),
+            &polygon
+        ));
+        // Ends outside.
+        assert!(!segment_in_closed_polygon(
+            c(-5.0, 10.0),
+            c(10.0, 10.0),
+            &polygon
+        ));
+        // Through a vertex of the notch without leaving: (40, 50) touched from inside.
+        assert!(segment_in_closed_polygon(
+            c(30.0, 60.0),
+            c(50.0, 40.0),
+            &polygon
+        ));
+        assert!(!segment_in_closed_polygon(
+            c(30.0, 40.0),
+            c(50.0, 60.0),
+            &polygon
+        ));
+    }
+
+    #[test]
+    fn obstacles_are_entered_or_skirted() {
+        let square = Polygon::new(
+            LineString::from(vec![
+                (0.0, 0.0),
+                (10.0, 0.0),
+                (10.0, 10.0),
+                (0.0, 10.0),
+                (0.0, 0.0),
+            ]),
+            vec![],
+        );
+        assert!(segment_enters_polygon(c(-5.0, 5.0), c(15.0, 5.0), &square));
+        assert!(!segment_enters_polygon(c(-5.0, 0.0), c(15.0, 0.0), &square));
+        assert!(!segment_enters_polygon(
+            c(-5.0, -5.0),
+            c(15.0, -5.0),
+            &square
+        ));
+        assert!(segment_enters_polygon(c(0.0, 0.0), c(10.0, 10.0), &square));
+    }
+}
