@@ -17,6 +17,9 @@ use super::tour::{End, OrderingProblem, Start, Step};
 /// Positions examined after a kick before giving up on it.
 const KICK_MOVES: usize = 400;
 
+/// Nearest ends in other fields kept per end.
+const OTHER_FIELD_NEIGHBOURS: usize = 6;
+
 /// Nearest ends kept per end.
 const NEIGHBOURS: usize = 10;
 /// Greedy construction is O(n²) cost evaluations per start; above this it is skipped.
@@ -283,8 +286,13 @@ impl Search<'_, '_> {
     }
 }
 
-/// K nearest other-pass ends of every end, by planar distance, through a uniform grid.
-fn nearest_ends(problem: &OrderingProblem) -> Vec<Vec<End>> {
+/// For every end, its `count` nearest ends that `accept(end, other)` lets through, by planar
+/// distance, through a uniform grid.
+fn nearest_ends(
+    problem: &OrderingProblem,
+    count: usize,
+    accept: impl Fn(End, End) -> bool,
+) -> Vec<Vec<End>> {
     let ends = 2 * problem.passes();
     let points: Vec<(f64, f64)> = (0..ends)
         .map(|end| {
@@ -330,17 +338,25 @@ fn nearest_ends(problem: &OrderingProblem) -> Vec<Vec<End>> {
                             continue; // inner cells were searched in earlier rings
                         }
                         for &other in &grid[r * cells_per_side + c] {
-                            if other / 2 != end / 2 {
+                            if accept(end, other) {
                                 let (ox, oy) = points[other];
                                 found.push(((ox - x).hypot(oy - y), other));
                             }
                         }
                     }
                 }
-                found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                // Only the `count` nearest so far can end in the answer: later rings are farther
+                // than everything already searched.
+                let by_distance =
+                    |a: &(f64, End), b: &(f64, End)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
+                if found.len() > count {
+                    found.select_nth_unstable_by(count - 1, by_distance);
+                    found.truncate(count);
+                }
                 // Everything within `ring` cells is now known.
                 let covered = ring as f64 * cell;
-                let complete = found.len() >= NEIGHBOURS && found[NEIGHBOURS - 1].0 <= covered;
+                let complete =
+                    found.len() >= count && found.iter().all(|(distance, _)| *distance <= covered);
                 let exhausted = low_c == 0
                     && low_r == 0
                     && high_c == cells_per_side - 1
@@ -350,7 +366,7 @@ fn nearest_ends(problem: &OrderingProblem) -> Vec<Vec<End>> {
                 }
                 ring += 1;
             }
-            found.truncate(NEIGHBOURS);
+            found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
             found.into_iter().map(|(_, other)| other).collect()
         })
         .collect()
@@ -419,11 +435,26 @@ pub fn best_tour(
     if n <= GREEDY_LIMIT {
         starts.push(greedy_with_starts(problem, 8));
     }
-    let neighbours = nearest_ends(problem);
     let mut group_of = vec![0; n];
     for (group, members) in groups.iter().enumerate() {
         for &pass in members {
             group_of[pass] = group;
+        }
+    }
+    // Near ends of any other pass, and near ends in other fields: without the latter, a
+    // field's own swath ends (a swath width apart) fill the list and moves between fields
+    // are never tried.
+    let mut neighbours = nearest_ends(problem, NEIGHBOURS, |end, other| other / 2 != end / 2);
+    if groups.len() > 1 {
+        let across = nearest_ends(problem, OTHER_FIELD_NEIGHBOURS, |end, other| {
+            group_of[other / 2] != group_of[end / 2]
+        });
+        for (list, extra) in neighbours.iter_mut().zip(across) {
+            for end in extra {
+                if !list.contains(&end) {
+                    list.push(end);
+                }
+            }
         }
     }
     let closed = problem.start == Start::Free;

@@ -34,6 +34,9 @@ pub struct TransferModel<'a> {
     safe_height_m: f64,
     /// Each field's bounding box: a segment with an end outside it is not in that field.
     field_boxes: Vec<Bounds>,
+    /// Fields that are convex, without holes and clear of obstacles: any segment between two
+    /// of their points lies in them, so no geometric test is needed.
+    simple_fields: Vec<bool>,
 }
 
 struct Bounds {
@@ -63,11 +66,30 @@ impl<'a> TransferModel<'a> {
                     max: rect.max(),
                 }
             })
+            .collect::<Vec<Bounds>>();
+        let simple_fields = farm
+            .fields
+            .iter()
+            .zip(&field_boxes)
+            .map(|(field, bounds)| {
+                field.polygon.interiors().is_empty()
+                    && is_convex(&field.polygon.exterior().0)
+                    && !farm.obstacles.iter().any(|obstacle| {
+                        obstacle
+                            .polygon
+                            .exterior()
+                            .0
+                            .iter()
+                            .any(|point| bounds.holds(*point))
+                            || geo::Intersects::intersects(&obstacle.polygon, &field.polygon)
+                    })
+            })
             .collect();
         Self {
             farm,
             safe_height_m,
             field_boxes,
+            simple_fields,
         }
     }
 
@@ -129,11 +151,12 @@ impl<'a> TransferModel<'a> {
             Coord { x: to.x, y: to.y },
         );
         let inside = from_field == to_field
-            && self
-                .farm
-                .fields
-                .get(from_field)
-                .is_some_and(|field| segment_in_closed_polygon(a, b, &field.polygon))
+            && (self.simple_fields.get(from_field) == Some(&true)
+                || self
+                    .farm
+                    .fields
+                    .get(from_field)
+                    .is_some_and(|field| segment_in_closed_polygon(a, b, &field.polygon)))
             && !self
                 .farm
                 .obstacles
@@ -165,6 +188,26 @@ impl<'a> TransferModel<'a> {
                 .iter()
                 .any(|obstacle| segment_enters_polygon(from, to, &obstacle.polygon))
     }
+}
+
+/// A closed ring whose turns all go the same way (collinear vertices allowed).
+fn is_convex(ring: &[Coord<f64>]) -> bool {
+    let count = ring.len() - 1;
+    let mut sign = 0.0f64;
+    for index in 0..count {
+        let turn = cross(
+            ring[index],
+            ring[(index + 1) % count],
+            ring[(index + 2) % count],
+        );
+        if turn.abs() > 1e-12 {
+            if sign != 0.0 && turn.signum() != sign {
+                return false;
+            }
+            sign = turn.signum();
+        }
+    }
+    true
 }
 
 fn rings(polygon: &Polygon<f64>) -> impl Iterator<Item = &[Coord<f64>]> {
