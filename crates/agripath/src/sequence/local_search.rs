@@ -7,7 +7,10 @@
 //!    lists of the K nearest pass ends (so a sweep is O(n·K), not O(n²)):
 //!    - 2-opt with end flips: reversing a stretch of the tour flies each of its passes the
 //!      other way; only the two transfers at its edges change (eq. 8 is symmetric);
-//!    - Or-opt: a chain of 1-3 consecutive passes moved next to a neighbouring end, either way.
+//!    - Or-opt: a chain of 1-3 consecutive passes, a field's whole block, or a longer chain
+//!      whose removal joins two near ends (or-3opt), moved next to a neighbouring end, either
+//!      way round.
+//!    - The neighbour lists hold the 10 nearest ends and the 6 nearest ends in other fields.
 //! 3. Iterated local search: a seeded double-bridge kick, then 1-2 again; a kick is kept only
 //!    when the tour gets cheaper. The number of kicks is the budget.
 
@@ -162,7 +165,19 @@ impl Search<'_, '_> {
             .take_while(|&k| self.groups[self.tour[k].pass] == self.groups[self.tour[i].pass])
             .last()
             .unwrap_or(i);
-        let lengths = (1..=3usize).chain(std::iter::once(block_end + 1 - i));
+        // And chains [i, q) whose removal joins the flight before i to a near end at q: the
+        // or-3opt segment moves that short chains cannot make.
+        let mut lengths: Vec<usize> = (1..=3usize)
+            .chain(std::iter::once(block_end + 1 - i))
+            .collect();
+        if let Some(before) = self.previous(i).filter(|end| *end != START) {
+            for &end in &self.neighbours[before] {
+                let q = self.position[end / 2];
+                if q > i + 3 && self.tour[q].entry() == end && q - i <= n / 2 {
+                    lengths.push(q - i);
+                }
+            }
+        }
         for length in lengths {
             let j = i + length - 1;
             if j >= n || (self.closed && length >= n) {
