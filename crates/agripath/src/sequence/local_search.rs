@@ -38,7 +38,7 @@ pub struct LocalSearchSettings {
 impl Default for LocalSearchSettings {
     fn default() -> Self {
         Self {
-            kicks: 1000,
+            kicks: 400,
             seed: 1,
         }
     }
