@@ -26,13 +26,17 @@ pub enum CoordinateChoice {
     Local,
 }
 
-/// Reads a field file of any supported kind, chosen by its extension.
-pub fn read_farm(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputError> {
-    let extension = path
-        .extension()
+/// A file's extension in lower case ("" when it has none): what chooses its reader.
+pub fn extension_of(path: &Path) -> String {
+    path.extension()
         .and_then(|extension| extension.to_str())
         .unwrap_or("")
-        .to_ascii_lowercase();
+        .to_ascii_lowercase()
+}
+
+/// Reads a field file of any supported kind, chosen by its extension.
+pub fn read_farm(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputError> {
+    let extension = extension_of(path);
     match extension.as_str() {
         "geojson" | "json" => geojson::read(path, choice),
         "kml" => kml::read_kml(path, choice),

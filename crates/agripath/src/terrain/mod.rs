@@ -212,11 +212,7 @@ impl TerrainSpec {
 
 /// Reads a DEM file into a grid, choosing the reader by extension.
 pub fn load_grid(path: &Path, cell_m: Option<f64>) -> Result<Grid, InputError> {
-    let extension = path
-        .extension()
-        .and_then(|extension| extension.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
+    let extension = crate::input::extension_of(path);
     match extension.as_str() {
         "tif" | "tiff" => geotiff::read(path),
         "asc" => ascii_grid::read(path),
