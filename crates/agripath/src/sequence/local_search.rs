@@ -1,8 +1,10 @@
 //! `best`: our ordering for near-optimal tours in little time (not from the seeds).
 //!
-//! 1. Construction, keeping the cheaper of two: seed 001's greedy (on instances small enough
-//!    for its O(n²) scan) and a field-by-field boustrophedon — fields chained nearest-first,
-//!    each field's swaths in scan-line order, alternating, from whichever corner is nearest.
+//! 1. Constructions, each improved by 2 and the cheapest kept: seed 001's greedy (on instances
+//!    small enough for its O(n²) scan); a field-by-field boustrophedon — fields chained
+//!    nearest-first, each field's swaths in scan-line order, alternating, from whichever corner
+//!    is nearest; and, for up to 10 fields, the exact best order and corner of whole field
+//!    blocks (Held-Karp over fields × 4 corners).
 //! 2. Local search to a local optimum of two neighbourhoods on oriented passes, both driven by
 //!    lists of the K nearest pass ends (so a sweep is O(n·K), not O(n²)):
 //!    - 2-opt with end flips: reversing a stretch of the tour flies each of its passes the
@@ -431,6 +433,136 @@ pub fn boustrophedon(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Vec<St
     tour
 }
 
+/// Most fields for which the exact order of whole field blocks is searched.
+const EXACT_FIELD_ORDER_LIMIT: usize = 10;
+
+/// A field's passes flown as one boustrophedon block: `variant` bit 0 runs the lines
+/// backwards, bit 1 flies the first pass reversed.
+fn block(problem: &OrderingProblem, passes: &[usize], variant: usize) -> (Vec<Step>, f64) {
+    let mut order = passes.to_vec();
+    if variant & 1 == 1 {
+        order.reverse();
+    }
+    let steps: Vec<Step> = order
+        .iter()
+        .enumerate()
+        .map(|(index, &pass)| Step {
+            pass,
+            reversed: (variant & 2 == 2) ^ (index % 2 == 1),
+        })
+        .collect();
+    let internal = steps
+        .windows(2)
+        .map(|pair| problem.cost(pair[0].exit(), pair[1].entry()))
+        .sum();
+    (steps, internal)
+}
+
+/// Whole field blocks in the best order and variant (Held-Karp over at most
+/// `EXACT_FIELD_ORDER_LIMIT` fields): exact within that family of tours.
+pub fn exact_field_order(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Option<Vec<Step>> {
+    let fields: Vec<&Vec<usize>> = groups.iter().filter(|group| !group.is_empty()).collect();
+    let count = fields.len();
+    if count == 0 || count > EXACT_FIELD_ORDER_LIMIT {
+        return None;
+    }
+    let blocks: Vec<Vec<(Vec<Step>, f64)>> = fields
+        .iter()
+        .map(|passes| {
+            (0..4)
+                .map(|variant| block(problem, passes, variant))
+                .collect()
+        })
+        .collect();
+    let entry = |field: usize, variant: usize| blocks[field][variant].0[0].entry();
+    let exit = |field: usize, variant: usize| {
+        blocks[field][variant]
+            .0
+            .last()
+            .expect("a block has passes")
+            .exit()
+    };
+    let states = count * 4;
+    let closed = problem.start == Start::Free;
+    let mut best: Option<(f64, Vec<(usize, usize)>)> = None;
+    // A closed tour can start anywhere: fix field 0 first, in each of its variants.
+    let first_choices: Vec<Option<usize>> = if closed {
+        (0..4).map(Some).collect()
+    } else {
+        vec![None]
+    };
+    for first in first_choices {
+        let mut cost = vec![f64::INFINITY; (1 << count) * states];
+        let mut parent = vec![usize::MAX; (1 << count) * states];
+        for field in 0..count {
+            for variant in 0..4 {
+                let allowed = match first {
+                    Some(first_variant) => field == 0 && variant == first_variant,
+                    None => true,
+                };
+                if allowed {
+                    let start = if closed {
+                        0.0
+                    } else {
+                        problem.cost_from_start(entry(field, variant))
+                    };
+                    cost[(1 << field) * states + field * 4 + variant] =
+                        start + blocks[field][variant].1;
+                }
+            }
+        }
+        for mask in 1usize..(1 << count) {
+            for state in 0..states {
+                let here = cost[mask * states + state];
+                if !here.is_finite() {
+                    continue;
+                }
+                let (field, variant) = (state / 4, state % 4);
+                for next in (0..count).filter(|next| mask & (1 << next) == 0) {
+                    for next_variant in 0..4 {
+                        let value = here
+                            + problem.cost(exit(field, variant), entry(next, next_variant))
+                            + blocks[next][next_variant].1;
+                        let slot = (mask | (1 << next)) * states + next * 4 + next_variant;
+                        if value < cost[slot] {
+                            cost[slot] = value;
+                            parent[slot] = mask * states + state;
+                        }
+                    }
+                }
+            }
+        }
+        let full = (1 << count) - 1;
+        for state in 0..states {
+            let mut total = cost[full * states + state];
+            if let Some(first_variant) = first {
+                total += problem.cost(exit(state / 4, state % 4), entry(0, first_variant));
+            }
+            if best
+                .as_ref()
+                .is_none_or(|(best_total, _)| total < *best_total)
+            {
+                let mut order = Vec::with_capacity(count);
+                let mut slot = full * states + state;
+                while slot != usize::MAX {
+                    let state = slot % states;
+                    order.push((state / 4, state % 4));
+                    slot = parent[slot];
+                }
+                order.reverse();
+                best = Some((total, order));
+            }
+        }
+    }
+    let (_, order) = best?;
+    Some(
+        order
+            .into_iter()
+            .flat_map(|(field, variant)| blocks[field][variant].0.clone())
+            .collect(),
+    )
+}
+
 /// Our sequencer: construction, local search, iterated kicks.
 pub fn best_tour(
     problem: &OrderingProblem,
@@ -447,6 +579,7 @@ pub fn best_tour(
             .collect();
     }
     let mut starts = vec![boustrophedon(problem, groups)];
+    starts.extend(exact_field_order(problem, groups));
     if n <= GREEDY_LIMIT {
         starts.push(greedy_with_starts(problem, 8));
     }
