@@ -519,10 +519,10 @@ pub fn exact_field_order(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Op
                 }
                 let (field, variant) = (state / 4, state % 4);
                 for next in (0..count).filter(|next| mask & (1 << next) == 0) {
-                    for next_variant in 0..4 {
+                    for (next_variant, (_, internal)) in blocks[next].iter().enumerate() {
                         let value = here
                             + problem.cost(exit(field, variant), entry(next, next_variant))
-                            + blocks[next][next_variant].1;
+                            + internal;
                         let slot = (mask | (1 << next)) * states + next * 4 + next_variant;
                         if value < cost[slot] {
                             cost[slot] = value;
