@@ -665,3 +665,57 @@ pub fn best_tour(
     }
     best_tour
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coverage::drape::GroundPoint;
+    use crate::sequence::tour::is_permutation;
+    use crate::sequence::TransferModel;
+
+    /// Three "fields" of three parallel passes each, far apart on a line.
+    #[test]
+    fn exact_field_order_is_a_permutation_no_worse_than_the_chained_boustrophedon() {
+        let farm = crate::demo::scenario().unwrap().farm;
+        let model = TransferModel::new(&farm, 10.0);
+        let mut ends = Vec::new();
+        let mut groups = vec![Vec::new(); 3];
+        for (field, offset) in [(0, 0.0), (1, 900.0), (2, 300.0)] {
+            for line in 0..3 {
+                let x = offset + 5.0 * line as f64;
+                groups[field].push(ends.len());
+                ends.push([
+                    GroundPoint {
+                        x,
+                        y: 2000.0,
+                        ground_m: 0.0,
+                    },
+                    GroundPoint {
+                        x,
+                        y: 2100.0,
+                        ground_m: 0.0,
+                    },
+                ]);
+            }
+        }
+        for start in [
+            Start::Free,
+            Start::Fixed(GroundPoint {
+                x: -50.0,
+                y: 2000.0,
+                ground_m: 0.0,
+            }),
+        ] {
+            let problem = OrderingProblem::new(ends.clone(), start, &model);
+            let exact = exact_field_order(&problem, &groups).unwrap();
+            assert!(is_permutation(&exact, 9));
+            let chained = boustrophedon(&problem, &groups);
+            assert!(problem.tour_cost(&exact) <= problem.tour_cost(&chained) + 1e-9);
+            // From the west the best order visits the fields west to east: 0, 2, 1.
+            if let Start::Fixed(_) = start {
+                let order: Vec<usize> = exact.iter().map(|step| step.pass / 3).collect();
+                assert_eq!(order, [0, 0, 0, 2, 2, 2, 1, 1, 1]);
+            }
+        }
+    }
+}
