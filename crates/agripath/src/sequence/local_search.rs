@@ -3,8 +3,8 @@
 //! 1. Constructions, each improved by 2 and the cheapest kept: seed 001's greedy (on instances
 //!    small enough for its O(n²) scan); a field-by-field boustrophedon — fields chained
 //!    nearest-first, each field's swaths in scan-line order, alternating, from whichever corner
-//!    is nearest; and, for up to 10 fields, the exact best order and corner of whole field
-//!    blocks (Held-Karp over fields × 4 corners).
+//!    is nearest; and the best order and corner of whole field blocks — exact (Held-Karp over
+//!    fields × 4 corners) up to 10 fields, by block relocation above.
 //! 2. Local search to a local optimum of two neighbourhoods on oriented passes, both driven by
 //!    lists of the K nearest pass ends (so a sweep is O(n·K), not O(n²)):
 //!    - 2-opt with end flips: reversing a stretch of the tour flies each of its passes the
@@ -563,6 +563,141 @@ pub fn exact_field_order(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Op
     )
 }
 
+/// Whole field blocks ordered by local search over (field, corner) pairs, for farms with more
+/// fields than the exact order handles: starting from the nearest-first chain, move one block
+/// to any other place in any of its four variants while that shortens the tour.
+pub fn block_local_search(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Option<Vec<Step>> {
+    let fields: Vec<&Vec<usize>> = groups.iter().filter(|group| !group.is_empty()).collect();
+    let count = fields.len();
+    if count <= EXACT_FIELD_ORDER_LIMIT {
+        return None;
+    }
+    let blocks: Vec<Vec<(Vec<Step>, f64)>> = fields
+        .iter()
+        .map(|passes| {
+            (0..4)
+                .map(|variant| block(problem, passes, variant))
+                .collect()
+        })
+        .collect();
+    let entry = |(field, variant): (usize, usize)| blocks[field][variant].0[0].entry();
+    let exit = |(field, variant): (usize, usize)| {
+        blocks[field][variant]
+            .0
+            .last()
+            .expect("a block has passes")
+            .exit()
+    };
+    let closed = problem.start == Start::Free;
+    let total = |order: &[(usize, usize)]| -> f64 {
+        let inside: f64 = order
+            .iter()
+            .map(|&(field, variant)| blocks[field][variant].1)
+            .sum();
+        let between: f64 = order
+            .windows(2)
+            .map(|pair| problem.cost(exit(pair[0]), entry(pair[1])))
+            .sum();
+        let ends = if closed {
+            problem.cost(exit(order[order.len() - 1]), entry(order[0]))
+        } else {
+            problem.cost_from_start(entry(order[0]))
+        };
+        inside + between + ends
+    };
+    // Nearest-first chain as the start.
+    let mut order: Vec<(usize, usize)> = Vec::with_capacity(count);
+    let mut left: Vec<usize> = (0..count).collect();
+    while !left.is_empty() {
+        let (slot, choice) = left
+            .iter()
+            .enumerate()
+            .flat_map(|(slot, &field)| (0..4).map(move |variant| (slot, (field, variant))))
+            .min_by(|a, b| {
+                let cost = |choice: (usize, usize)| match order.last() {
+                    Some(&last) => problem.cost(exit(last), entry(choice)),
+                    None => problem.cost_from_start(entry(choice)),
+                };
+                cost(a.1).total_cmp(&cost(b.1))
+            })
+            .expect("a field is left");
+        left.remove(slot);
+        order.push(choice);
+    }
+    // Cost of the link from block a to block b (None: the start, or nothing after the end).
+    let link = |from: Option<(usize, usize)>, to: Option<(usize, usize)>| -> f64 {
+        match (from, to) {
+            (Some(a), Some(b)) => problem.cost(exit(a), entry(b)),
+            (None, Some(b)) if !closed => problem.cost_from_start(entry(b)),
+            _ => 0.0,
+        }
+    };
+    // The blocks on either side of a gap in a sequence (closed tours wrap around).
+    type Block = Option<(usize, usize)>;
+    let around = |sequence: &[(usize, usize)], gap: usize| -> (Block, Block) {
+        let n = sequence.len();
+        let before = if gap > 0 {
+            Some(sequence[gap - 1])
+        } else if closed && n > 0 {
+            Some(sequence[n - 1])
+        } else {
+            None
+        };
+        let after = if gap < n {
+            Some(sequence[gap])
+        } else if closed && n > 0 {
+            Some(sequence[0])
+        } else {
+            None
+        };
+        (before, after)
+    };
+    let start_cost = total(&order);
+    // Move one block (any variant) to the best other gap while that gains; O(F² · 4) a round.
+    for _ in 0..50 {
+        let mut improved = false;
+        for from in 0..count {
+            let moving = order[from];
+            let (before, _) = around(&order, from);
+            let (_, after) = around(&order, from + 1);
+            let removal =
+                link(before, Some(moving)) + link(Some(moving), after) - link(before, after);
+            let mut without = order.clone();
+            without.remove(from);
+            let mut choice: Option<(f64, usize, (usize, usize))> = None;
+            for to in 0..=without.len() {
+                let (left, right) = around(&without, to);
+                let base = link(left, right);
+                for (variant, (_, internal)) in blocks[moving.0].iter().enumerate() {
+                    let candidate = (moving.0, variant);
+                    let added = link(left, Some(candidate)) + link(Some(candidate), right) - base
+                        + internal
+                        - blocks[moving.0][moving.1].1;
+                    let gain = removal - added;
+                    if gain > 1e-9 && choice.is_none_or(|(best_gain, ..)| gain > best_gain) {
+                        choice = Some((gain, to, candidate));
+                    }
+                }
+            }
+            if let Some((_, to, candidate)) = choice {
+                without.insert(to, candidate);
+                order = without;
+                improved = true;
+            }
+        }
+        if !improved {
+            break;
+        }
+    }
+    debug_assert!(total(&order) <= start_cost + 1e-6);
+    Some(
+        order
+            .into_iter()
+            .flat_map(|(field, variant)| blocks[field][variant].0.clone())
+            .collect(),
+    )
+}
+
 /// Our sequencer: construction, local search, iterated kicks.
 pub fn best_tour(
     problem: &OrderingProblem,
@@ -580,6 +715,7 @@ pub fn best_tour(
     }
     let mut starts = vec![boustrophedon(problem, groups)];
     starts.extend(exact_field_order(problem, groups));
+    starts.extend(block_local_search(problem, groups));
     if n <= GREEDY_LIMIT {
         starts.push(greedy_with_starts(problem, 8));
     }
