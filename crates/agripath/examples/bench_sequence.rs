@@ -25,7 +25,9 @@ fn random_farm(fields: usize, swaths: usize, seed: u64) -> Farm {
     let mut stream = run_stream(seed, 0);
     let per_field = (swaths as f64 / fields as f64).max(1.0);
     let side = (fields as f64).sqrt().ceil() as usize;
-    let spacing = per_field * 5.0 * 3.0 + 60.0;
+    // Far enough apart that no two fields overlap, whatever their rotation: the widest field
+    // is 1.2 × per_field × 5 m wide and 2.5 times as long.
+    let spacing = per_field * 5.0 * 1.2 * (1.0f64 + 2.5 * 2.5).sqrt() + 60.0;
     let polygons = (0..fields)
         .map(|index| {
             let width = per_field * 5.0 * (0.8 + 0.4 * uniform(&mut stream));

@@ -458,6 +458,18 @@ fn block(problem: &OrderingProblem, passes: &[usize], variant: usize) -> (Vec<St
     (steps, internal)
 }
 
+/// Every field's block in each of its four variants, with the cost inside it.
+fn field_blocks(problem: &OrderingProblem, fields: &[&Vec<usize>]) -> Vec<Vec<(Vec<Step>, f64)>> {
+    fields
+        .iter()
+        .map(|passes| {
+            (0..4)
+                .map(|variant| block(problem, passes, variant))
+                .collect()
+        })
+        .collect()
+}
+
 /// Whole field blocks in the best order and variant (Held-Karp over at most
 /// `EXACT_FIELD_ORDER_LIMIT` fields): exact within that family of tours.
 pub fn exact_field_order(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Option<Vec<Step>> {
@@ -466,14 +478,7 @@ pub fn exact_field_order(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Op
     if count == 0 || count > EXACT_FIELD_ORDER_LIMIT {
         return None;
     }
-    let blocks: Vec<Vec<(Vec<Step>, f64)>> = fields
-        .iter()
-        .map(|passes| {
-            (0..4)
-                .map(|variant| block(problem, passes, variant))
-                .collect()
-        })
-        .collect();
+    let blocks = field_blocks(problem, &fields);
     let entry = |field: usize, variant: usize| blocks[field][variant].0[0].entry();
     let exit = |field: usize, variant: usize| {
         blocks[field][variant]
@@ -572,14 +577,7 @@ pub fn block_local_search(problem: &OrderingProblem, groups: &[Vec<usize>]) -> O
     if count <= EXACT_FIELD_ORDER_LIMIT {
         return None;
     }
-    let blocks: Vec<Vec<(Vec<Step>, f64)>> = fields
-        .iter()
-        .map(|passes| {
-            (0..4)
-                .map(|variant| block(problem, passes, variant))
-                .collect()
-        })
-        .collect();
+    let blocks = field_blocks(problem, &fields);
     let entry = |(field, variant): (usize, usize)| blocks[field][variant].0[0].entry();
     let exit = |(field, variant): (usize, usize)| {
         blocks[field][variant]
