@@ -570,8 +570,13 @@ pub fn exact_field_order(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Op
 
 /// Whole field blocks ordered by local search over (field, corner) pairs, for farms with more
 /// fields than the exact order handles: starting from the nearest-first chain, move one block
-/// to any other place in any of its four variants while that shortens the tour.
-pub fn block_local_search(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Option<Vec<Step>> {
+/// to any other place in any of its four variants, or fly a run of blocks backwards (2-opt),
+/// while that shortens the tour.
+pub fn block_local_search(
+    problem: &OrderingProblem,
+    groups: &[Vec<usize>],
+    reversals: bool,
+) -> Option<Vec<Step>> {
     let fields: Vec<&Vec<usize>> = groups.iter().filter(|group| !group.is_empty()).collect();
     let count = fields.len();
     if count <= EXACT_FIELD_ORDER_LIMIT {
@@ -683,6 +688,32 @@ pub fn block_local_search(problem: &OrderingProblem, groups: &[Vec<usize>]) -> O
                 improved = true;
             }
         }
+        // 2-opt over blocks: fly a run of blocks in reverse order, each one backwards (its
+        // entry and exit swap; its inside cost is unchanged, eq. 8 being symmetric).
+        let backwards = |(field, variant): (usize, usize)| {
+            let passes = blocks[field][variant].0.len();
+            let last_reversed = (variant & 2 == 2) ^ passes.is_multiple_of(2);
+            (field, (variant ^ 1) | (usize::from(!last_reversed) << 1))
+        };
+        for i in 0..if reversals { count } else { 0 } {
+            for j in i + 1..count {
+                if closed && i == 0 && j == count - 1 {
+                    continue;
+                }
+                let (before, _) = around(&order, i);
+                let (_, after) = around(&order, j + 1);
+                let old = link(before, Some(order[i])) + link(Some(order[j]), after);
+                let new = link(before, Some(backwards(order[j])))
+                    + link(Some(backwards(order[i])), after);
+                if new < old - 1e-9 {
+                    order[i..=j].reverse();
+                    for item in &mut order[i..=j] {
+                        *item = backwards(*item);
+                    }
+                    improved = true;
+                }
+            }
+        }
         if !improved {
             break;
         }
@@ -713,7 +744,10 @@ pub fn best_tour(
     }
     let mut starts = vec![boustrophedon(problem, groups)];
     starts.extend(exact_field_order(problem, groups));
-    starts.extend(block_local_search(problem, groups));
+    // Block relocation alone and with block reversals end in different local optima; both
+    // are kept as starts and the local search decides.
+    starts.extend(block_local_search(problem, groups, false));
+    starts.extend(block_local_search(problem, groups, true));
     if n <= GREEDY_LIMIT {
         starts.push(greedy_with_starts(problem, 8));
     }
