@@ -433,6 +433,9 @@ pub fn boustrophedon(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Vec<St
     tour
 }
 
+/// Double-bridge kicks of the block-order search.
+const BLOCK_KICKS: usize = 300;
+
 /// Most fields for which the exact order of whole field blocks is searched.
 const EXACT_FIELD_ORDER_LIMIT: usize = 10;
 
@@ -576,6 +579,7 @@ pub fn block_local_search(
     problem: &OrderingProblem,
     groups: &[Vec<usize>],
     reversals: bool,
+    seed: u64,
 ) -> Option<Vec<Step>> {
     let fields: Vec<&Vec<usize>> = groups.iter().filter(|group| !group.is_empty()).collect();
     let count = fields.len();
@@ -657,65 +661,96 @@ pub fn block_local_search(
     };
     let start_cost = total(&order);
     // Move one block (any variant) to the best other gap while that gains; O(F² · 4) a round.
-    for _ in 0..50 {
-        let mut improved = false;
-        for from in 0..count {
-            let moving = order[from];
-            let (before, _) = around(&order, from);
-            let (_, after) = around(&order, from + 1);
-            let removal =
-                link(before, Some(moving)) + link(Some(moving), after) - link(before, after);
-            let mut without = order.clone();
-            without.remove(from);
-            let mut choice: Option<(f64, usize, (usize, usize))> = None;
-            for to in 0..=without.len() {
-                let (left, right) = around(&without, to);
-                let base = link(left, right);
-                for (variant, (_, internal)) in blocks[moving.0].iter().enumerate() {
-                    let candidate = (moving.0, variant);
-                    let added = link(left, Some(candidate)) + link(Some(candidate), right) - base
-                        + internal
-                        - blocks[moving.0][moving.1].1;
-                    let gain = removal - added;
-                    if gain > 1e-9 && choice.is_none_or(|(best_gain, ..)| gain > best_gain) {
-                        choice = Some((gain, to, candidate));
+    let improve = |order: &mut Vec<(usize, usize)>| {
+        for _ in 0..50 {
+            let mut improved = false;
+            for from in 0..count {
+                let moving = order[from];
+                let (before, _) = around(order, from);
+                let (_, after) = around(order, from + 1);
+                let removal =
+                    link(before, Some(moving)) + link(Some(moving), after) - link(before, after);
+                let mut without = order.clone();
+                without.remove(from);
+                let mut choice: Option<(f64, usize, (usize, usize))> = None;
+                for to in 0..=without.len() {
+                    let (left, right) = around(&without, to);
+                    let base = link(left, right);
+                    for (variant, (_, internal)) in blocks[moving.0].iter().enumerate() {
+                        let candidate = (moving.0, variant);
+                        let added = link(left, Some(candidate)) + link(Some(candidate), right)
+                            - base
+                            + internal
+                            - blocks[moving.0][moving.1].1;
+                        let gain = removal - added;
+                        if gain > 1e-9 && choice.is_none_or(|(best_gain, ..)| gain > best_gain) {
+                            choice = Some((gain, to, candidate));
+                        }
                     }
                 }
-            }
-            if let Some((_, to, candidate)) = choice {
-                without.insert(to, candidate);
-                order = without;
-                improved = true;
-            }
-        }
-        // 2-opt over blocks: fly a run of blocks in reverse order, each one backwards (its
-        // entry and exit swap; its inside cost is unchanged, eq. 8 being symmetric).
-        let backwards = |(field, variant): (usize, usize)| {
-            let passes = blocks[field][variant].0.len();
-            let last_reversed = (variant & 2 == 2) ^ passes.is_multiple_of(2);
-            (field, (variant ^ 1) | (usize::from(!last_reversed) << 1))
-        };
-        for i in 0..if reversals { count } else { 0 } {
-            for j in i + 1..count {
-                if closed && i == 0 && j == count - 1 {
-                    continue;
-                }
-                let (before, _) = around(&order, i);
-                let (_, after) = around(&order, j + 1);
-                let old = link(before, Some(order[i])) + link(Some(order[j]), after);
-                let new = link(before, Some(backwards(order[j])))
-                    + link(Some(backwards(order[i])), after);
-                if new < old - 1e-9 {
-                    order[i..=j].reverse();
-                    for item in &mut order[i..=j] {
-                        *item = backwards(*item);
-                    }
+                if let Some((_, to, candidate)) = choice {
+                    without.insert(to, candidate);
+                    *order = without;
                     improved = true;
                 }
             }
+            // 2-opt over blocks: fly a run of blocks in reverse order, each one backwards (its
+            // entry and exit swap; its inside cost is unchanged, eq. 8 being symmetric).
+            let backwards = |(field, variant): (usize, usize)| {
+                let passes = blocks[field][variant].0.len();
+                let last_reversed = (variant & 2 == 2) ^ passes.is_multiple_of(2);
+                (field, (variant ^ 1) | (usize::from(!last_reversed) << 1))
+            };
+            for i in 0..if reversals { count } else { 0 } {
+                for j in i + 1..count {
+                    if closed && i == 0 && j == count - 1 {
+                        continue;
+                    }
+                    let (before, _) = around(order, i);
+                    let (_, after) = around(order, j + 1);
+                    let old = link(before, Some(order[i])) + link(Some(order[j]), after);
+                    let new = link(before, Some(backwards(order[j])))
+                        + link(Some(backwards(order[i])), after);
+                    if new < old - 1e-9 {
+                        order[i..=j].reverse();
+                        for item in &mut order[i..=j] {
+                            *item = backwards(*item);
+                        }
+                        improved = true;
+                    }
+                }
+            }
+            if !improved {
+                break;
+            }
         }
-        if !improved {
-            break;
+    };
+    improve(&mut order);
+    // Iterated: double-bridge kicks on the block order, kept when the tour gets shorter.
+    let mut best_cost = total(&order);
+    let mut stream = swarm::run_stream(seed, 1);
+    // A block-level descent costs O(F²) per round: fewer kicks on farms of many fields.
+    let kicks = BLOCK_KICKS.min(500_000 / (count * count));
+    for _ in 0..kicks {
+        let mut cuts: Vec<usize> = (0..3)
+            .map(|_| 1 + swarm::below(&mut stream, count - 1))
+            .collect();
+        cuts.sort_unstable();
+        cuts.dedup();
+        if cuts.len() < 3 {
+            continue;
+        }
+        let (a, b, c) = (cuts[0], cuts[1], cuts[2]);
+        let mut kicked: Vec<(usize, usize)> = Vec::with_capacity(count);
+        kicked.extend_from_slice(&order[..a]);
+        kicked.extend_from_slice(&order[b..c]);
+        kicked.extend_from_slice(&order[a..b]);
+        kicked.extend_from_slice(&order[c..]);
+        improve(&mut kicked);
+        let cost = total(&kicked);
+        if cost < best_cost - 1e-9 {
+            best_cost = cost;
+            order = kicked;
         }
     }
     debug_assert!(total(&order) <= start_cost + 1e-6);
@@ -746,8 +781,8 @@ pub fn best_tour(
     starts.extend(exact_field_order(problem, groups));
     // Block relocation alone and with block reversals end in different local optima; both
     // are kept as starts and the local search decides.
-    starts.extend(block_local_search(problem, groups, false));
-    starts.extend(block_local_search(problem, groups, true));
+    starts.extend(block_local_search(problem, groups, false, settings.seed));
+    starts.extend(block_local_search(problem, groups, true, settings.seed));
     if n <= GREEDY_LIMIT {
         starts.push(greedy_with_starts(problem, 8));
     }
