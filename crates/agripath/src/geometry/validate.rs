@@ -38,18 +38,6 @@ pub fn clean_ring(points: &[Coord<f64>]) -> Result<LineString<f64>, Fault> {
     Ok(LineString::new(cleaned))
 }
 
-/// Signed area of an open or closed ring by the shoelace formula (positive counter-clockwise).
-pub fn signed_area(points: &[Coord<f64>]) -> f64 {
-    let count = points.len();
-    let mut twice_area = 0.0;
-    for index in 0..count {
-        let current = points[index];
-        let next = points[(index + 1) % count];
-        twice_area += current.x * next.y - next.x * current.y;
-    }
-    twice_area / 2.0
-}
-
 /// All points on one line (a ring that encloses nothing). A bow tie also has zero signed
 /// area but is not collinear: the validity sweep names it a self-intersection.
 fn all_collinear(points: &[Coord<f64>]) -> bool {

@@ -462,15 +462,71 @@ fn block(problem: &OrderingProblem, passes: &[usize], variant: usize) -> (Vec<St
 }
 
 /// Every field's block in each of its four variants, with the cost inside it.
-fn field_blocks(problem: &OrderingProblem, fields: &[&Vec<usize>]) -> Vec<Vec<(Vec<Step>, f64)>> {
-    fields
-        .iter()
-        .map(|passes| {
-            (0..4)
-                .map(|variant| block(problem, passes, variant))
-                .collect()
-        })
-        .collect()
+struct FieldBlocks(Vec<Vec<(Vec<Step>, f64)>>);
+
+/// A field and one of its four block variants.
+type Placed = (usize, usize);
+
+impl FieldBlocks {
+    fn new(problem: &OrderingProblem, fields: &[&Vec<usize>]) -> Self {
+        Self(
+            fields
+                .iter()
+                .map(|passes| {
+                    (0..4)
+                        .map(|variant| block(problem, passes, variant))
+                        .collect()
+                })
+                .collect(),
+        )
+    }
+
+    fn entry(&self, (field, variant): Placed) -> End {
+        self.0[field][variant].0[0].entry()
+    }
+
+    fn exit(&self, (field, variant): Placed) -> End {
+        self.0[field][variant]
+            .0
+            .last()
+            .expect("a block has passes")
+            .exit()
+    }
+
+    /// Transfer cost inside the block.
+    fn inside(&self, (field, variant): Placed) -> f64 {
+        self.0[field][variant].1
+    }
+
+    /// The passes of blocks flown in `order`.
+    fn steps(&self, order: &[Placed]) -> Vec<Step> {
+        order
+            .iter()
+            .flat_map(|&(field, variant)| self.0[field][variant].0.iter().copied())
+            .collect()
+    }
+}
+
+/// A double-bridge kick: cut `items` at three random places and swap the middle two parts.
+/// `None` when two cuts coincide (the caller skips that kick).
+fn double_bridge<T: Copy>(
+    items: &[T],
+    stream: &mut swarm::RunStream,
+) -> Option<(Vec<T>, [usize; 3])> {
+    let n = items.len();
+    let mut cuts: Vec<usize> = (0..3).map(|_| 1 + swarm::below(stream, n - 1)).collect();
+    cuts.sort_unstable();
+    cuts.dedup();
+    if cuts.len() < 3 {
+        return None;
+    }
+    let (a, b, c) = (cuts[0], cuts[1], cuts[2]);
+    let mut kicked = Vec::with_capacity(n);
+    kicked.extend_from_slice(&items[..a]);
+    kicked.extend_from_slice(&items[b..c]);
+    kicked.extend_from_slice(&items[a..b]);
+    kicked.extend_from_slice(&items[c..]);
+    Some((kicked, [a, b, c]))
 }
 
 /// Whole field blocks in the best order and variant (Held-Karp over at most
@@ -481,15 +537,9 @@ pub fn exact_field_order(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Op
     if count == 0 || count > EXACT_FIELD_ORDER_LIMIT {
         return None;
     }
-    let blocks = field_blocks(problem, &fields);
-    let entry = |field: usize, variant: usize| blocks[field][variant].0[0].entry();
-    let exit = |field: usize, variant: usize| {
-        blocks[field][variant]
-            .0
-            .last()
-            .expect("a block has passes")
-            .exit()
-    };
+    let blocks = FieldBlocks::new(problem, &fields);
+    let entry = |field: usize, variant: usize| blocks.entry((field, variant));
+    let exit = |field: usize, variant: usize| blocks.exit((field, variant));
     let states = count * 4;
     let closed = problem.start == Start::Free;
     let mut best: Option<(f64, Vec<(usize, usize)>)> = None;
@@ -515,7 +565,7 @@ pub fn exact_field_order(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Op
                         problem.cost_from_start(entry(field, variant))
                     };
                     cost[(1 << field) * states + field * 4 + variant] =
-                        start + blocks[field][variant].1;
+                        start + blocks.inside((field, variant));
                 }
             }
         }
@@ -527,7 +577,7 @@ pub fn exact_field_order(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Op
                 }
                 let (field, variant) = (state / 4, state % 4);
                 for next in (0..count).filter(|next| mask & (1 << next) == 0) {
-                    for (next_variant, (_, internal)) in blocks[next].iter().enumerate() {
+                    for (next_variant, (_, internal)) in blocks.0[next].iter().enumerate() {
                         let value = here
                             + problem.cost(exit(field, variant), entry(next, next_variant))
                             + internal;
@@ -563,12 +613,7 @@ pub fn exact_field_order(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Op
         }
     }
     let (_, order) = best?;
-    Some(
-        order
-            .into_iter()
-            .flat_map(|(field, variant)| blocks[field][variant].0.clone())
-            .collect(),
-    )
+    Some(blocks.steps(&order))
 }
 
 /// Whole field blocks ordered by local search over (field, corner) pairs, for farms with more
@@ -586,21 +631,12 @@ pub fn block_local_search(
     if count <= EXACT_FIELD_ORDER_LIMIT {
         return None;
     }
-    let blocks = field_blocks(problem, &fields);
-    let entry = |(field, variant): (usize, usize)| blocks[field][variant].0[0].entry();
-    let exit = |(field, variant): (usize, usize)| {
-        blocks[field][variant]
-            .0
-            .last()
-            .expect("a block has passes")
-            .exit()
-    };
+    let blocks = FieldBlocks::new(problem, &fields);
+    let entry = |placed: Placed| blocks.entry(placed);
+    let exit = |placed: Placed| blocks.exit(placed);
     let closed = problem.start == Start::Free;
     let total = |order: &[(usize, usize)]| -> f64 {
-        let inside: f64 = order
-            .iter()
-            .map(|&(field, variant)| blocks[field][variant].1)
-            .sum();
+        let inside: f64 = order.iter().map(|&placed| blocks.inside(placed)).sum();
         let between: f64 = order
             .windows(2)
             .map(|pair| problem.cost(exit(pair[0]), entry(pair[1])))
@@ -676,12 +712,12 @@ pub fn block_local_search(
                 for to in 0..=without.len() {
                     let (left, right) = around(&without, to);
                     let base = link(left, right);
-                    for (variant, (_, internal)) in blocks[moving.0].iter().enumerate() {
+                    for (variant, (_, internal)) in blocks.0[moving.0].iter().enumerate() {
                         let candidate = (moving.0, variant);
                         let added = link(left, Some(candidate)) + link(Some(candidate), right)
                             - base
                             + internal
-                            - blocks[moving.0][moving.1].1;
+                            - blocks.inside(moving);
                         let gain = removal - added;
                         if gain > 1e-9 && choice.is_none_or(|(best_gain, ..)| gain > best_gain) {
                             choice = Some((gain, to, candidate));
@@ -697,7 +733,7 @@ pub fn block_local_search(
             // 2-opt over blocks: fly a run of blocks in reverse order, each one backwards (its
             // entry and exit swap; its inside cost is unchanged, eq. 8 being symmetric).
             let backwards = |(field, variant): (usize, usize)| {
-                let passes = blocks[field][variant].0.len();
+                let passes = blocks.0[field][variant].0.len();
                 let last_reversed = (variant & 2 == 2) ^ passes.is_multiple_of(2);
                 (field, (variant ^ 1) | (usize::from(!last_reversed) << 1))
             };
@@ -732,20 +768,9 @@ pub fn block_local_search(
     // A block-level descent costs O(F²) per round: fewer kicks on farms of many fields.
     let kicks = BLOCK_KICKS.min(500_000 / (count * count));
     for _ in 0..kicks {
-        let mut cuts: Vec<usize> = (0..3)
-            .map(|_| 1 + swarm::below(&mut stream, count - 1))
-            .collect();
-        cuts.sort_unstable();
-        cuts.dedup();
-        if cuts.len() < 3 {
+        let Some((mut kicked, _)) = double_bridge(&order, &mut stream) else {
             continue;
-        }
-        let (a, b, c) = (cuts[0], cuts[1], cuts[2]);
-        let mut kicked: Vec<(usize, usize)> = Vec::with_capacity(count);
-        kicked.extend_from_slice(&order[..a]);
-        kicked.extend_from_slice(&order[b..c]);
-        kicked.extend_from_slice(&order[a..b]);
-        kicked.extend_from_slice(&order[c..]);
+        };
         improve(&mut kicked);
         let cost = total(&kicked);
         if cost < best_cost - 1e-9 {
@@ -754,12 +779,7 @@ pub fn block_local_search(
         }
     }
     debug_assert!(total(&order) <= start_cost + 1e-6);
-    Some(
-        order
-            .into_iter()
-            .flat_map(|(field, variant)| blocks[field][variant].0.clone())
-            .collect(),
-    )
+    Some(blocks.steps(&order))
 }
 
 /// Our sequencer: construction, local search, iterated kicks.
@@ -831,20 +851,9 @@ pub fn best_tour(
     let mut stream = swarm::run_stream(settings.seed, 0);
     if n >= 8 {
         for _ in 0..kick_budget(settings, n) {
-            let mut cuts: Vec<usize> = (0..3)
-                .map(|_| 1 + swarm::below(&mut stream, n - 1))
-                .collect();
-            cuts.sort_unstable();
-            cuts.dedup();
-            if cuts.len() < 3 {
+            let Some((kicked, [a, b, c])) = double_bridge(&best_tour, &mut stream) else {
                 continue;
-            }
-            let (a, b, c) = (cuts[0], cuts[1], cuts[2]);
-            let mut kicked = Vec::with_capacity(n);
-            kicked.extend_from_slice(&best_tour[..a]);
-            kicked.extend_from_slice(&best_tour[b..c]);
-            kicked.extend_from_slice(&best_tour[a..b]);
-            kicked.extend_from_slice(&best_tour[c..]);
+            };
             let touched: Vec<usize> = [0, a - 1, a, b - 1, b, c - 1, c, n - 1]
                 .iter()
                 .map(|&i| kicked[i].pass)

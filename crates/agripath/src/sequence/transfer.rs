@@ -93,10 +93,6 @@ impl<'a> TransferModel<'a> {
         }
     }
 
-    pub fn safe_height_m(&self) -> f64 {
-        self.safe_height_m
-    }
-
     /// The leg from `from` to `to`. Both ends are flown at spray height over the ground, so the
     /// 3D length uses the ground heights.
     pub fn transfer(&self, from: GroundPoint, to: GroundPoint) -> Transfer {
