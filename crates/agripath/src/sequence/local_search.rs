@@ -399,30 +399,18 @@ pub fn boustrophedon(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Vec<St
         // Each field can be flown from either end of its line order, starting either way.
         let mut best: Option<(f64, usize, Vec<Step>)> = None;
         for (slot, &group) in remaining.iter().enumerate() {
-            for backwards in [false, true] {
-                for first_reversed in [false, true] {
-                    let mut order = groups[group].clone();
-                    if backwards {
-                        order.reverse();
-                    }
-                    let steps: Vec<Step> = order
-                        .iter()
-                        .enumerate()
-                        .map(|(index, &pass)| Step {
-                            pass,
-                            reversed: first_reversed ^ (index % 2 == 1),
-                        })
-                        .collect();
-                    let cost = match tour.last() {
-                        Some(previous) => problem.cost(previous.exit(), steps[0].entry()),
-                        None => problem.cost_from_start(steps[0].entry()),
-                    };
-                    if best
-                        .as_ref()
-                        .is_none_or(|(best_cost, _, _)| cost < *best_cost)
-                    {
-                        best = Some((cost, slot, steps));
-                    }
+            // Variants in the order (forwards, backwards) × (first pass as is, reversed).
+            for variant in [0, 2, 1, 3] {
+                let steps = block_steps(&groups[group], variant);
+                let cost = match tour.last() {
+                    Some(previous) => problem.cost(previous.exit(), steps[0].entry()),
+                    None => problem.cost_from_start(steps[0].entry()),
+                };
+                if best
+                    .as_ref()
+                    .is_none_or(|(best_cost, _, _)| cost < *best_cost)
+                {
+                    best = Some((cost, slot, steps));
                 }
             }
         }
@@ -442,23 +430,28 @@ const EXACT_FIELD_ORDER_LIMIT: usize = 10;
 /// A field's passes flown as one boustrophedon block: `variant` bit 0 runs the lines
 /// backwards, bit 1 flies the first pass reversed.
 fn block(problem: &OrderingProblem, passes: &[usize], variant: usize) -> (Vec<Step>, f64) {
+    let steps = block_steps(passes, variant);
+    let internal = steps
+        .windows(2)
+        .map(|pair| problem.cost(pair[0].exit(), pair[1].entry()))
+        .sum();
+    (steps, internal)
+}
+
+/// The steps of a block (see [`block`]), without its cost.
+fn block_steps(passes: &[usize], variant: usize) -> Vec<Step> {
     let mut order = passes.to_vec();
     if variant & 1 == 1 {
         order.reverse();
     }
-    let steps: Vec<Step> = order
+    order
         .iter()
         .enumerate()
         .map(|(index, &pass)| Step {
             pass,
             reversed: (variant & 2 == 2) ^ (index % 2 == 1),
         })
-        .collect();
-    let internal = steps
-        .windows(2)
-        .map(|pair| problem.cost(pair[0].exit(), pair[1].entry()))
-        .sum();
-    (steps, internal)
+        .collect()
 }
 
 /// Every field's block in each of its four variants, with the cost inside it.
