@@ -42,6 +42,20 @@ pub enum Command {
     Repro {
         #[arg(value_enum)]
         table: ReproTable,
+        /// Independent runs, for the stochastic tables (default: the paper's).
+        #[arg(long)]
+        runs: Option<u64>,
+        /// Seed of the random streams.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Also write the tables (Markdown, CSV) and plots into this folder.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Benchmarks: optimizers on the test functions of seed 000 Table 1.
+    Bench {
+        #[command(subcommand)]
+        action: BenchAction,
     },
     /// Read a scenario (or fields, terrain and vehicle) and say what was read or what is wrong.
     Validate {
@@ -134,8 +148,43 @@ pub struct OrderArgs {
     pub ants: usize,
 }
 
+#[derive(Debug, Subcommand)]
+pub enum BenchAction {
+    /// Optimizers × test functions × runs: best, worst, mean, std and time as in seed 000
+    /// Table 2 (Markdown on stdout; with --out also CSV and convergence plots).
+    Functions {
+        /// Dimension of every function.
+        #[arg(long, default_value_t = 50)]
+        dim: usize,
+        /// Population (agents per iteration).
+        #[arg(long, default_value_t = 500)]
+        pop: usize,
+        /// Iterations; every algorithm gets pop × (iters + 1) evaluations.
+        #[arg(long, default_value_t = 300)]
+        iters: usize,
+        /// Independent runs per algorithm and function.
+        #[arg(long, default_value_t = 50)]
+        runs: u64,
+        /// Algorithms, comma-separated: pso, ga, ba, ilssiwba, iba-fcs, gsa, aco-r, lshade
+        /// (default: the five of seed 000).
+        #[arg(long, value_delimiter = ',')]
+        algorithms: Vec<String>,
+        /// Functions, comma-separated: f1 … f9 (default: all nine).
+        #[arg(long, value_delimiter = ',')]
+        functions: Vec<String>,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Folder for table.md, table.csv and convergence_*.svg.
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
 #[derive(Debug, Clone, Copy, clap::ValueEnum)]
 pub enum ReproTable {
+    /// Seed 000 Table 2: PSO, GA, BA, ILSSIWBA, IBA-FCS (and L-SHADE) on nine functions, D = 50.
+    #[value(name = "seed000-table2")]
+    Seed000Table2,
     /// Seed 001 Table 7: headings, swath counts and lengths of the five-field farm.
     #[value(name = "seed001-table7")]
     Seed001Table7,

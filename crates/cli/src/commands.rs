@@ -18,7 +18,11 @@ use agripath::sequence::ant_colony::AntColonySettings;
 use agripath::sequence::local_search::LocalSearchSettings;
 use agripath::sequence::Sequencer;
 
-use crate::args::{Arguments, Command, CoverageArgs, Inputs, OrderArgs, ReproTable, TerrainAction};
+use agripath::bench::functions::{FunctionBench, FunctionTable};
+
+use crate::args::{
+    Arguments, BenchAction, Command, CoverageArgs, Inputs, OrderArgs, ReproTable, TerrainAction,
+};
 use crate::Failure;
 
 /// Writes to stdout; a closed pipe (`agripath … | head`) ends the program quietly, as Unix
@@ -54,7 +58,13 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
             order,
             out,
         } => plan(&inputs, &coverage, &order, &out),
-        Command::Repro { table } => repro(table),
+        Command::Repro {
+            table,
+            runs,
+            seed,
+            out,
+        } => repro(table, runs, seed, out.as_deref()),
+        Command::Bench { action } => bench(action),
         Command::Validate { inputs, json } => validate(&inputs, json),
         Command::Terrain { action } => terrain(action),
     }
@@ -226,12 +236,129 @@ fn plan(
     Ok(())
 }
 
-fn repro(table: ReproTable) -> Result<(), Failure> {
+/// A progress bar on stderr for `total` steps (hidden when stderr is not a terminal).
+fn progress_bar(total: u64, what: &str) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::new(total);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template(
+            "{msg} [{bar:40}] {pos}/{len} runs, {elapsed} (eta {eta})",
+        )
+        .expect("a valid template")
+        .progress_chars("=> "),
+    );
+    bar.set_message(what.to_string());
+    bar
+}
+
+/// Runs a function bench with a progress bar.
+fn run_function_bench(settings: &FunctionBench) -> Result<FunctionTable, Failure> {
+    settings
+        .validate()
+        .map_err(|fault| InputError::new("arguments", fault))?;
+    let bar = progress_bar(settings.total_runs(), "bench");
+    let table = settings
+        .run(&|| bar.inc(1))
+        .map_err(|fault| InputError::new("arguments", fault))?;
+    bar.finish_and_clear();
+    Ok(table)
+}
+
+fn bench(action: BenchAction) -> Result<(), Failure> {
+    let BenchAction::Functions {
+        dim,
+        pop,
+        iters,
+        runs,
+        algorithms,
+        functions,
+        seed,
+        out,
+    } = action;
+    let invalid = |what: &str, value: &str, why: String| {
+        InputError::new(
+            "arguments",
+            Fault::InvalidValue {
+                what: what.into(),
+                value: value.into(),
+                why,
+            },
+        )
+    };
+    let mut settings = FunctionBench::table_2();
+    (
+        settings.dimension,
+        settings.population,
+        settings.iterations,
+        settings.runs,
+        settings.seed,
+    ) = (dim, pop, iters, runs, seed);
+    if !algorithms.is_empty() {
+        settings.algorithms = algorithms
+            .iter()
+            .map(|name| {
+                name.parse::<swarm::Algorithm>()
+                    .map_err(|why| invalid("--algorithms", name, why))
+            })
+            .collect::<Result<_, _>>()?;
+    }
+    if !functions.is_empty() {
+        settings.functions = functions
+            .iter()
+            .map(|key| {
+                swarm::functions::by_key(key)
+                    .map_err(|why| invalid("--functions", key, why.to_string()))
+            })
+            .collect::<Result<_, _>>()?;
+    }
+    let table = run_function_bench(&settings)?;
+    emit!("{}", table.markdown());
+    emitln!("wall time {:.1} s", table.wall_seconds);
+    if let Some(out) = out {
+        let files = table.files();
+        let named: Vec<(&str, Vec<u8>)> = files
+            .iter()
+            .map(|(name, bytes)| (name.as_str(), bytes.clone()))
+            .collect();
+        let written = write_folder(&out, &named)?;
+        emitln!(
+            "wrote {}/: table.md, table.csv, convergence_*.svg",
+            written.display()
+        );
+    }
+    Ok(())
+}
+
+fn repro(
+    table: ReproTable,
+    runs: Option<u64>,
+    seed: u64,
+    out: Option<&Path>,
+) -> Result<(), Failure> {
     match table {
+        ReproTable::Seed000Table2 => {
+            let settings = agripath::repro::seed000_table2::settings(runs.unwrap_or(50), seed);
+            let table = run_function_bench(&settings)?;
+            let comparison = agripath::repro::seed000_table2::comparison(&table);
+            emit!("{comparison}");
+            if let Some(out) = out {
+                let mut files = table.files();
+                files.push(("comparison.md".into(), comparison.into_bytes()));
+                let named: Vec<(&str, Vec<u8>)> = files
+                    .iter()
+                    .map(|(name, bytes)| (name.as_str(), bytes.clone()))
+                    .collect();
+                let written = write_folder(out, &named)?;
+                emitln!(
+                    "wrote {}/: comparison.md, table.md, table.csv, convergence_*.svg",
+                    written.display()
+                );
+            }
+            Ok(())
+        }
         ReproTable::Seed001Table8 => {
             let scenario = agripath::demo::scenario()?;
             emitln!("Seed 001, Table 8: transfer path length (m), paper beside agripath");
-            let table = agripath::repro::seed001_table8::table8(&scenario, 1)
+            let table = agripath::repro::seed001_table8::table8(&scenario, seed as usize)
                 .map_err(|fault| InputError::new(agripath::demo::FARM_LABEL, fault))?;
             emit!("{}", table.to_text());
             Ok(())

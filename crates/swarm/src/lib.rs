@@ -1,10 +1,38 @@
 //! swarm: domain-free swarm and evolutionary optimizers.
 //!
 //! Nothing here knows about UAVs, fields or terrain, so a researcher can use it on any
-//! objective. This crate grows with the swarm-engine issue: the `Problem`/`Optimizer` traits,
-//! the one `Runner` loop, and one file per algorithm. What is here now is the randomness
-//! every stochastic stage of agripath shares (MISSION.md decision 10).
+//! objective:
+//!
+//! ```
+//! use swarm::{algorithms::IbaFcs, Bounds, FnProblem, Runner, Termination};
+//!
+//! let problem = FnProblem::new(Bounds::cube(10, -5.0, 5.0).unwrap(), |x: &[f64]| {
+//!     x.iter().map(|v| v * v).sum::<f64>()
+//! });
+//! let runner = Runner::new(Termination::iterations(100), 42).unwrap();
+//! let outcome = runner.run(&mut IbaFcs::default(), &problem, 0);
+//! assert!(outcome.best_cost < 1e-6);
+//! ```
+//!
+//! - [`Problem`] / [`Bounds`]: what is minimised, over which box;
+//! - [`Optimizer`]: an algorithm writes only `start` and `step` (one file each in
+//!   [`algorithms`], equations in its doc comment);
+//! - [`Runner`]: the one loop: termination by iterations, evaluations, target or time;
+//!   evaluation counting; convergence history; one seeded stream per run (MISSION.md
+//!   decision 10); parallel runs equal to serial ones;
+//! - [`functions`]: seed 000 Table 1, with the official CEC 2005 data;
+//! - [`conformance`]: the checks every optimizer passes.
 
+pub mod algorithms;
+pub mod conformance;
+pub mod functions;
+pub mod problem;
 pub mod random;
+pub mod runner;
 
+pub use algorithms::Algorithm;
+pub use problem::{Bounds, BoundsError, FnProblem, Problem};
 pub use random::{below, run_stream, uniform, RunStream};
+pub use runner::{
+    Observer, Optimizer, Outcome, Record, Runner, Search, StopReason, Termination, TerminationError,
+};

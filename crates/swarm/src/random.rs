@@ -26,6 +26,24 @@ pub fn uniform(stream: &mut RunStream) -> f64 {
     (stream.next_u64() >> 11) as f64 / (1u64 << 53) as f64
 }
 
+/// A uniform draw in [low, high).
+pub fn uniform_in(stream: &mut RunStream, low: f64, high: f64) -> f64 {
+    low + (high - low) * uniform(stream)
+}
+
+/// A standard normal draw (Box-Muller; one of the pair is used so that every draw costs the
+/// same two uniforms and a stream's position never depends on an earlier call's parity).
+pub fn normal(stream: &mut RunStream) -> f64 {
+    // 1 - u lies in (0, 1]: the logarithm is finite.
+    let radius = (-2.0 * (1.0 - uniform(stream)).ln()).sqrt();
+    radius * (std::f64::consts::TAU * uniform(stream)).cos()
+}
+
+/// A standard Cauchy draw (L-SHADE's scale factor).
+pub fn cauchy(stream: &mut RunStream) -> f64 {
+    (std::f64::consts::PI * (uniform(stream) - 0.5)).tan()
+}
+
 /// A uniform draw in 0..n (n > 0), by Lemire's multiply-shift (bias below 2⁻⁶⁴·n).
 pub fn below(stream: &mut RunStream, n: usize) -> usize {
     ((u128::from(stream.next_u64()) * n as u128) >> 64) as usize
@@ -37,6 +55,16 @@ mod tests {
 
     fn first_draws(mut stream: RunStream) -> Vec<u64> {
         (0..8).map(|_| stream.next_u64()).collect()
+    }
+
+    #[test]
+    fn normal_draws_have_unit_spread() {
+        let mut stream = run_stream(3, 0);
+        let draws: Vec<f64> = (0..20_000).map(|_| normal(&mut stream)).collect();
+        let mean = draws.iter().sum::<f64>() / draws.len() as f64;
+        let variance = draws.iter().map(|d| (d - mean).powi(2)).sum::<f64>() / draws.len() as f64;
+        assert!(mean.abs() < 0.03, "mean {mean}");
+        assert!((variance - 1.0).abs() < 0.05, "variance {variance}");
     }
 
     #[test]

@@ -1,3 +1,4 @@
-//! Pictures: maps of plans.
+//! Pictures: maps of plans and line charts (convergence curves).
 
+pub mod line_chart;
 pub mod map_svg;

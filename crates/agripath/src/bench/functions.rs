@@ -1,0 +1,444 @@
+//! `agripath bench functions`: optimizers × test functions × independent runs, summarised as
+//! seed 000 Table 2 is (best, worst, mean, standard deviation, time), with mean convergence
+//! curves.
+//!
+//! Every algorithm gets the same evaluation budget, population × (iterations + 1): the
+//! initial population plus `iterations` generations of a population-sized algorithm. The
+//! algorithms that spend evaluations differently (GA keeps its elite without re-evaluating
+//! it, ILSSIWBA's local search, L-SHADE's shrinking population) run as many iterations as
+//! the budget allows. Runs are independent seeded streams, run in parallel; the numbers equal
+//! those of serial runs.
+
+use std::fmt::Write;
+use std::time::Instant;
+
+use swarm::functions::{FunctionProblem, TestFunction};
+use swarm::{Algorithm, Outcome, Runner, Termination};
+
+use crate::error::Fault;
+use crate::plot::line_chart::{self, Chart, Series};
+
+/// Points on each convergence curve.
+const CURVE_POINTS: usize = 100;
+
+/// What to run.
+#[derive(Debug, Clone)]
+pub struct FunctionBench {
+    pub dimension: usize,
+    pub population: usize,
+    pub iterations: usize,
+    pub runs: u64,
+    pub algorithms: Vec<Algorithm>,
+    pub functions: Vec<&'static TestFunction>,
+    pub seed: u64,
+}
+
+impl FunctionBench {
+    /// Seed 000 §2.5: D = 50, population 500, 300 iterations, 50 runs, its five algorithms
+    /// on its nine functions.
+    pub fn table_2() -> Self {
+        Self {
+            dimension: 50,
+            population: 500,
+            iterations: 300,
+            runs: 50,
+            algorithms: Algorithm::SEED_000.to_vec(),
+            functions: swarm::functions::TABLE_1.iter().collect(),
+            seed: 1,
+        }
+    }
+
+    /// The evaluations every algorithm may spend in one run.
+    pub fn evaluation_budget(&self) -> u64 {
+        self.population as u64 * (self.iterations as u64 + 1)
+    }
+
+    /// Runs in total (for a progress display).
+    pub fn total_runs(&self) -> u64 {
+        self.runs * (self.algorithms.len() * self.functions.len()) as u64
+    }
+
+    /// Checks the settings before anything runs.
+    pub fn validate(&self) -> Result<(), Fault> {
+        let invalid = |what: &str, value: String, why: &str| Fault::InvalidValue {
+            what: what.into(),
+            value,
+            why: why.into(),
+        };
+        if self.population < 2 {
+            return Err(invalid(
+                "--pop",
+                self.population.to_string(),
+                "needs at least 2",
+            ));
+        }
+        if self.iterations == 0 {
+            return Err(invalid("--iters", "0".into(), "needs at least 1"));
+        }
+        if self.runs == 0 {
+            return Err(invalid("--runs", "0".into(), "needs at least 1"));
+        }
+        if self.algorithms.is_empty() || self.functions.is_empty() {
+            return Err(invalid(
+                "--algorithms/--functions",
+                "(none)".into(),
+                "name at least one",
+            ));
+        }
+        if self.evaluation_budget() > 10_000_000_000 {
+            return Err(invalid(
+                "--pop × --iters",
+                self.evaluation_budget().to_string(),
+                "more than 1e10 evaluations per run",
+            ));
+        }
+        for function in &self.functions {
+            function.check_dimension(self.dimension).map_err(|error| {
+                invalid("--dim", self.dimension.to_string(), &error.to_string())
+            })?;
+        }
+        Ok(())
+    }
+
+    /// Runs everything; `finished` is called after each run (from any thread).
+    pub fn run(&self, finished: &(dyn Fn() + Sync)) -> Result<FunctionTable, Fault> {
+        self.validate()?;
+        let started = Instant::now();
+        let runner = Runner::new(
+            Termination::evaluations(self.evaluation_budget()),
+            self.seed,
+        )
+        .expect("a positive evaluation budget");
+        let mut cells = Vec::new();
+        for &function in &self.functions {
+            let problem =
+                FunctionProblem::new(function, self.dimension).expect("dimensions were validated");
+            for &algorithm in &self.algorithms {
+                let outcomes = runner.run_many(
+                    || algorithm.build(self.population),
+                    &problem,
+                    self.runs,
+                    &|_| finished(),
+                );
+                cells.push(Cell::new(
+                    function,
+                    algorithm,
+                    &outcomes,
+                    self.evaluation_budget(),
+                ));
+            }
+        }
+        Ok(FunctionTable {
+            settings: self.clone(),
+            cells,
+            wall_seconds: started.elapsed().as_secs_f64(),
+        })
+    }
+}
+
+/// Best, worst, mean and sample standard deviation of the final costs, and the mean time.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Statistics {
+    pub best: f64,
+    pub worst: f64,
+    pub mean: f64,
+    pub standard_deviation: f64,
+    pub mean_seconds: f64,
+    pub mean_evaluations: f64,
+}
+
+/// One function × one algorithm.
+#[derive(Debug, Clone)]
+pub struct Cell {
+    pub function: &'static TestFunction,
+    pub algorithm: Algorithm,
+    pub statistics: Statistics,
+    /// Every run's final best cost, in run order.
+    pub finals: Vec<f64>,
+    /// Mean best cost over the runs against evaluations spent.
+    pub convergence: Vec<(f64, f64)>,
+}
+
+impl Cell {
+    fn new(
+        function: &'static TestFunction,
+        algorithm: Algorithm,
+        outcomes: &[Outcome],
+        budget: u64,
+    ) -> Self {
+        let finals: Vec<f64> = outcomes.iter().map(|o| o.best_cost).collect();
+        let count = finals.len() as f64;
+        let mean = finals.iter().sum::<f64>() / count;
+        let variance = if finals.len() > 1 {
+            finals.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (count - 1.0)
+        } else {
+            0.0
+        };
+        let statistics = Statistics {
+            best: finals.iter().copied().fold(f64::INFINITY, f64::min),
+            worst: finals.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+            mean,
+            standard_deviation: variance.sqrt(),
+            mean_seconds: outcomes
+                .iter()
+                .map(|o| o.elapsed.as_secs_f64())
+                .sum::<f64>()
+                / count,
+            mean_evaluations: outcomes.iter().map(|o| o.evaluations as f64).sum::<f64>() / count,
+        };
+        Self {
+            function,
+            algorithm,
+            statistics,
+            finals,
+            convergence: mean_curve(outcomes, budget),
+        }
+    }
+}
+
+/// The mean over runs of the best cost after `budget·i/CURVE_POINTS` evaluations.
+fn mean_curve(outcomes: &[Outcome], budget: u64) -> Vec<(f64, f64)> {
+    let mut curve = Vec::with_capacity(CURVE_POINTS + 1);
+    for step in 0..=CURVE_POINTS {
+        let spent = budget * step as u64 / CURVE_POINTS as u64;
+        let values: Vec<f64> = outcomes
+            .iter()
+            .filter_map(|outcome| {
+                outcome
+                    .history
+                    .iter()
+                    .take_while(|record| record.evaluations <= spent)
+                    .last()
+                    .map(|record| record.best_cost)
+            })
+            .collect();
+        if values.len() == outcomes.len() && !values.is_empty() {
+            curve.push((
+                spent as f64,
+                values.iter().sum::<f64>() / values.len() as f64,
+            ));
+        }
+    }
+    curve
+}
+
+/// How one row of the table shows a cell's statistics.
+type ShowStatistic = fn(&Statistics) -> String;
+
+/// The results of a bench run.
+#[derive(Debug, Clone)]
+pub struct FunctionTable {
+    pub settings: FunctionBench,
+    pub cells: Vec<Cell>,
+    pub wall_seconds: f64,
+}
+
+/// A number as Table 2 prints it: four significant decimals, exponent form.
+pub fn scientific(value: f64) -> String {
+    if value == 0.0 {
+        "0".into()
+    } else {
+        format!("{value:.5e}")
+    }
+}
+
+impl FunctionTable {
+    pub fn cell(&self, function: &str, algorithm: Algorithm) -> Option<&Cell> {
+        self.cells
+            .iter()
+            .find(|cell| cell.function.key == function && cell.algorithm == algorithm)
+    }
+
+    /// Table 2's layout: a row per function and statistic, a column per algorithm.
+    pub fn markdown(&self) -> String {
+        let settings = &self.settings;
+        let mut text = String::new();
+        let _ = writeln!(
+            text,
+            "D = {}, population {}, {} iterations ({} evaluations per run), {} runs, seed {}\n",
+            settings.dimension,
+            settings.population,
+            settings.iterations,
+            settings.evaluation_budget(),
+            settings.runs,
+            settings.seed
+        );
+        let _ = write!(text, "| function | statistic |");
+        for algorithm in &settings.algorithms {
+            let _ = write!(text, " {} |", algorithm.label());
+        }
+        let _ = write!(text, "\n|---|---|");
+        for _ in &settings.algorithms {
+            text.push_str("---:|");
+        }
+        text.push('\n');
+        for function in &settings.functions {
+            let rows: [(&str, ShowStatistic); 5] = [
+                ("best", |s| scientific(s.best)),
+                ("worst", |s| scientific(s.worst)),
+                ("mean", |s| scientific(s.mean)),
+                ("std", |s| scientific(s.standard_deviation)),
+                ("time (s)", |s| format!("{:.3}", s.mean_seconds)),
+            ];
+            for (index, (label, show)) in rows.iter().enumerate() {
+                let name = if index == 0 { function.key } else { "" };
+                let _ = write!(text, "| {name} | {label} |");
+                for &algorithm in &settings.algorithms {
+                    let value = self
+                        .cell(function.key, algorithm)
+                        .map(|cell| show(&cell.statistics))
+                        .unwrap_or_default();
+                    let _ = write!(text, " {value} |");
+                }
+                text.push('\n');
+            }
+        }
+        text
+    }
+
+    /// One line per function × algorithm.
+    pub fn csv(&self) -> String {
+        let mut text = String::from(
+            "function,algorithm,dimension,runs,evaluation_budget,best,worst,mean,std,mean_time_s,mean_evaluations\n",
+        );
+        for cell in &self.cells {
+            let s = &cell.statistics;
+            let _ = writeln!(
+                text,
+                "{},{},{},{},{},{:e},{:e},{:e},{:e},{:.6},{:.1}",
+                cell.function.key,
+                cell.algorithm.label(),
+                self.settings.dimension,
+                self.settings.runs,
+                self.settings.evaluation_budget(),
+                s.best,
+                s.worst,
+                s.mean,
+                s.standard_deviation,
+                s.mean_seconds,
+                s.mean_evaluations
+            );
+        }
+        text
+    }
+
+    /// The mean convergence curves of every algorithm on `function`, as the gap to the
+    /// optimum (or to the lowest value seen, where that is lower: f5's −150 is not proven) on
+    /// a log scale.
+    pub fn convergence_svg(&self, function: &TestFunction) -> String {
+        let cells: Vec<&Cell> = self
+            .cells
+            .iter()
+            .filter(|cell| cell.function.key == function.key)
+            .collect();
+        let lowest = cells
+            .iter()
+            .flat_map(|cell| cell.convergence.iter().map(|&(_, y)| y))
+            .fold(function.optimum, f64::min);
+        let floor = 1e-30_f64.max(lowest.abs() * 1e-15);
+        let series: Vec<Series> = cells
+            .iter()
+            .map(|cell| Series {
+                name: cell.algorithm.label().to_string(),
+                points: cell
+                    .convergence
+                    .iter()
+                    .map(|&(x, y)| (x, (y - lowest).max(floor)))
+                    .collect(),
+            })
+            .collect();
+        let title = format!(
+            "{} {}, D = {}: mean best of {} runs",
+            function.key, function.name, self.settings.dimension, self.settings.runs
+        );
+        let y_label = if lowest < function.optimum {
+            format!("best − ({lowest:.6}) (lowest seen)")
+        } else {
+            format!("best − f* (f* = {})", function.optimum)
+        };
+        line_chart::render(
+            &Chart {
+                title: &title,
+                x_label: "evaluations",
+                y_label: &y_label,
+                log_y: true,
+            },
+            &series,
+        )
+    }
+
+    /// The files `bench functions --out DIR` writes.
+    pub fn files(&self) -> Vec<(String, Vec<u8>)> {
+        let mut files = vec![
+            ("table.md".to_string(), self.markdown().into_bytes()),
+            ("table.csv".to_string(), self.csv().into_bytes()),
+        ];
+        for function in &self.settings.functions {
+            files.push((
+                format!("convergence_{}.svg", function.key),
+                self.convergence_svg(function).into_bytes(),
+            ));
+        }
+        files
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn small() -> FunctionBench {
+        FunctionBench {
+            dimension: 10,
+            population: 20,
+            iterations: 30,
+            runs: 3,
+            algorithms: vec![Algorithm::IbaFcs, Algorithm::ParticleSwarm],
+            functions: vec![
+                swarm::functions::by_key("f1").unwrap(),
+                swarm::functions::by_key("f7").unwrap(),
+            ],
+            seed: 5,
+        }
+    }
+
+    #[test]
+    fn statistics_order_and_the_table_lists_every_cell() {
+        let table = small().run(&|| {}).unwrap();
+        assert_eq!(table.cells.len(), 4);
+        for cell in &table.cells {
+            let s = cell.statistics;
+            assert!(s.best <= s.mean && s.mean <= s.worst, "{s:?}");
+            assert!(s.mean_evaluations <= 20.0 * 31.0);
+            assert!(cell
+                .convergence
+                .windows(2)
+                .all(|w| w[1].1 <= w[0].1 + 1e-9 * w[0].1.abs()));
+        }
+        let markdown = table.markdown();
+        assert_eq!(markdown.matches("| f1 |").count(), 1);
+        assert!(markdown.contains("IBA-FCS") && markdown.contains("PSO"));
+        assert_eq!(table.csv().lines().count(), 5);
+        assert_eq!(table.files().len(), 4);
+    }
+
+    #[test]
+    fn the_same_seed_gives_the_same_table() {
+        let first = small().run(&|| {}).unwrap();
+        let second = small().run(&|| {}).unwrap();
+        for (a, b) in first.cells.iter().zip(&second.cells) {
+            assert_eq!(a.finals, b.finals);
+        }
+    }
+
+    #[test]
+    fn bad_settings_are_refused_before_running() {
+        let mut settings = small();
+        settings.dimension = 30;
+        settings.functions = vec![swarm::functions::by_key("f3").unwrap()];
+        assert!(settings.validate().is_err());
+        let mut settings = small();
+        settings.runs = 0;
+        assert!(settings.validate().is_err());
+    }
+}

@@ -1,0 +1,3 @@
+//! Benchmarks users run from the command line (`agripath bench …`).
+
+pub mod functions;

@@ -1,0 +1,232 @@
+//! Line charts as SVG: convergence curves (best cost against evaluations) for the bench
+//! and repro commands. Hand-written SVG, like the maps: no plotting dependency.
+
+use std::fmt::Write;
+
+const WIDTH: f64 = 720.0;
+const HEIGHT: f64 = 440.0;
+const LEFT: f64 = 78.0;
+const RIGHT: f64 = 150.0;
+const TOP: f64 = 40.0;
+const BOTTOM: f64 = 56.0;
+
+/// Colour-blind-safe series colours (Okabe and Ito).
+const COLOURS: [&str; 8] = [
+    "#0072B2", "#E69F00", "#009E73", "#CC79A7", "#D55E00", "#56B4E9", "#000000", "#F0E442",
+];
+
+/// One line of a chart.
+pub struct Series {
+    pub name: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// A chart's titles and axes. With `log_y`, y values must be positive (others are dropped).
+pub struct Chart<'a> {
+    pub title: &'a str,
+    pub x_label: &'a str,
+    pub y_label: &'a str,
+    pub log_y: bool,
+}
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+}
+
+/// "Nice" tick values covering [low, high].
+fn ticks(low: f64, high: f64, wanted: usize) -> Vec<f64> {
+    let span = (high - low).max(f64::MIN_POSITIVE);
+    let raw = span / wanted as f64;
+    let magnitude = 10f64.powf(raw.log10().floor());
+    let step = [1.0, 2.0, 5.0, 10.0]
+        .into_iter()
+        .map(|m| m * magnitude)
+        .find(|&s| s >= raw)
+        .unwrap_or(10.0 * magnitude);
+    let first = (low / step).ceil() as i64;
+    let last = (high / step).floor() as i64;
+    (first..=last).map(|k| k as f64 * step).collect()
+}
+
+fn tick_label(value: f64) -> String {
+    if value != 0.0 && (value.abs() >= 1e5 || value.abs() < 1e-3) {
+        format!("{value:.0e}")
+    } else {
+        format!("{value}")
+    }
+}
+
+/// The chart as an SVG document.
+pub fn render(chart: &Chart, series: &[Series]) -> String {
+    let transformed: Vec<Vec<(f64, f64)>> = series
+        .iter()
+        .map(|s| {
+            s.points
+                .iter()
+                .filter(|(x, y)| x.is_finite() && y.is_finite() && (!chart.log_y || *y > 0.0))
+                .map(|&(x, y)| (x, if chart.log_y { y.log10() } else { y }))
+                .collect()
+        })
+        .collect();
+    let all = transformed.iter().flatten();
+    let (mut min_x, mut max_x, mut min_y, mut max_y) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
+    for &(x, y) in all {
+        min_x = min_x.min(x);
+        max_x = max_x.max(x);
+        min_y = min_y.min(y);
+        max_y = max_y.max(y);
+    }
+    if min_x > max_x {
+        (min_x, max_x, min_y, max_y) = (0.0, 1.0, 0.0, 1.0);
+    }
+    if max_x - min_x < 1e-12 {
+        max_x = min_x + 1.0;
+    }
+    if max_y - min_y < 1e-12 {
+        (min_y, max_y) = (min_y - 0.5, max_y + 0.5);
+    }
+    if chart.log_y {
+        (min_y, max_y) = (min_y.floor(), max_y.ceil());
+    }
+    let plot_width = WIDTH - LEFT - RIGHT;
+    let plot_height = HEIGHT - TOP - BOTTOM;
+    let px = |x: f64| LEFT + (x - min_x) / (max_x - min_x) * plot_width;
+    let py = |y: f64| TOP + (max_y - y) / (max_y - min_y) * plot_height;
+
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{WIDTH}" height="{HEIGHT}" viewBox="0 0 {WIDTH} {HEIGHT}" font-family="sans-serif" font-size="12">"#
+    );
+    let _ = writeln!(svg, r#"<rect width="100%" height="100%" fill="white"/>"#);
+    let _ = writeln!(
+        svg,
+        r#"<text x="{}" y="22" font-size="15" text-anchor="middle">{}</text>"#,
+        LEFT + plot_width / 2.0,
+        escape(chart.title)
+    );
+    let y_ticks = if chart.log_y {
+        let step = ((max_y - min_y) / 8.0).ceil().max(1.0);
+        let mut values = vec![];
+        let mut value = min_y;
+        while value <= max_y + 1e-9 {
+            values.push(value);
+            value += step;
+        }
+        values
+    } else {
+        ticks(min_y, max_y, 6)
+    };
+    for value in y_ticks {
+        let y = py(value);
+        let label = if chart.log_y {
+            format!("1e{value:.0}")
+        } else {
+            tick_label(value)
+        };
+        let _ = writeln!(
+            svg,
+            r##"<line x1="{LEFT}" x2="{:.1}" y1="{y:.1}" y2="{y:.1}" stroke="#e4e4e4"/><text x="{:.1}" y="{:.1}" text-anchor="end">{label}</text>"##,
+            LEFT + plot_width,
+            LEFT - 6.0,
+            y + 4.0
+        );
+    }
+    for value in ticks(min_x, max_x, 6) {
+        let x = px(value);
+        let _ = writeln!(
+            svg,
+            r##"<line x1="{x:.1}" x2="{x:.1}" y1="{TOP}" y2="{:.1}" stroke="#e4e4e4"/><text x="{x:.1}" y="{:.1}" text-anchor="middle">{}</text>"##,
+            TOP + plot_height,
+            TOP + plot_height + 18.0,
+            tick_label(value)
+        );
+    }
+    let _ = writeln!(
+        svg,
+        r##"<rect x="{LEFT}" y="{TOP}" width="{plot_width}" height="{plot_height}" fill="none" stroke="#444"/>"##
+    );
+    let _ = writeln!(
+        svg,
+        r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
+        LEFT + plot_width / 2.0,
+        HEIGHT - 14.0,
+        escape(chart.x_label)
+    );
+    let _ = writeln!(
+        svg,
+        r#"<text transform="translate(18 {:.1}) rotate(-90)" text-anchor="middle">{}</text>"#,
+        TOP + plot_height / 2.0,
+        escape(chart.y_label)
+    );
+    for (index, (line, points)) in series.iter().zip(&transformed).enumerate() {
+        let colour = COLOURS[index % COLOURS.len()];
+        if !points.is_empty() {
+            let mut data = String::new();
+            for (k, &(x, y)) in points.iter().enumerate() {
+                let _ = write!(
+                    data,
+                    "{}{:.1},{:.1}",
+                    if k == 0 { "M" } else { " L" },
+                    px(x),
+                    py(y)
+                );
+            }
+            let _ = writeln!(
+                svg,
+                r#"<path d="{data}" fill="none" stroke="{colour}" stroke-width="2"/>"#
+            );
+        }
+        let legend_y = TOP + 10.0 + index as f64 * 20.0;
+        let legend_x = LEFT + plot_width + 14.0;
+        let _ = writeln!(
+            svg,
+            r#"<line x1="{legend_x}" x2="{:.1}" y1="{legend_y}" y2="{legend_y}" stroke="{colour}" stroke-width="3"/><text x="{:.1}" y="{:.1}">{}</text>"#,
+            legend_x + 22.0,
+            legend_x + 28.0,
+            legend_y + 4.0,
+            escape(&line.name)
+        );
+    }
+    svg.push_str("</svg>\n");
+    svg
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ticks_are_round_and_inside() {
+        assert_eq!(ticks(0.0, 10.0, 5), vec![0.0, 2.0, 4.0, 6.0, 8.0, 10.0]);
+        assert!(ticks(0.13, 0.87, 4)
+            .iter()
+            .all(|t| (0.13..=0.87).contains(t)));
+    }
+
+    #[test]
+    fn a_chart_draws_every_series_with_a_legend() {
+        let chart = Chart {
+            title: "f1 <test>",
+            x_label: "evaluations",
+            y_label: "best",
+            log_y: true,
+        };
+        let series = [
+            Series {
+                name: "A".into(),
+                points: vec![(0.0, 100.0), (10.0, 1e-3)],
+            },
+            Series {
+                name: "B".into(),
+                points: vec![(0.0, 50.0), (10.0, -1.0)],
+            },
+        ];
+        let svg = render(&chart, &series);
+        assert_eq!(svg.matches("<path").count(), 2);
+        assert!(svg.contains("f1 &lt;test&gt;"));
+        assert!(svg.contains(">A</text>") && svg.contains(">B</text>"));
+    }
+}

@@ -1,0 +1,188 @@
+//! Seed 000 Table 2: PSO, GA, BA, ILSSIWBA and IBA-FCS on the nine functions of Table 1 at
+//! D = 50 (population 500, 300 iterations, 50 runs), beside the paper's figures, with
+//! L-SHADE (not in the paper) as the modern yardstick.
+
+use std::fmt::Write;
+
+use swarm::Algorithm;
+
+use super::super::bench::functions::{scientific, FunctionBench, FunctionTable};
+
+/// Table 2 as printed: per function, [best, worst, mean, std] × [PSO, GA, BA, ILSSIWBA, IBA-FCS].
+pub const PAPER: [(&str, [[f64; 5]; 4]); 9] = [
+    (
+        "f1",
+        [
+            [-4.16500e2, -4.30683e2, -3.32637e2, -4.49743e2, -4.50000e2],
+            [6.30452e3, -1.15656e2, -2.60810e2, -4.49486e2, -4.50000e2],
+            [1.86357e3, -3.06207e2, -2.98199e2, -4.49644e2, -4.50000e2],
+            [3.19105e3, 1.42713e2, 3.35806e1, 1.04279e-1, 3.92796e-13],
+        ],
+    ),
+    (
+        "f2",
+        [
+            [1.56076e5, 1.41474e5, 1.38374e5, 1.35072e5, 1.34913e5],
+            [1.81452e5, 1.58800e5, 1.43460e5, 1.35542e5, 1.34913e5],
+            [1.65820e5, 1.49798e5, 1.40147e5, 1.35262e5, 1.34913e5],
+            [1.03194e4, 6.67761e3, 2.13319e3, 1.93492e2, 2.01111e-10],
+        ],
+    ),
+    (
+        "f3",
+        [
+            [1.28706e7, 1.17452e6, 3.10054e6, 6.71474e5, 2.82068e5],
+            [2.62000e8, 4.45088e6, 9.20153e6, 2.82333e6, 4.34776e5],
+            [1.04000e8, 2.73599e6, 5.36052e6, 1.64266e6, 3.53716e5],
+            [1.03000e8, 1.28274e6, 2.87807e6, 9.17154e5, 6.40152e4],
+        ],
+    ),
+    (
+        "f4",
+        [
+            [3.83900e5, 3.54430e5, 1.98511e6, 2.05290e5, 1.74488e5],
+            [2.68833e6, 6.39392e5, 4.61273e6, 6.58711e5, 5.39314e5],
+            [1.15235e6, 5.11508e5, 2.97067e6, 3.81463e5, 3.70557e5],
+            [9.02446e5, 1.33331e5, 1.04648e6, 1.75915e5, 1.49301e5],
+        ],
+    ),
+    (
+        "f5",
+        [
+            [-1.18074e2, -1.11849e2, -1.43094e2, -1.27262e2, -1.44695e2],
+            [-7.47798e1, -9.76215e1, -9.04625e1, -1.04905e2, -1.44695e2],
+            [-9.38635e1, -1.04919e2, -1.26802e2, -1.19606e2, -1.44695e2],
+            [1.82727e1, 5.44397, 2.10533e1, 8.69354, 6.25116e-13],
+        ],
+    ),
+    (
+        "f6",
+        [
+            [9.61565e4, 3.15738e6, 1.81858e5, 1.41491e3, 5.31204e2],
+            [6.13439e5, 5.86584e7, 8.02298e5, 2.92551e3, 5.53220e2],
+            [2.40618e5, 1.86366e7, 3.18304e5, 2.00914e3, 5.37573e2],
+            [2.14141e5, 2.32237e7, 2.70755e5, 6.26800e2, 8.91492],
+        ],
+    ),
+    (
+        "f7",
+        [
+            [9.05527e-1, 1.25557, 6.26000e-5, 4.66183e-1, 6.25116e-25],
+            [1.88472, 3.53613, 3.21300e-3, 1.21011, 5.60134e-24],
+            [1.41716, 2.48379, 1.24700e-3, 8.99273e-1, 2.51936e-24],
+            [3.50070e-1, 9.72060e-1, 1.27500e-3, 2.76468e-1, 2.01125e-24],
+        ],
+    ),
+    (
+        "f8",
+        [
+            [5.04700e-3, 4.84893, 1.30500e-3, 9.88153e-3, 1.95304e-25],
+            [1.40519e-1, 1.60911e1, 3.13230e-2, 7.09023e-1, 4.70972e-24],
+            [3.67790e-2, 9.90662, 1.91720e-2, 2.23669e-1, 2.42129e-24],
+            [5.81310e-2, 5.13263, 1.18500e-2, 2.89588e-1, 2.01004e-24],
+        ],
+    ),
+    (
+        "f9",
+        [
+            [3.31267, 5.51134e1, 1.48890e-2, 2.67878e-1, 7.57293e-24],
+            [4.59808, 1.04795e3, 7.39507e-1, 7.92695e-1, 1.17702e-22],
+            [4.11148, 2.87693e2, 2.48145e-1, 5.53625e-1, 3.49220e-23],
+            [5.62276e-1, 4.25851e2, 3.17299e-1, 1.97115e-1, 4.68727e-23],
+        ],
+    ),
+];
+
+/// The paper's settings, its five algorithms and L-SHADE, `runs` runs each.
+pub fn settings(runs: u64, seed: u64) -> FunctionBench {
+    let mut settings = FunctionBench::table_2();
+    settings.runs = runs;
+    settings.seed = seed;
+    settings.algorithms.push(Algorithm::Lshade);
+    settings
+}
+
+/// The paper's mean for `function` and `algorithm`, if Table 2 has it.
+pub fn paper_mean(function: &str, algorithm: Algorithm) -> Option<f64> {
+    let column = Algorithm::SEED_000.iter().position(|&a| a == algorithm)?;
+    PAPER
+        .iter()
+        .find(|(key, _)| *key == function)
+        .map(|(_, rows)| rows[2][column])
+}
+
+/// Ours beside the paper's, as Markdown: per function and statistic, "ours / paper".
+pub fn comparison(table: &FunctionTable) -> String {
+    let mut text = String::new();
+    let settings = &table.settings;
+    let _ = writeln!(
+        text,
+        "Seed 000 Table 2 — ours / paper. D = {}, population {}, {} iterations ({} evaluations per run), {} runs (paper: 50), seed {}.\n",
+        settings.dimension,
+        settings.population,
+        settings.iterations,
+        settings.evaluation_budget(),
+        settings.runs,
+        settings.seed
+    );
+    let _ = write!(text, "| function | statistic |");
+    for algorithm in &settings.algorithms {
+        let _ = write!(text, " {} |", algorithm.label());
+    }
+    let _ = write!(text, "\n|---|---|");
+    for _ in &settings.algorithms {
+        text.push_str("---:|");
+    }
+    text.push('\n');
+    for (key, paper_rows) in PAPER.iter() {
+        if !settings.functions.iter().any(|f| f.key == *key) {
+            continue;
+        }
+        for (row, label) in ["best", "worst", "mean", "std"].iter().enumerate() {
+            let _ = write!(text, "| {} | {label} |", if row == 0 { key } else { "" });
+            for &algorithm in &settings.algorithms {
+                let ours = table.cell(key, algorithm).map(|cell| {
+                    let s = cell.statistics;
+                    [s.best, s.worst, s.mean, s.standard_deviation][row]
+                });
+                let paper = Algorithm::SEED_000
+                    .iter()
+                    .position(|&a| a == algorithm)
+                    .map(|column| paper_rows[row][column]);
+                let cell = match (ours, paper) {
+                    (Some(ours), Some(paper)) => {
+                        format!("{} / {}", scientific(ours), scientific(paper))
+                    }
+                    (Some(ours), None) => scientific(ours),
+                    _ => String::new(),
+                };
+                let _ = write!(text, " {cell} |");
+            }
+            text.push('\n');
+        }
+    }
+    let _ = writeln!(
+        text,
+        "\nBest mean per function (ours; paper: IBA-FCS on all nine):"
+    );
+    for function in &settings.functions {
+        let seed_algorithms = settings
+            .algorithms
+            .iter()
+            .filter(|a| Algorithm::SEED_000.contains(a));
+        let winner = seed_algorithms
+            .filter_map(|&a| table.cell(function.key, a))
+            .min_by(|a, b| a.statistics.mean.total_cmp(&b.statistics.mean));
+        if let Some(winner) = winner {
+            let _ = writeln!(
+                text,
+                "- {}: {} ({}) among the paper's five",
+                function.key,
+                winner.algorithm.label(),
+                scientific(winner.statistics.mean)
+            );
+        }
+    }
+    let _ = writeln!(text, "\nWall time {:.1} s.", table.wall_seconds);
+    text
+}

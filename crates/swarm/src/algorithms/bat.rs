@@ -1,0 +1,143 @@
+//! Bat algorithm (BA): Yang, "A New Metaheuristic Bat-Inspired Algorithm", NICSO 2010
+//! (Studies in Computational Intelligence 284:65-74), in the form seed 000 §1 writes it.
+//!
+//! For bat i at iteration t (seed 000 numbering):
+//! - (3) frequency   f_i = f_min + (f_max − f_min)·β,  β ~ U[0, 1]
+//! - (2) velocity    v_i^t = v_i^{t−1} + (x_i^{t−1} − x_*)·f_i
+//! - (1) position    x_i^t = x_i^{t−1} + v_i^t
+//! - (4) local walk  if rand > R_i: x = x_* + ε·Ā^t, ε ~ U[−1, 1] per coordinate, Ā the mean loudness
+//! - acceptance (Yang): the new point replaces the bat if it is no worse and rand < A_i; then
+//!   (5) A_i ← α·A_i and (6) R_i ← R_max·(1 − exp(−γ·t)).
+//!
+//! Parameters are those seed 000 gives for its BA baseline: f ∈ [−2, 0], A_i^0 ~ U(1, 2),
+//! R_i^0 ~ U(0, 0.5), R_max = 0.9, α = γ = 0.9. With f ≤ 0, eq. (2) pulls every bat towards
+//! x_* (the frequency range of Yang's demo code, whose sign slip the seed's settings keep).
+//!
+//! Deviations, stated: positions are clamped to the box after (1) and (4) (Yang's demo clamps
+//! the old position instead: not copied); the global best moves whenever a bat finds a better
+//! point, accepted or not (as in Yang's pseudo-code); t in eq. (6) is the iteration number.
+
+use crate::runner::{Optimizer, Search};
+
+/// BA's parameters; `Default` is seed 000's baseline setting.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BatParameters {
+    pub population: usize,
+    pub frequency_min: f64,
+    pub frequency_max: f64,
+    pub initial_loudness: (f64, f64),
+    pub initial_pulse_rate: (f64, f64),
+    pub pulse_rate_max: f64,
+    /// Loudness decay α of eq. (5).
+    pub alpha: f64,
+    /// Pulse-rate growth γ of eq. (6).
+    pub gamma: f64,
+}
+
+impl Default for BatParameters {
+    fn default() -> Self {
+        Self {
+            population: 500,
+            frequency_min: -2.0,
+            frequency_max: 0.0,
+            initial_loudness: (1.0, 2.0),
+            initial_pulse_rate: (0.0, 0.5),
+            pulse_rate_max: 0.9,
+            alpha: 0.9,
+            gamma: 0.9,
+        }
+    }
+}
+
+/// The bat algorithm.
+#[derive(Debug, Clone, Default)]
+pub struct Bat {
+    parameters: BatParameters,
+    positions: Vec<Vec<f64>>,
+    velocities: Vec<Vec<f64>>,
+    costs: Vec<f64>,
+    loudness: Vec<f64>,
+    pulse_rate: Vec<f64>,
+    best: Vec<f64>,
+    best_cost: f64,
+}
+
+impl Bat {
+    pub fn new(parameters: BatParameters) -> Self {
+        Self {
+            parameters,
+            ..Self::default()
+        }
+    }
+}
+
+impl Optimizer for Bat {
+    fn name(&self) -> &'static str {
+        "BA"
+    }
+
+    fn start(&mut self, search: &mut Search) {
+        let population = self.parameters.population.max(1);
+        let dimension = search.dimension();
+        self.positions = (0..population).map(|_| search.random_position()).collect();
+        self.velocities = vec![vec![0.0; dimension]; population];
+        self.costs = self.positions.iter().map(|x| search.evaluate(x)).collect();
+        let (low, high) = self.parameters.initial_loudness;
+        self.loudness = (0..population)
+            .map(|_| search.uniform_in(low, high))
+            .collect();
+        let (low, high) = self.parameters.initial_pulse_rate;
+        self.pulse_rate = (0..population)
+            .map(|_| search.uniform_in(low, high))
+            .collect();
+        let best = index_of_smallest(&self.costs);
+        self.best = self.positions[best].clone();
+        self.best_cost = self.costs[best];
+    }
+
+    fn step(&mut self, search: &mut Search) {
+        let parameters = &self.parameters;
+        let t = search.iteration() as f64;
+        let mean_loudness = self.loudness.iter().sum::<f64>() / self.loudness.len() as f64;
+        let mut candidate = vec![0.0; search.dimension()];
+        for bat in 0..self.positions.len() {
+            let frequency = search.uniform_in(parameters.frequency_min, parameters.frequency_max);
+            let (position, velocity) = (&self.positions[bat], &mut self.velocities[bat]);
+            for d in 0..candidate.len() {
+                velocity[d] += (position[d] - self.best[d]) * frequency; // eq. (2)
+                candidate[d] = position[d] + velocity[d]; // eq. (1)
+            }
+            if search.uniform() > self.pulse_rate[bat] {
+                for (d, value) in candidate.iter_mut().enumerate() {
+                    *value = self.best[d] + search.uniform_in(-1.0, 1.0) * mean_loudness;
+                    // eq. (4)
+                }
+            }
+            search.clamp(&mut candidate);
+            let cost = search.evaluate(&candidate);
+            if cost <= self.costs[bat] && search.uniform() < self.loudness[bat] {
+                self.positions[bat].copy_from_slice(&candidate);
+                self.costs[bat] = cost;
+                self.loudness[bat] *= parameters.alpha; // eq. (5)
+                self.pulse_rate[bat] =
+                    parameters.pulse_rate_max * (1.0 - (-parameters.gamma * t).exp());
+                // eq. (6)
+            }
+            if cost < self.best_cost {
+                self.best.copy_from_slice(&candidate);
+                self.best_cost = cost;
+            }
+        }
+    }
+}
+
+/// The index of the smallest cost (the first on ties).
+pub(crate) fn index_of_smallest(costs: &[f64]) -> usize {
+    let mut best = 0;
+    for (index, &cost) in costs.iter().enumerate() {
+        if cost < costs[best] {
+            best = index;
+        }
+    }
+    best
+}

@@ -1,0 +1,200 @@
+//! IBA-FCS: the improved bat algorithm with a frequency-conversion strategy, adaptive local
+//! search and mutation (seed 000 §2, eqs. 8-15).
+//!
+//! At progress k = t / t_max (the Runner's `progress()`):
+//! - (9)  f1 = α_b·(1 − e^{−|F_avg − F_min|}) + γ_b·(1 − k) + f_min,   f2 = S_F − f1
+//! - (11) ω_b = ω_max − k·(ω_max − ω_min);  μ = μ_max − k·(μ_max − μ_min) (linear, §2.5)
+//! - (14) A = f1 / f_max,  (15) R = f2 / f_max, with the §2.5 controls A ≥ A_min, R ≤ R_max
+//! - (8)  v_i = ω_b·v_i + f1·r1·(h_i − x_i) + f2·r2·(x_* − x_i),  r1, r2 ~ U(0.5, 1.5)
+//! - (10) x_i = x_i + μ·v_i
+//! - local search (§2.2): β_i ~ U[0, R_max]; if β_i < R:
+//!   (12) x_i = x_* + δ·V·A·g(k), δ ~ U[−1, 1] per coordinate, V = box width / population,
+//!   (13) g(k) = a_g·exp(−Σ_j b_j k^j) with J = 2, a_g = 2.1766, b = (−2.0886, 27.3349)
+//! - mutation (§2.3): a bat that did not search locally is reset to a random point when
+//!   β1 < A and β2 > ρ (β1, β2 ~ U[0, 1]).
+//! - (§2.4 step 5) every bat moves to its new point; its personal best h_i and the global
+//!   best x_* are kept by cost.
+//!
+//! Parameters (`Default`): `../shared/data/seed000_orchard.json`, i.e. §2.5.
+//!
+//! Decisions where the seed is silent (docs/decisions/0007-swarm-engine.md): r1, r2 and δ are
+//! drawn per coordinate; A_min and R_max bound A and R of eqs. (14)-(15) (the seed lists them
+//! as "the remaining control parameters" and says A must not fall to 0 so that mutation
+//! continues late); ρ, not given, is 0.99 (decision 0007: of 0.9, 0.99 and 1, the best on Table 1 in a 4-run trial); F_avg is the mean cost of the bats' current points
+//! and F_min the global best cost; a reset bat restarts with zero velocity; positions are
+//! clamped to the box.
+
+use super::bat::index_of_smallest;
+use crate::runner::{Optimizer, Search};
+
+/// IBA-FCS's parameters; `Default` is seed 000 §2.5.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IbaFcsParameters {
+    pub population: usize,
+    pub omega_max: f64,
+    pub omega_min: f64,
+    pub alpha_b: f64,
+    pub gamma_b: f64,
+    /// S_F = f1 + f2.
+    pub frequency_sum: f64,
+    pub frequency_min: f64,
+    pub frequency_max: f64,
+    pub mu_max: f64,
+    pub mu_min: f64,
+    pub loudness_min: f64,
+    pub pulse_rate_max: f64,
+    /// g(k) = a_g·exp(−Σ_j b_j k^j), eq. (13).
+    pub step_scale: f64,
+    pub step_exponents: Vec<f64>,
+    /// ρ of §2.3: a mutating bat is reset when β2 > ρ.
+    pub mutation_threshold: f64,
+}
+
+impl Default for IbaFcsParameters {
+    fn default() -> Self {
+        Self {
+            population: 500,
+            omega_max: 0.9,
+            omega_min: 0.1,
+            alpha_b: 1.0,
+            gamma_b: 1.5,
+            frequency_sum: 3.0,
+            frequency_min: 0.5,
+            frequency_max: 2.5,
+            mu_max: 0.7,
+            mu_min: 0.3,
+            loudness_min: 0.3,
+            pulse_rate_max: 0.7,
+            step_scale: 2.1766,
+            step_exponents: vec![-2.0886, 27.3349],
+            mutation_threshold: 0.99,
+        }
+    }
+}
+
+impl IbaFcsParameters {
+    /// g(k) of eq. (13).
+    pub fn step_decay(&self, k: f64) -> f64 {
+        let exponent: f64 = self
+            .step_exponents
+            .iter()
+            .enumerate()
+            .map(|(j, b)| b * k.powi(j as i32 + 1))
+            .sum();
+        self.step_scale * (-exponent).exp()
+    }
+}
+
+/// The improved bat algorithm IBA-FCS.
+#[derive(Debug, Clone, Default)]
+pub struct IbaFcs {
+    parameters: IbaFcsParameters,
+    positions: Vec<Vec<f64>>,
+    velocities: Vec<Vec<f64>>,
+    costs: Vec<f64>,
+    personal_best: Vec<Vec<f64>>,
+    personal_best_cost: Vec<f64>,
+    best: Vec<f64>,
+    best_cost: f64,
+}
+
+impl IbaFcs {
+    pub fn new(parameters: IbaFcsParameters) -> Self {
+        Self {
+            parameters,
+            ..Self::default()
+        }
+    }
+}
+
+impl Optimizer for IbaFcs {
+    fn name(&self) -> &'static str {
+        "IBA-FCS"
+    }
+
+    fn start(&mut self, search: &mut Search) {
+        let population = self.parameters.population.max(1);
+        self.positions = (0..population).map(|_| search.random_position()).collect();
+        self.velocities = vec![vec![0.0; search.dimension()]; population];
+        self.costs = self.positions.iter().map(|x| search.evaluate(x)).collect();
+        self.personal_best = self.positions.clone();
+        self.personal_best_cost = self.costs.clone();
+        let best = index_of_smallest(&self.costs);
+        self.best = self.positions[best].clone();
+        self.best_cost = self.costs[best];
+    }
+
+    fn step(&mut self, search: &mut Search) {
+        let p = &self.parameters;
+        let k = search.progress();
+        let finite: Vec<f64> = self
+            .costs
+            .iter()
+            .copied()
+            .filter(|c| c.is_finite())
+            .collect();
+        let average = finite.iter().sum::<f64>() / finite.len().max(1) as f64;
+        let spread = if finite.is_empty() {
+            0.0
+        } else {
+            (average - self.best_cost).abs()
+        };
+        let f1 = p.alpha_b * (1.0 - (-spread).exp()) + p.gamma_b * (1.0 - k) + p.frequency_min; // eq. (9)
+        let f2 = p.frequency_sum - f1;
+        let omega = p.omega_max - k * (p.omega_max - p.omega_min); // eq. (11)
+        let mu = p.mu_max - k * (p.mu_max - p.mu_min);
+        let loudness = (f1 / p.frequency_max).max(p.loudness_min); // eq. (14)
+        let pulse_rate = (f2 / p.frequency_max).min(p.pulse_rate_max); // eq. (15)
+        let local_step = loudness * p.step_decay(k); // A·g(k) of eq. (12)
+        let population = self.positions.len() as f64;
+        let dimension = search.dimension();
+
+        for bat in 0..self.positions.len() {
+            let position = &mut self.positions[bat];
+            let velocity = &mut self.velocities[bat];
+            let personal = &self.personal_best[bat];
+            for d in 0..dimension {
+                let r1 = search.uniform_in(0.5, 1.5);
+                let r2 = search.uniform_in(0.5, 1.5);
+                velocity[d] = omega * velocity[d]
+                    + f1 * r1 * (personal[d] - position[d])
+                    + f2 * r2 * (self.best[d] - position[d]); // eq. (8)
+                position[d] += mu * velocity[d]; // eq. (10)
+            }
+            if search.uniform_in(0.0, p.pulse_rate_max) < pulse_rate {
+                for (d, value) in position.iter_mut().enumerate() {
+                    let width = search.bounds().width(d) / population; // V of eq. (12)
+                    *value = self.best[d] + search.uniform_in(-1.0, 1.0) * width * local_step;
+                }
+            } else if search.uniform() < loudness && search.uniform() > p.mutation_threshold {
+                *position = search.random_position();
+                velocity.fill(0.0);
+            }
+            search.clamp(position);
+            let cost = search.evaluate(position);
+            self.costs[bat] = cost;
+            if cost < self.personal_best_cost[bat] {
+                self.personal_best[bat].copy_from_slice(position);
+                self.personal_best_cost[bat] = cost;
+            }
+            if cost < self.best_cost {
+                self.best.copy_from_slice(position);
+                self.best_cost = cost;
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn step_decay_follows_eq_13() {
+        let parameters = IbaFcsParameters::default();
+        assert!((parameters.step_decay(0.0) - 2.1766).abs() < 1e-12);
+        let at_half = 2.1766 * (-(-2.0886 * 0.5 + 27.3349 * 0.25_f64)).exp();
+        assert!((parameters.step_decay(0.5) - at_half).abs() < 1e-15);
+        assert!(parameters.step_decay(1.0) < 1e-10);
+    }
+}

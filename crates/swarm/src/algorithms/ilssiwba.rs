@@ -1,0 +1,179 @@
+//! ILSSIWBA: bat algorithm with iterated local search and a stochastic inertia weight
+//! (Gan, Cao, Wu, Chen 2018, Expert Systems with Applications 104:202-212), as MISSION.md
+//! decision 9 fixes it: only its parameters are in seed 000, so it is built from its idea.
+//!
+//! For bat i at iteration t:
+//! - frequency       f_i = f_min + (f_max − f_min)·β, β ~ U[0, 1], f ∈ [−2, 2]
+//! - inertia (SIW)   w_i = μ_min + (μ_max − μ_min)·U(0, 1) + σ·N(0, 1), μ ∈ [0.4, 0.9], σ = 0.2
+//! - velocity        v_i = w_i·v_i + (x_i − x_*)·f_i;  x_i' = x_i + v_i
+//! - local walk      if rand > r_i: x_i' = x_* + ε·Ā, ε ~ U[−1, 1] per coordinate (BA eq. 4)
+//! - acceptance      no worse and rand < A_i; then A_i ← max(α·A_i, A_x) (loudness floor
+//!   A_x = 0.6) and r_i ← r_x·(1 − exp(−γ·t)) (pulse-rate cap r_x = 0.7), α = γ = 0.9
+//! - iterated local search (ILS), once per iteration: kick x_* by a Gaussian of scale
+//!   s = 0.05·(1 − k)·width + 1e-9·width, then `local_search_evaluations − 1` steps of a
+//!   (1+1) hill climb from the kicked point whose step halves on failure; the result replaces
+//!   x_* when better. k is the Runner's progress (t / t_max).
+//!
+//! The ILS spends `local_search_evaluations` (default 10) evaluations per iteration on top of
+//! the population's: under an evaluation budget ILSSIWBA simply runs fewer iterations.
+//! Initial loudness U(1, 2) and pulse rate U(0, 0.5) as in the BA baseline. Positions are
+//! clamped to the box.
+
+use super::bat::index_of_smallest;
+use crate::runner::{Optimizer, Search};
+
+/// ILSSIWBA's parameters; `Default` is seed 000 §2.5 plus the documented ILS budget.
+#[derive(Debug, Clone, PartialEq)]
+pub struct IlssiwbaParameters {
+    pub population: usize,
+    pub frequency_min: f64,
+    pub frequency_max: f64,
+    pub inertia_mean_min: f64,
+    pub inertia_mean_max: f64,
+    pub inertia_deviation: f64,
+    pub pulse_rate_cap: f64,
+    pub loudness_floor: f64,
+    pub initial_loudness: (f64, f64),
+    pub initial_pulse_rate: (f64, f64),
+    pub alpha: f64,
+    pub gamma: f64,
+    pub local_search_evaluations: usize,
+}
+
+impl Default for IlssiwbaParameters {
+    fn default() -> Self {
+        Self {
+            population: 500,
+            frequency_min: -2.0,
+            frequency_max: 2.0,
+            inertia_mean_min: 0.4,
+            inertia_mean_max: 0.9,
+            inertia_deviation: 0.2,
+            pulse_rate_cap: 0.7,
+            loudness_floor: 0.6,
+            initial_loudness: (1.0, 2.0),
+            initial_pulse_rate: (0.0, 0.5),
+            alpha: 0.9,
+            gamma: 0.9,
+            local_search_evaluations: 10,
+        }
+    }
+}
+
+/// The ILSSIWBA bat algorithm.
+#[derive(Debug, Clone, Default)]
+pub struct Ilssiwba {
+    parameters: IlssiwbaParameters,
+    positions: Vec<Vec<f64>>,
+    velocities: Vec<Vec<f64>>,
+    costs: Vec<f64>,
+    loudness: Vec<f64>,
+    pulse_rate: Vec<f64>,
+    best: Vec<f64>,
+    best_cost: f64,
+}
+
+impl Ilssiwba {
+    pub fn new(parameters: IlssiwbaParameters) -> Self {
+        Self {
+            parameters,
+            ..Self::default()
+        }
+    }
+
+    /// The iterated local search around the global best.
+    fn iterated_local_search(&mut self, search: &mut Search) {
+        let evaluations = self.parameters.local_search_evaluations;
+        if evaluations == 0 {
+            return;
+        }
+        let dimension = search.dimension();
+        let k = search.progress();
+        let scale: Vec<f64> = (0..dimension)
+            .map(|d| search.bounds().width(d) * (0.05 * (1.0 - k) + 1e-9))
+            .collect();
+        let mut current: Vec<f64> = (0..dimension)
+            .map(|d| self.best[d] + scale[d] * search.normal())
+            .collect();
+        search.clamp(&mut current);
+        let mut current_cost = search.evaluate(&current);
+        let mut step = 0.5;
+        let mut trial = vec![0.0; dimension];
+        for _ in 1..evaluations {
+            for d in 0..dimension {
+                trial[d] = current[d] + step * scale[d] * search.normal();
+            }
+            search.clamp(&mut trial);
+            let cost = search.evaluate(&trial);
+            if cost < current_cost {
+                current.copy_from_slice(&trial);
+                current_cost = cost;
+            } else {
+                step *= 0.5;
+            }
+        }
+        if current_cost < self.best_cost {
+            self.best = current;
+            self.best_cost = current_cost;
+        }
+    }
+}
+
+impl Optimizer for Ilssiwba {
+    fn name(&self) -> &'static str {
+        "ILSSIWBA"
+    }
+
+    fn start(&mut self, search: &mut Search) {
+        let population = self.parameters.population.max(1);
+        self.positions = (0..population).map(|_| search.random_position()).collect();
+        self.velocities = vec![vec![0.0; search.dimension()]; population];
+        self.costs = self.positions.iter().map(|x| search.evaluate(x)).collect();
+        let (low, high) = self.parameters.initial_loudness;
+        self.loudness = (0..population)
+            .map(|_| search.uniform_in(low, high))
+            .collect();
+        let (low, high) = self.parameters.initial_pulse_rate;
+        self.pulse_rate = (0..population)
+            .map(|_| search.uniform_in(low, high))
+            .collect();
+        let best = index_of_smallest(&self.costs);
+        self.best = self.positions[best].clone();
+        self.best_cost = self.costs[best];
+    }
+
+    fn step(&mut self, search: &mut Search) {
+        let p = self.parameters.clone();
+        let t = search.iteration() as f64;
+        let mean_loudness = self.loudness.iter().sum::<f64>() / self.loudness.len() as f64;
+        let mut candidate = vec![0.0; search.dimension()];
+        for bat in 0..self.positions.len() {
+            let frequency = search.uniform_in(p.frequency_min, p.frequency_max);
+            let inertia = search.uniform_in(p.inertia_mean_min, p.inertia_mean_max)
+                + p.inertia_deviation * search.normal();
+            let (position, velocity) = (&self.positions[bat], &mut self.velocities[bat]);
+            for d in 0..candidate.len() {
+                velocity[d] = inertia * velocity[d] + (position[d] - self.best[d]) * frequency;
+                candidate[d] = position[d] + velocity[d];
+            }
+            if search.uniform() > self.pulse_rate[bat] {
+                for (d, value) in candidate.iter_mut().enumerate() {
+                    *value = self.best[d] + search.uniform_in(-1.0, 1.0) * mean_loudness;
+                }
+            }
+            search.clamp(&mut candidate);
+            let cost = search.evaluate(&candidate);
+            if cost <= self.costs[bat] && search.uniform() < self.loudness[bat] {
+                self.positions[bat].copy_from_slice(&candidate);
+                self.costs[bat] = cost;
+                self.loudness[bat] = (self.loudness[bat] * p.alpha).max(p.loudness_floor);
+                self.pulse_rate[bat] = p.pulse_rate_cap * (1.0 - (-p.gamma * t).exp());
+            }
+            if cost < self.best_cost {
+                self.best.copy_from_slice(&candidate);
+                self.best_cost = cost;
+            }
+        }
+        self.iterated_local_search(search);
+    }
+}

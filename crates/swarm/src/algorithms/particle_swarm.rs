@@ -1,0 +1,103 @@
+//! Particle swarm optimisation (PSO): Kennedy and Eberhart 1995, with the inertia weight of
+//! Shi and Eberhart 1998, in seed 000's setting (c1 = c2 = 2, w = 0.729).
+//!
+//! - v_i = w·v_i + c1·r1·(p_i − x_i) + c2·r2·(g − x_i),  r1, r2 ~ U[0, 1] per coordinate
+//! - x_i = x_i + v_i
+//! - p_i and g: the personal and global best points, kept by cost.
+//!
+//! Deviation, stated: each velocity coordinate is limited to ± the box width in that
+//! coordinate (with c1 = c2 = 2 and w = 0.729 the swarm sits at the edge of divergence, and
+//! without a limit velocities can overflow), and positions are clamped to the box.
+
+use super::bat::index_of_smallest;
+use crate::runner::{Optimizer, Search};
+
+/// PSO's parameters; `Default` is seed 000's setting.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ParticleSwarmParameters {
+    pub population: usize,
+    pub inertia: f64,
+    pub cognitive: f64,
+    pub social: f64,
+    /// Velocity limit as a share of the box width.
+    pub velocity_limit: f64,
+}
+
+impl Default for ParticleSwarmParameters {
+    fn default() -> Self {
+        Self {
+            population: 500,
+            inertia: 0.729,
+            cognitive: 2.0,
+            social: 2.0,
+            velocity_limit: 1.0,
+        }
+    }
+}
+
+/// Global-best particle swarm optimisation.
+#[derive(Debug, Clone, Default)]
+pub struct ParticleSwarm {
+    parameters: ParticleSwarmParameters,
+    positions: Vec<Vec<f64>>,
+    velocities: Vec<Vec<f64>>,
+    personal_best: Vec<Vec<f64>>,
+    personal_best_cost: Vec<f64>,
+    best: Vec<f64>,
+    best_cost: f64,
+}
+
+impl ParticleSwarm {
+    pub fn new(parameters: ParticleSwarmParameters) -> Self {
+        Self {
+            parameters,
+            ..Self::default()
+        }
+    }
+}
+
+impl Optimizer for ParticleSwarm {
+    fn name(&self) -> &'static str {
+        "PSO"
+    }
+
+    fn start(&mut self, search: &mut Search) {
+        let population = self.parameters.population.max(1);
+        self.positions = (0..population).map(|_| search.random_position()).collect();
+        self.velocities = vec![vec![0.0; search.dimension()]; population];
+        self.personal_best = self.positions.clone();
+        self.personal_best_cost = self.positions.iter().map(|x| search.evaluate(x)).collect();
+        let best = index_of_smallest(&self.personal_best_cost);
+        self.best = self.positions[best].clone();
+        self.best_cost = self.personal_best_cost[best];
+    }
+
+    fn step(&mut self, search: &mut Search) {
+        let p = &self.parameters;
+        let dimension = search.dimension();
+        for particle in 0..self.positions.len() {
+            let position = &mut self.positions[particle];
+            let velocity = &mut self.velocities[particle];
+            let personal = &self.personal_best[particle];
+            for d in 0..dimension {
+                let limit = p.velocity_limit * search.bounds().width(d);
+                let (r1, r2) = (search.uniform(), search.uniform());
+                velocity[d] = (p.inertia * velocity[d]
+                    + p.cognitive * r1 * (personal[d] - position[d])
+                    + p.social * r2 * (self.best[d] - position[d]))
+                    .clamp(-limit, limit);
+                position[d] += velocity[d];
+            }
+            search.clamp(position);
+            let cost = search.evaluate(position);
+            if cost < self.personal_best_cost[particle] {
+                self.personal_best[particle].copy_from_slice(position);
+                self.personal_best_cost[particle] = cost;
+                if cost < self.best_cost {
+                    self.best.copy_from_slice(position);
+                    self.best_cost = cost;
+                }
+            }
+        }
+    }
+}

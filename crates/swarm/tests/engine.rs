@@ -1,0 +1,75 @@
+//! The engine's promises over every algorithm: conformance, parallel = serial, CEC 2005 data.
+
+use swarm::algorithms::Algorithm;
+use swarm::functions::{self, FunctionProblem};
+use swarm::{conformance, Runner, Termination};
+
+#[test]
+fn every_optimizer_passes_the_conformance_suite() {
+    for algorithm in Algorithm::ALL {
+        conformance::check(|| algorithm.build(40)).unwrap_or_else(|fault| panic!("{fault}"));
+    }
+}
+
+#[test]
+fn parallel_runs_equal_serial_runs() {
+    let problem = FunctionProblem::new(functions::by_key("f5").unwrap(), 10).unwrap();
+    let runner = Runner::new(Termination::iterations(20), 99).unwrap();
+    for algorithm in [Algorithm::IbaFcs, Algorithm::Lshade] {
+        let parallel = runner.run_many(|| algorithm.build(30), &problem, 6, &|_| {});
+        for (run, outcome) in parallel.iter().enumerate() {
+            let serial = runner.run(&mut algorithm.build(30), &problem, run as u64);
+            assert_eq!(outcome.run, run as u64);
+            assert_eq!(outcome.best_cost.to_bits(), serial.best_cost.to_bits());
+            assert_eq!(outcome.history, serial.history);
+        }
+    }
+}
+
+#[test]
+fn cec2005_functions_match_the_published_vectors() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../data/cec2005/vectors.json"
+    ))
+    .unwrap();
+    let vectors: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let points: Vec<Vec<f64>> = serde_json::from_value(vectors["points"].clone()).unwrap();
+    for (name, key) in [("F1", "f1"), ("F2", "f2"), ("F3", "f3"), ("F6", "f6")] {
+        let expected: Vec<f64> = serde_json::from_value(vectors["values"][name].clone()).unwrap();
+        let function = functions::by_key(key).unwrap();
+        for (point, want) in points.iter().zip(&expected) {
+            let got = function.evaluate(point);
+            let error = (got - want).abs() / want.abs().max(1.0);
+            assert!(
+                error <= 1e-9,
+                "{name}: {got} vs {want} (relative {error:e})"
+            );
+        }
+    }
+}
+
+#[test]
+fn f3_refuses_dimensions_without_a_rotation_matrix() {
+    assert!(FunctionProblem::new(functions::by_key("f3").unwrap(), 30).is_err());
+    assert!(FunctionProblem::new(functions::by_key("f1").unwrap(), 101).is_err());
+    assert!(FunctionProblem::new(functions::by_key("f1").unwrap(), 50).is_ok());
+}
+
+#[test]
+fn an_evaluation_budget_is_never_exceeded_and_a_target_stops_early() {
+    let problem = FunctionProblem::new(functions::by_key("f1").unwrap(), 10).unwrap();
+    let runner = Runner::new(Termination::evaluations(1_234), 1).unwrap();
+    for algorithm in Algorithm::ALL {
+        let outcome = runner.run(&mut algorithm.build(50), &problem, 0);
+        assert!(
+            outcome.evaluations <= 1_234,
+            "{algorithm}: {}",
+            outcome.evaluations
+        );
+    }
+    let runner = Runner::new(Termination::iterations(10_000).and_target(-449.0), 1).unwrap();
+    let outcome = runner.run(&mut Algorithm::IbaFcs.build(50), &problem, 0);
+    assert_eq!(outcome.stopped_by, swarm::StopReason::Target);
+    assert!(outcome.iterations < 10_000);
+}
