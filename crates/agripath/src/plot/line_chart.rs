@@ -52,7 +52,7 @@ fn ticks(low: f64, high: f64, wanted: usize) -> Vec<f64> {
 
 fn tick_label(value: f64) -> String {
     if value != 0.0 && (value.abs() >= 1e5 || value.abs() < 1e-3) {
-        format!("{value:.0e}")
+        format!("{value:e}")
     } else {
         format!("{value}")
     }
