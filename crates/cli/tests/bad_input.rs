@@ -338,7 +338,37 @@ fn corpus() -> Vec<(Vec<String>, String, &'static str)> {
             "flat".into(),
             "unbounded",
         ),
+        (
+            bench_with(&["--runs", "1", "--dim", "5", "--algorithms", "pso,nope"]),
+            "--algorithms".into(),
+            "unknown algorithm 'nope'",
+        ),
+        (
+            bench_with(&["--runs", "1", "--functions", "f3", "--dim", "30"]),
+            "--dim".into(),
+            "only 50",
+        ),
+        (
+            bench_with(&["--runs", "0", "--dim", "5"]),
+            "--runs".into(),
+            "needs at least 1",
+        ),
+        (
+            bench_with(&["--runs", "1", "--dim", "5", "--functions", "f10"]),
+            "--functions".into(),
+            "unknown function",
+        ),
     ]
+}
+
+/// `bench functions` with a tiny budget and extra arguments.
+fn bench_with(extra: &[&str]) -> Vec<String> {
+    let mut arguments: Vec<String> = ["bench", "functions", "--pop", "4", "--iters", "2"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    arguments.extend(extra.iter().map(|s| s.to_string()));
+    arguments
 }
 
 #[test]

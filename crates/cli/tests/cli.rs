@@ -358,3 +358,53 @@ fn headland_0_is_the_seed_layout_and_repro_prints_table_7() {
     assert_eq!(s2["edge_passes"], 0);
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+#[test]
+fn bench_functions_prints_the_table_and_writes_its_folder_repeatably() {
+    let folder = scratch("bench");
+    let arguments = [
+        "bench",
+        "functions",
+        "--dim",
+        "10",
+        "--pop",
+        "20",
+        "--iters",
+        "20",
+        "--runs",
+        "3",
+        "--algorithms",
+        "iba-fcs,lshade",
+        "--functions",
+        "f1,f7",
+        "--seed",
+        "4",
+        "--out",
+        "out",
+    ];
+    let text = stdout(&agripath(&arguments, &folder));
+    assert!(text.contains("| f1 | best |") && text.contains("IBA-FCS") && text.contains("L-SHADE"));
+    for name in [
+        "table.md",
+        "table.csv",
+        "convergence_f1.svg",
+        "convergence_f7.svg",
+    ] {
+        assert!(folder.join("out").join(name).is_file(), "{name}");
+    }
+    let first = std::fs::read_to_string(folder.join("out/table.csv")).unwrap();
+    assert_eq!(first.lines().count(), 5);
+    stdout(&agripath(&arguments, &folder));
+    let again = std::fs::read_to_string(folder.join("out/table.csv")).unwrap();
+    let numbers = |csv: &str| -> Vec<String> {
+        // Everything but the timing column is reproducible from the seed.
+        csv.lines()
+            .map(|line| {
+                let mut fields: Vec<&str> = line.split(',').collect();
+                fields.remove(9);
+                fields.join(",")
+            })
+            .collect()
+    };
+    assert_eq!(numbers(&first), numbers(&again));
+}
