@@ -17,6 +17,7 @@ pub mod plot;
 pub mod report;
 pub mod repro;
 pub mod sequence;
+pub mod sortie;
 pub mod summary;
 pub mod terrain;
 

@@ -185,6 +185,9 @@ pub enum ReproTable {
     /// Seed 000 Table 2: PSO, GA, BA, ILSSIWBA, IBA-FCS (and L-SHADE) on nine functions, D = 50.
     #[value(name = "seed000-table2")]
     Seed000Table2,
+    /// Seed 003 Tables 4 and 5: return points on the strip, unplanned / simple / GSA / exact.
+    #[value(name = "seed003-table4")]
+    Seed003Table4,
     /// Seed 001 Table 7: headings, swath counts and lengths of the five-field farm.
     #[value(name = "seed001-table7")]
     Seed001Table7,

@@ -355,6 +355,22 @@ fn repro(
             }
             Ok(())
         }
+        ReproTable::Seed003Table4 => {
+            use agripath::repro::seed003_table4::{case, to_text, StripSlope};
+            use agripath::terrain::Flat;
+            emitln!("Seed 003, Tables 4 and 5: sorties on the 700 m × 100 m strip, ours (paper)");
+            let sloped = case(&StripSlope, seed)?;
+            emitln!();
+            emit!("{}", to_text(&sloped));
+            let flat = case(&Flat::new(0.0), seed)?;
+            emitln!();
+            emitln!("The same on flat ground (the paper's 2D case):");
+            emit!("{}", to_text(&flat));
+            emitln!();
+            emitln!("Non-spray time = round trips + max(battery swap, refill) per return (the turns, equal for every");
+            emitln!("plan, are left out as in the paper's Table 4). 'exact' is ours: the optimal returns for this route.");
+            Ok(())
+        }
         ReproTable::Seed001Table8 => {
             let scenario = agripath::demo::scenario()?;
             emitln!("Seed 001, Table 8: transfer path length (m), paper beside agripath");

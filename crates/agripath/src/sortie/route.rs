@@ -39,6 +39,8 @@ pub struct WorkRoute {
     flight_s: Vec<f64>,
     /// Non-spray (turn and transfer) metres from the start to each point.
     other_m: Vec<f64>,
+    /// Seconds spent spraying over the whole route.
+    spray_s: f64,
 }
 
 /// Speeds for timing a route, m/s.
@@ -62,11 +64,15 @@ impl WorkRoute {
         extra_m: Option<Vec<f64>>,
         speeds: Speeds,
     ) -> Self {
-        assert_eq!(segments.len() + 1, points.len().max(1), "one segment between each two points");
+        assert_eq!(
+            segments.len() + 1,
+            points.len().max(1),
+            "one segment between each two points"
+        );
         let mut spray_m = Vec::with_capacity(points.len());
         let mut flight_s = Vec::with_capacity(points.len());
         let mut other_m = Vec::with_capacity(points.len());
-        let (mut spray, mut flight, mut other) = (0.0, 0.0, 0.0);
+        let (mut spray, mut flight, mut other, mut spray_s) = (0.0, 0.0, 0.0, 0.0);
         for (index, point) in points.iter().enumerate() {
             if index > 0 {
                 let length = distance_3d(&points[index - 1], point)
@@ -75,6 +81,7 @@ impl WorkRoute {
                     Segment::Spray => {
                         spray += length;
                         flight += length / speeds.spray_mps;
+                        spray_s += length / speeds.spray_mps;
                     }
                     Segment::Turn => {
                         other += length;
@@ -96,6 +103,7 @@ impl WorkRoute {
             spray_m,
             flight_s,
             other_m,
+            spray_s,
         }
     }
 
@@ -167,6 +175,11 @@ impl WorkRoute {
         self.other_m[to] - self.other_m[from]
     }
 
+    /// Seconds of turns and transfers over the whole route (E's D_u / v_u).
+    pub fn non_spray_flight_s(&self) -> f64 {
+        self.flight_s.last().copied().unwrap_or(0.0) - self.spray_s
+    }
+
     /// All spray metres.
     pub fn total_spray_m(&self) -> f64 {
         self.spray_m.last().copied().unwrap_or(0.0)
@@ -178,7 +191,10 @@ impl WorkRoute {
         (1..self.points.len())
             .filter(|&i| {
                 self.segments[i - 1] == Segment::Spray
-                    && self.segments.get(i).is_none_or(|next| *next != Segment::Spray)
+                    && self
+                        .segments
+                        .get(i)
+                        .is_none_or(|next| *next != Segment::Spray)
             })
             .collect()
     }
@@ -187,7 +203,8 @@ impl WorkRoute {
     pub fn spray_run_starts(&self) -> Vec<usize> {
         (0..self.points.len().saturating_sub(1))
             .filter(|&i| {
-                self.segments[i] == Segment::Spray && (i == 0 || self.segments[i - 1] != Segment::Spray)
+                self.segments[i] == Segment::Spray
+                    && (i == 0 || self.segments[i - 1] != Segment::Spray)
             })
             .collect()
     }

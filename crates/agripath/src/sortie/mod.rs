@@ -1,0 +1,507 @@
+//! Sorties: where the drone breaks off a route to refill the tank and swap the battery at the
+//! supply point (seed 003, MISSION.md decision 4).
+//!
+//! A route ([`route::WorkRoute`]) is split at break points; sortie k flies from the supply
+//! point P0 to its first point, along the route to its last, and back. Seed 003's objective
+//! (eq. 2), for the returns n = 1 … N−1:
+//!
+//! E = D_u / v_u + Σ_n [ max(T_e, T_p,n) + 2 (‖P_n, P0‖ + H_n) / v_off ]
+//!
+//! with ‖P_n, P0‖ the horizontal distance, H_n the height difference (plus 2h where a safe
+//! transit height applies), T_e the battery swap and (eq. 5) T_p,n = t_b + (T_pmax − t_b)·D_{n+1} / D_max
+//! the refill for the next sortie's spray metres D_{n+1}. D_u / v_u (the turns) does not
+//! depend on the breaks. A sortie may spray at most D_max (one tank) and its flight time
+//! (out, route, back) may not exceed the battery endurance.
+//!
+//! Planners, chosen by value ([`SortiePlanner`]): `unplanned` (return when the tank or
+//! battery runs out), `simple` (the seed's: return at a swath end on the supply side before
+//! the tank runs out), `gsa` (the seed's gravitational search over the per-sortie spray
+//! thresholds, one search per number of returns) and `exact` (ours: the optimal breaks by a
+//! shortest path over the route's points).
+
+pub mod exact;
+pub mod grid;
+pub mod gsa;
+pub mod route;
+pub mod simple;
+pub mod unplanned;
+
+use std::fmt;
+use std::str::FromStr;
+
+use serde::Serialize;
+
+use crate::error::Fault;
+use crate::model::Vehicle;
+use route::{RoutePoint, WorkRoute};
+
+/// Slack for comparing metres and seconds against limits.
+const TOLERANCE: f64 = 1e-6;
+
+/// How return points are chosen.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum SortiePlanner {
+    Unplanned,
+    Simple,
+    Gsa,
+    Exact,
+}
+
+impl SortiePlanner {
+    pub const ALL: [SortiePlanner; 4] = [
+        SortiePlanner::Unplanned,
+        SortiePlanner::Simple,
+        SortiePlanner::Gsa,
+        SortiePlanner::Exact,
+    ];
+
+    pub fn key(self) -> &'static str {
+        match self {
+            SortiePlanner::Unplanned => "unplanned",
+            SortiePlanner::Simple => "simple",
+            SortiePlanner::Gsa => "gsa",
+            SortiePlanner::Exact => "exact",
+        }
+    }
+}
+
+impl fmt::Display for SortiePlanner {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.key())
+    }
+}
+
+impl FromStr for SortiePlanner {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        SortiePlanner::ALL
+            .into_iter()
+            .find(|planner| planner.key() == text.trim().to_ascii_lowercase())
+            .ok_or_else(|| {
+                format!("unknown sortie planner '{text}' (known: unplanned, simple, gsa, exact)")
+            })
+    }
+}
+
+/// The supply point and the vehicle figures the split depends on.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SortieModel {
+    /// P0: where the drone refills and swaps batteries.
+    pub supply: RoutePoint,
+    /// D_max: spray metres per tank; `None` when the tank does not limit a sortie.
+    pub spray_per_tank_m: Option<f64>,
+    pub endurance_s: f64,
+    pub battery_swap_s: f64,
+    pub refill_base_s: f64,
+    pub refill_max_s: f64,
+    pub transit_mps: f64,
+    /// Added to every one-way return leg: 2h where a safe transit height applies, metres.
+    pub return_climb_m: f64,
+    /// Litres sprayed per metre of swath, when the application rate is known.
+    pub litres_per_m: Option<f64>,
+}
+
+impl SortieModel {
+    /// The model of `vehicle` with supply point `supply`; `return_climb_m` is 2h when return
+    /// legs climb to the safe height, else 0.
+    pub fn new(vehicle: &Vehicle, supply: RoutePoint, return_climb_m: f64) -> Self {
+        Self {
+            supply,
+            spray_per_tank_m: vehicle.spray_length_per_tank_m(),
+            endurance_s: vehicle.battery_endurance_s,
+            battery_swap_s: vehicle.battery_swap_s,
+            refill_base_s: vehicle.refill_base_s,
+            refill_max_s: vehicle.refill_max_s,
+            transit_mps: vehicle.transit_speed_mps,
+            return_climb_m,
+            litres_per_m: vehicle
+                .application_rate_l_per_ha
+                .map(|rate| rate / 10_000.0 * vehicle.swath_width_m),
+        }
+    }
+
+    /// One way between a route point and P0: ‖P, P0‖ + H (+ 2h), metres.
+    pub fn leg_m(&self, point: &RoutePoint) -> f64 {
+        (point.x - self.supply.x).hypot(point.y - self.supply.y)
+            + (point.ground_m - self.supply.ground_m).abs()
+            + self.return_climb_m
+    }
+
+    /// Eq. (5): the refill before a sortie that sprays `next_spray_m`.
+    pub fn refill_s(&self, next_spray_m: f64) -> f64 {
+        match self.spray_per_tank_m {
+            Some(tank) => {
+                self.refill_base_s
+                    + (self.refill_max_s - self.refill_base_s) * (next_spray_m / tank).min(1.0)
+            }
+            None => self.refill_base_s,
+        }
+    }
+
+    /// The stop at the supply point before a sortie spraying `next_spray_m`: max(T_e, T_p).
+    pub fn service_s(&self, next_spray_m: f64) -> f64 {
+        self.battery_swap_s.max(self.refill_s(next_spray_m))
+    }
+
+    /// Flight time of the sortie over route points `first..=last`: out, along, back.
+    pub fn flight_s(&self, route: &WorkRoute, first: usize, last: usize) -> f64 {
+        let points = route.points();
+        (self.leg_m(&points[first]) + self.leg_m(&points[last])) / self.transit_mps
+            + route.flight_between(first, last)
+    }
+
+    /// Whether one tank and one battery fly the sortie `first..=last`.
+    pub fn feasible(&self, route: &WorkRoute, first: usize, last: usize) -> bool {
+        self.spray_per_tank_m
+            .is_none_or(|tank| route.spray_between(first, last) <= tank + TOLERANCE)
+            && self.flight_s(route, first, last) <= self.endurance_s + TOLERANCE
+    }
+
+    /// E's summand for a return at `at` followed by the sortie `at..=next_last`.
+    pub fn return_cost_s(&self, route: &WorkRoute, at: usize, next_last: usize) -> f64 {
+        self.service_s(route.spray_between(at, next_last))
+            + 2.0 * self.leg_m(&route.points()[at]) / self.transit_mps
+    }
+
+    /// The plan that breaks `route` at `breaks` (increasing point indices strictly inside).
+    pub fn evaluate(
+        &self,
+        route: &WorkRoute,
+        planner: SortiePlanner,
+        breaks: Vec<usize>,
+    ) -> SortiePlan {
+        let last_point = route.len().saturating_sub(1);
+        let mut bounds = vec![0];
+        bounds.extend(breaks.iter().copied());
+        bounds.push(last_point);
+        let mut sorties = Vec::new();
+        let (mut round_trip_m, mut swap_s, mut refill_s, mut service_s) = (0.0, 0.0, 0.0, 0.0);
+        for (k, pair) in bounds.windows(2).enumerate() {
+            let (first, last) = (pair[0], pair[1]);
+            let spray_m = route.spray_between(first, last);
+            let flight_s = self.flight_s(route, first, last);
+            if k > 0 {
+                round_trip_m += 2.0 * self.leg_m(&route.points()[first]);
+                swap_s += self.battery_swap_s;
+                refill_s += self.refill_s(spray_m);
+                service_s += self.service_s(spray_m);
+            }
+            sorties.push(Sortie {
+                first,
+                last,
+                spray_m,
+                litres: self.litres_per_m.map(|per_m| per_m * spray_m),
+                tank_fraction: self.spray_per_tank_m.map(|tank| spray_m / tank),
+                flight_s,
+                battery_fraction: flight_s / self.endurance_s,
+                feasible: self.feasible(route, first, last),
+            });
+        }
+        let round_trip_s = round_trip_m / self.transit_mps;
+        SortiePlan {
+            planner,
+            breaks,
+            feasible: sorties.iter().all(|sortie| sortie.feasible),
+            sorties,
+            round_trip_m,
+            round_trip_s,
+            battery_swap_s: swap_s,
+            refill_s,
+            service_s,
+            return_time_s: round_trip_s + service_s,
+            turn_time_s: route.non_spray_flight_s(),
+        }
+    }
+}
+
+/// One sortie of a plan.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Sortie {
+    /// First and last route point flown.
+    pub first: usize,
+    pub last: usize,
+    pub spray_m: f64,
+    pub litres: Option<f64>,
+    /// Share of a tank used.
+    pub tank_fraction: Option<f64>,
+    /// Out, along the route and back, seconds.
+    pub flight_s: f64,
+    /// Share of the battery endurance used (seed 003 Table 5).
+    pub battery_fraction: f64,
+    pub feasible: bool,
+}
+
+/// A route split into sorties, with seed 003 Table 4's figures.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SortiePlan {
+    pub planner: SortiePlanner,
+    /// Route point indices where the drone returns.
+    pub breaks: Vec<usize>,
+    pub sorties: Vec<Sortie>,
+    pub feasible: bool,
+    /// Σ 2 (‖P_n, P0‖ + H_n): all return round trips, metres.
+    pub round_trip_m: f64,
+    pub round_trip_s: f64,
+    pub battery_swap_s: f64,
+    pub refill_s: f64,
+    /// Σ max(T_e, T_p,n).
+    pub service_s: f64,
+    /// Round trips and service: E without the turns (Table 4's non-spraying time).
+    pub return_time_s: f64,
+    /// Turns and transfers along the route (E's D_u / v_u; the same for every split).
+    pub turn_time_s: f64,
+}
+
+impl SortiePlan {
+    pub fn returns(&self) -> usize {
+        self.breaks.len()
+    }
+
+    /// Seed 003's objective E (eq. 2), seconds.
+    pub fn objective_s(&self) -> f64 {
+        self.turn_time_s + self.return_time_s
+    }
+}
+
+/// Splits `route` with `planner`. `seed` drives GSA; the others are deterministic.
+pub fn plan_sorties(
+    route: &WorkRoute,
+    model: &SortieModel,
+    planner: SortiePlanner,
+    seed: u64,
+) -> Result<SortiePlan, Fault> {
+    if route.len() < 2 {
+        return Ok(model.evaluate(route, planner, vec![]));
+    }
+    unreachable_points(route, model)?;
+    let breaks = match planner {
+        SortiePlanner::Unplanned => unplanned::breaks(route, model)?,
+        SortiePlanner::Simple => simple::breaks(route, model)?,
+        SortiePlanner::Gsa => gsa::search(route, model, &gsa::GsaSettings::default(), seed)?.breaks,
+        SortiePlanner::Exact => exact::breaks(route, model)?,
+    };
+    Ok(model.evaluate(route, planner, breaks))
+}
+
+/// Refuses routes where one step already cannot be flown on one tank and one battery.
+fn unreachable_points(route: &WorkRoute, model: &SortieModel) -> Result<(), Fault> {
+    for index in 1..route.len() {
+        if !model.feasible(route, index - 1, index) {
+            let point = route.points()[index];
+            return Err(Fault::InvalidValue {
+                what: "battery_endurance_s".into(),
+                value: format!("{}", model.endurance_s),
+                why: format!(
+                    "the route near ({:.1}, {:.1}) cannot be reached and flown back on one battery and one tank",
+                    point.x, point.y
+                ),
+            });
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::route::{Segment, Speeds};
+    use super::*;
+
+    const SPEEDS: Speeds = Speeds {
+        spray_mps: 3.0,
+        turn_mps: 3.0,
+        transit_mps: 6.0,
+    };
+
+    fn model(tank_m: f64, endurance_s: f64) -> SortieModel {
+        SortieModel {
+            supply: RoutePoint {
+                x: 0.0,
+                y: 0.0,
+                ground_m: 0.0,
+            },
+            spray_per_tank_m: Some(tank_m),
+            endurance_s,
+            battery_swap_s: 60.0,
+            refill_base_s: 20.0,
+            refill_max_s: 120.0,
+            transit_mps: 6.0,
+            return_climb_m: 0.0,
+            litres_per_m: None,
+        }
+    }
+
+    /// A boustrophedon of `columns` columns of `length` m, with points every `step` m.
+    fn lawnmower(columns: usize, length: f64, step: f64) -> WorkRoute {
+        let mut points = Vec::new();
+        let mut segments = Vec::new();
+        for column in 0..columns {
+            let count = (length / step).round() as usize;
+            for k in 0..=count {
+                let along = k as f64 * step;
+                let y = if column % 2 == 0 {
+                    along
+                } else {
+                    length - along
+                };
+                if !points.is_empty() {
+                    segments.push(if k == 0 {
+                        Segment::Turn
+                    } else {
+                        Segment::Spray
+                    });
+                }
+                points.push(RoutePoint {
+                    x: 5.0 * column as f64 + 2.5,
+                    y,
+                    ground_m: 0.3 * (y / 50.0).sin(),
+                });
+            }
+        }
+        WorkRoute::new(points, segments, None, SPEEDS)
+    }
+
+    /// Every split by brute force: the lowest E over all feasible break sets.
+    fn brute_force(route: &WorkRoute, model: &SortieModel) -> Option<f64> {
+        let inner = route.len() - 2;
+        let mut best: Option<f64> = None;
+        for mask in 0u32..(1 << inner) {
+            let breaks: Vec<usize> = (0..inner)
+                .filter(|bit| mask & (1 << bit) != 0)
+                .map(|bit| bit + 1)
+                .collect();
+            let plan = model.evaluate(route, SortiePlanner::Exact, breaks);
+            if plan.feasible {
+                best = Some(best.map_or(plan.return_time_s, |b: f64| b.min(plan.return_time_s)));
+            }
+        }
+        best
+    }
+
+    fn random_route(seed: u64, count: usize) -> WorkRoute {
+        let mut stream = swarm::run_stream(seed, 0);
+        let mut points = vec![];
+        let mut segments = vec![];
+        let (mut x, mut y) = (10.0, 0.0);
+        for index in 0..count {
+            if index > 0 {
+                x += 40.0 * swarm::uniform(&mut stream);
+                y += 40.0 * (swarm::uniform(&mut stream) - 0.5);
+                segments.push(if swarm::uniform(&mut stream) < 0.7 {
+                    Segment::Spray
+                } else {
+                    Segment::Turn
+                });
+            }
+            points.push(RoutePoint {
+                x,
+                y,
+                ground_m: 3.0 * swarm::uniform(&mut stream),
+            });
+        }
+        WorkRoute::new(points, segments, None, SPEEDS)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(40))]
+
+        #[test]
+        fn exact_equals_brute_force_on_small_routes(seed in 0u64..10_000, count in 3usize..13, tank in 40.0f64..200.0) {
+            let route = random_route(seed, count);
+            let model = model(tank, 400.0);
+            let brute = brute_force(&route, &model);
+            match exact::breaks(&route, &model) {
+                Ok(breaks) => {
+                    let plan = model.evaluate(&route, SortiePlanner::Exact, breaks);
+                    prop_assert!(plan.feasible);
+                    let brute = brute.expect("exact found a split, so one exists");
+                    prop_assert!((plan.return_time_s - brute).abs() < 1e-9, "{} vs {}", plan.return_time_s, brute);
+                }
+                Err(_) => prop_assert!(brute.is_none()),
+            }
+        }
+
+        #[test]
+        fn every_planner_keeps_every_sortie_within_tank_and_battery(seed in 0u64..10_000, count in 20usize..120) {
+            let route = random_route(seed, count);
+            let model = model(300.0, 600.0);
+            for planner in SortiePlanner::ALL {
+                if let Ok(plan) = plan_sorties(&route, &model, planner, seed) {
+                    prop_assert!(plan.feasible, "{planner}");
+                    for sortie in &plan.sorties {
+                        prop_assert!(sortie.spray_m <= 300.0 + 1e-6);
+                        prop_assert!(sortie.flight_s <= 600.0 + 1e-6);
+                    }
+                    // The sorties cover the route end to end.
+                    prop_assert_eq!(plan.sorties.first().unwrap().first, 0);
+                    prop_assert_eq!(plan.sorties.last().unwrap().last, route.len() - 1);
+                    prop_assert!(plan.sorties.windows(2).all(|pair| pair[0].last == pair[1].first));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn exact_is_never_worse_than_the_others() {
+        let route = lawnmower(20, 600.0, 5.0);
+        let model = model(2700.0, 1500.0);
+        let exact = plan_sorties(&route, &model, SortiePlanner::Exact, 1).unwrap();
+        for planner in [
+            SortiePlanner::Unplanned,
+            SortiePlanner::Simple,
+            SortiePlanner::Gsa,
+        ] {
+            let other = plan_sorties(&route, &model, planner, 1).unwrap();
+            assert!(other.feasible);
+            assert!(
+                exact.return_time_s <= other.return_time_s + 1e-9,
+                "{planner}"
+            );
+        }
+    }
+
+    #[test]
+    fn gsa_honours_its_budget_and_repeats_with_a_seed() {
+        let route = lawnmower(12, 400.0, 5.0);
+        let model = model(1500.0, 1500.0);
+        let settings = gsa::GsaSettings {
+            population: 20,
+            iterations: 30,
+            extra_returns: 1,
+        };
+        let first = gsa::search(&route, &model, &settings, 7).unwrap();
+        let again = gsa::search(&route, &model, &settings, 7).unwrap();
+        assert_eq!(first, again);
+        let searches = first
+            .tried
+            .iter()
+            .filter(|(returns, _)| *returns > 0)
+            .count() as u64;
+        assert!(first.evaluations <= searches * settings.evaluations_per_search());
+        assert!(first.evaluations > 0);
+    }
+
+    #[test]
+    fn decode_returns_within_each_threshold() {
+        let route = lawnmower(4, 100.0, 5.0);
+        let breaks = gsa::decode(&route, &[112.0, 97.0]);
+        assert_eq!(breaks.len(), 2);
+        assert!(route.spray_between(0, breaks[0]) <= 112.0);
+        assert!(
+            route.spray_between(0, breaks[0] + 1) > 112.0
+                || route.segments()[breaks[0]] != Segment::Spray
+        );
+        assert!(route.spray_between(breaks[0], breaks[1]) <= 97.0);
+    }
+
+    #[test]
+    fn a_route_no_battery_can_fly_is_refused() {
+        let route = lawnmower(2, 100.0, 5.0);
+        let error =
+            plan_sorties(&route, &model(2700.0, 10.0), SortiePlanner::Exact, 1).unwrap_err();
+        assert!(error.to_string().contains("battery"), "{error}");
+    }
+}
