@@ -11,6 +11,8 @@ use crate::model::Scenario;
 use crate::plot::map_svg::plan_svg;
 use crate::report::Report;
 use crate::sequence::{route, Route, Sequencer, TransferModel};
+use crate::sortie::route::{RoutePoint, Speeds, WorkRoute};
+use crate::sortie::{plan_sorties, SortieModel, SortiePlan, SortiePlanner};
 
 /// Everything a coverage plan is asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
@@ -20,6 +22,44 @@ pub struct PlanSettings {
     /// Launch point in planning metres; `None`: a `launch` or `supply` marker of the field
     /// file, else a free start.
     pub start: Option<[f64; 2]>,
+    pub sorties: SortieSettings,
+}
+
+/// How the route is split into sorties (seed 003): the planner, or `None` for one flight
+/// whatever the tank and battery; `seed` drives GSA.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct SortieSettings {
+    pub planner: Option<SortiePlanner>,
+    pub seed: u64,
+}
+
+impl Default for SortieSettings {
+    fn default() -> Self {
+        Self {
+            planner: Some(SortiePlanner::Exact),
+            seed: 1,
+        }
+    }
+}
+
+/// A route split into sorties, with what the map and the mission need to draw it.
+#[derive(Debug, Clone)]
+pub struct PlannedSorties {
+    pub plan: SortiePlan,
+    /// Where the drone refills and swaps batteries: the launch point, else the first point
+    /// of the route.
+    pub supply: RoutePoint,
+    /// The route as the planner saw it.
+    pub work_route: WorkRoute,
+    /// The index in `work_route` of each visit's first point.
+    pub visit_offsets: Vec<usize>,
+}
+
+impl PlannedSorties {
+    /// The sortie flying work-route point `index` (a return point belongs to the sortie it ends).
+    pub fn sortie_at(&self, index: usize) -> usize {
+        self.plan.breaks.partition_point(|&b| b < index)
+    }
 }
 
 /// The start point of the flight: the given one, else the field file's `launch`/`supply`
@@ -51,7 +91,53 @@ pub fn start_point(
 pub struct PlannedMission {
     pub coverage: CoveragePlan,
     pub route: Route,
+    pub sorties: Option<PlannedSorties>,
     pub report: Report,
+}
+
+/// Splits the route into sorties at the launch point (or the route's first point).
+fn split_into_sorties(
+    scenario: &Scenario,
+    route: &Route,
+    start: Option<GroundPoint>,
+    settings: &SortieSettings,
+) -> Result<Option<PlannedSorties>, Fault> {
+    let Some(planner) = settings.planner else {
+        return Ok(None);
+    };
+    let vehicle = &scenario.vehicle;
+    let speeds = Speeds {
+        spray_mps: vehicle.spray_speed_mps,
+        turn_mps: vehicle.turn_speed_mps,
+        transit_mps: vehicle.transit_speed_mps,
+    };
+    let work_route = WorkRoute::from_route(route, speeds);
+    let Some(first) = work_route.points().first().copied() else {
+        return Ok(None);
+    };
+    let supply = start.map_or(first, |point| RoutePoint {
+        x: point.x,
+        y: point.y,
+        ground_m: point.ground_m,
+    });
+    // Returns fly at the safe height, as transfers that leave the field do (decision 0008).
+    let model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
+    let plan = plan_sorties(&work_route, &model, planner, settings.seed)?;
+    let visit_offsets = route
+        .visits
+        .iter()
+        .scan(0, |offset, visit| {
+            let here = *offset;
+            *offset += visit.points.len();
+            Some(here)
+        })
+        .collect();
+    Ok(Some(PlannedSorties {
+        plan,
+        supply,
+        work_route,
+        visit_offsets,
+    }))
 }
 
 /// Plans the scenario's fields with `settings`.
@@ -66,11 +152,20 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
     )?;
     let model = TransferModel::new(&scenario.farm, scenario.vehicle.safe_height_m);
     let route = route(&coverage, &model, start, &settings.sequencer);
+    let sorties = split_into_sorties(scenario, &route, start, &settings.sorties)?;
     let runtime_s = crate::report::round(started.elapsed().as_secs_f64(), 1e-4);
-    let report = Report::new(scenario, &coverage, &route, settings, runtime_s);
+    let report = Report::new(
+        scenario,
+        &coverage,
+        &route,
+        sorties.as_ref(),
+        settings,
+        runtime_s,
+    );
     Ok(PlannedMission {
         coverage,
         route,
+        sorties,
         report,
     })
 }
@@ -81,6 +176,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Vec<(&'static st
         &scenario.farm,
         &mission.coverage,
         &mission.route,
+        mission.sorties.as_ref(),
         scenario.vehicle.spray_height_m,
         scenario.vehicle.safe_height_m,
     );

@@ -17,6 +17,8 @@ pub struct Arguments {
     pub command: Command,
 }
 
+// Parsed once per run: the size of the largest variant does not matter.
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Subcommand)]
 pub enum Command {
     /// Run the embedded default (seed 001's five-field farm) and write ./agripath-demo/.
@@ -146,6 +148,10 @@ pub struct OrderArgs {
     /// Ants per batch (seed 001: 50).
     #[arg(long, default_value_t = 50)]
     pub ants: usize,
+    /// Return points for refill and battery swap (seed 003): `exact` (ours, optimal),
+    /// `gsa` (the seed's gravitational search), `simple`, `unplanned`, or `none` (one flight).
+    #[arg(long, default_value = "exact", value_parser = ["exact", "gsa", "simple", "unplanned", "none"])]
+    pub sorties: String,
 }
 
 #[derive(Debug, Subcommand)]

@@ -13,7 +13,7 @@ use agripath::{Fault, InputError};
 
 use agripath::coverage::heading::HeadingObjective;
 use agripath::coverage::CoverageSettings;
-use agripath::pipeline::{plan_mission, render, PlanSettings};
+use agripath::pipeline::{plan_mission, render, PlanSettings, SortieSettings};
 use agripath::sequence::ant_colony::AntColonySettings;
 use agripath::sequence::local_search::LocalSearchSettings;
 use agripath::sequence::Sequencer;
@@ -223,6 +223,13 @@ fn plan(
         coverage: coverage_settings(coverage)?,
         sequencer: sequencer(order)?,
         start,
+        sorties: SortieSettings {
+            planner: match order.sorties.as_str() {
+                "none" => None,
+                name => Some(name.parse().expect("clap allows only known planners")),
+            },
+            seed: order.seed,
+        },
     };
     let mission = plan_mission(&scenario, &settings)
         .map_err(|fault| InputError::new(&scenario.farm.source, fault))?;

@@ -1,7 +1,9 @@
 //! `plan.geojson`: the plan as a FeatureCollection (contract in MISSION.md and `docs/cli.md`).
 //!
-//! Features carry `properties.kind`: `field`, `obstacle`, `edge`, `swath`, `transfer`. Passes
-//! and legs carry `seq` (their place in the flight, from 0) and `sortie`; a pass's coordinates
+//! Features carry `properties.kind`: `field`, `obstacle`, `edge`, `swath`, `transfer`,
+//! `return` (a return point, `role: point`, and its leg to the supply point and back,
+//! `role: leg`), `supply`. Passes and legs carry `seq` (their place in the flight, from 0)
+//! and `sortie` (from 0); a pass's coordinates
 //! run in the direction flown; positions are `[x, y, z]` in the input's coordinate system
 //! (lon/lat or local metres) with z the altitude above sea level (terrain + spray height).
 
@@ -10,6 +12,7 @@ use serde_json::{json, Map, Value};
 use crate::coverage::drape::GroundPoint;
 use crate::coverage::CoveragePlan;
 use crate::model::{CoordinateSystem, Farm};
+use crate::pipeline::PlannedSorties;
 use crate::sequence::{Pass, Route};
 
 /// Decimal places kept: 1e-9° (0.1 mm) for lon/lat, 0.1 mm for metres, 1 mm in height.
@@ -61,6 +64,7 @@ pub fn plan_geojson(
     farm: &Farm,
     plan: &CoveragePlan,
     route: &Route,
+    sorties: Option<&PlannedSorties>,
     spray_height_m: f64,
     safe_height_m: f64,
 ) -> Value {
@@ -88,36 +92,48 @@ pub fn plan_geojson(
         properties.insert("name".into(), json!(obstacle.name));
         features.push(feature(properties, json!({"type": "Polygon", "coordinates": polygon_coordinates(system, &obstacle.polygon)})));
     }
-    let leg_feature = |transfer: &crate::sequence::Transfer, leg: &str, seq: usize| {
+    // The sortie flying a work-route point; everything is sortie 0 when the route is not split.
+    let sortie_at = |index: usize| sorties.map_or(0, |split| split.sortie_at(index));
+    let last_sortie = sorties.map_or(0, |split| split.plan.sorties.len().saturating_sub(1));
+    if let Some(split) = sorties {
         let mut properties = Map::new();
-        properties.insert("kind".into(), json!("transfer"));
-        properties.insert("leg".into(), json!(leg));
-        properties.insert("seq".into(), json!(seq));
-        properties.insert("sortie".into(), json!(0));
-        properties.insert("climbs".into(), json!(transfer.climbs));
-        properties.insert(
-            "length_m".into(),
-            json!(crate::report::round(transfer.cost_m, 1e-4)),
-        );
-        let lift = |point: GroundPoint, extra: f64| GroundPoint {
-            ground_m: point.ground_m + extra,
-            ..point
+        properties.insert("kind".into(), json!("supply"));
+        features.push(feature(
+            properties,
+            json!({"type": "Point", "coordinates": position(system, split.supply.x, split.supply.y, Some(split.supply.ground_m))}),
+        ));
+    }
+    let leg_feature =
+        |transfer: &crate::sequence::Transfer, leg: &str, seq: usize, sortie: usize| {
+            let mut properties = Map::new();
+            properties.insert("kind".into(), json!("transfer"));
+            properties.insert("leg".into(), json!(leg));
+            properties.insert("seq".into(), json!(seq));
+            properties.insert("sortie".into(), json!(sortie));
+            properties.insert("climbs".into(), json!(transfer.climbs));
+            properties.insert(
+                "length_m".into(),
+                json!(crate::report::round(transfer.cost_m, 1e-4)),
+            );
+            let lift = |point: GroundPoint, extra: f64| GroundPoint {
+                ground_m: point.ground_m + extra,
+                ..point
+            };
+            let points = if transfer.climbs {
+                vec![
+                    transfer.from,
+                    lift(transfer.from, safe_height_m),
+                    lift(transfer.to, safe_height_m),
+                    transfer.to,
+                ]
+            } else {
+                vec![transfer.from, transfer.to]
+            };
+            feature(properties, line(system, &points, spray_height_m))
         };
-        let points = if transfer.climbs {
-            vec![
-                transfer.from,
-                lift(transfer.from, safe_height_m),
-                lift(transfer.to, safe_height_m),
-                transfer.to,
-            ]
-        } else {
-            vec![transfer.from, transfer.to]
-        };
-        feature(properties, line(system, &points, spray_height_m))
-    };
     let mut seq = 0;
     if let Some(launch) = &route.launch {
-        features.push(leg_feature(launch, "launch", seq));
+        features.push(leg_feature(launch, "launch", seq, 0));
         seq += 1;
     }
     for (index, visit) in route.visits.iter().enumerate() {
@@ -144,20 +160,66 @@ pub fn plan_geojson(
                 );
             }
         }
+        let offset = sorties.map_or(0, |split| split.visit_offsets[index]);
+        let last_point = offset + visit.points.len().saturating_sub(1);
         properties.insert("seq".into(), json!(seq));
-        properties.insert("sortie".into(), json!(0));
+        properties.insert("sortie".into(), json!(sortie_at(offset)));
         features.push(feature(
             properties,
             line(system, &visit.points, spray_height_m),
         ));
         seq += 1;
+        if let Some(split) = sorties {
+            for &at in split
+                .plan
+                .breaks
+                .iter()
+                .filter(|&&b| b >= offset && b <= last_point)
+            {
+                let point = split.work_route.points()[at];
+                let sortie = split.sortie_at(at);
+                let mut properties = Map::new();
+                properties.insert("kind".into(), json!("return"));
+                properties.insert("role".into(), json!("point"));
+                properties.insert("sortie".into(), json!(sortie));
+                features.push(feature(
+                    properties,
+                    json!({"type": "Point", "coordinates": position(system, point.x, point.y, Some(point.ground_m + spray_height_m))}),
+                ));
+                let mut properties = Map::new();
+                properties.insert("kind".into(), json!("return"));
+                properties.insert("role".into(), json!("leg"));
+                properties.insert("seq".into(), json!(seq));
+                properties.insert("sortie".into(), json!(sortie));
+                let one_way = (point.x - split.supply.x).hypot(point.y - split.supply.y)
+                    + (point.ground_m - split.supply.ground_m).abs()
+                    + 2.0 * safe_height_m;
+                properties.insert(
+                    "length_m".into(),
+                    json!(crate::report::round(2.0 * one_way, 1e-4)),
+                );
+                let at_height = |x: f64, y: f64, z: f64| position(system, x, y, Some(z));
+                let cruise =
+                    point.ground_m.max(split.supply.ground_m) + spray_height_m + safe_height_m;
+                features.push(feature(
+                    properties,
+                    json!({"type": "LineString", "coordinates": [
+                        at_height(point.x, point.y, point.ground_m + spray_height_m),
+                        at_height(point.x, point.y, cruise),
+                        at_height(split.supply.x, split.supply.y, cruise),
+                        at_height(split.supply.x, split.supply.y, split.supply.ground_m),
+                    ]}),
+                ));
+                seq += 1;
+            }
+        }
         if let Some(transfer) = route.transfers.get(index) {
-            features.push(leg_feature(transfer, "between", seq));
+            features.push(leg_feature(transfer, "between", seq, sortie_at(last_point)));
             seq += 1;
         }
     }
     if let Some(home) = &route.home {
-        features.push(leg_feature(home, "home", seq));
+        features.push(leg_feature(home, "home", seq, last_sortie));
     }
     let mut collection = Map::new();
     collection.insert("type".into(), json!("FeatureCollection"));

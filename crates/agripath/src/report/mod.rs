@@ -5,9 +5,10 @@ use serde::Serialize;
 use crate::coverage::heading::HeadingObjective;
 use crate::coverage::{CoveragePlan, CoverageSettings};
 use crate::model::{Scenario, Vehicle};
-use crate::pipeline::PlanSettings;
+use crate::pipeline::{PlanSettings, PlannedSorties};
 use crate::sequence::ant_colony::AntColonySettings;
 use crate::sequence::{Route, Sequencer};
+use crate::sortie::SortiePlanner;
 
 #[derive(Debug, Clone, Serialize)]
 pub struct FieldReport {
@@ -58,7 +59,17 @@ pub struct Report {
     /// Changes of direction along the flight (every angle counts) and U-turns among them.
     pub turns: usize,
     pub u_turns: usize,
+    /// Flights from the supply point and back (1 when the route is not split).
     pub sorties: usize,
+    /// How the returns were chosen (`null`: not split).
+    pub sortie_planner: Option<SortiePlanner>,
+    /// Σ 2 (‖P_n, P0‖ + H_n) over the returns, metres.
+    pub return_length_m: f64,
+    /// Return round trips plus max(battery swap, refill) at each return (seed 003 Table 4's
+    /// non-spraying time), seconds.
+    pub return_time_s: f64,
+    /// Per sortie: spray metres, litres, flight time, tank and battery used (seed 003 Table 5).
+    pub sortie_details: Vec<SortieReport>,
     pub sprayable_area_m2: f64,
     pub covered_fraction: f64,
     pub overlap_m2: f64,
@@ -67,6 +78,20 @@ pub struct Report {
     pub total_time_s: f64,
     /// Wall time of planning; the one figure that differs between identical runs.
     pub runtime_s: f64,
+}
+
+/// One sortie in `report.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct SortieReport {
+    pub sortie: usize,
+    pub spray_m: f64,
+    pub litres: Option<f64>,
+    pub tank_percent: Option<f64>,
+    /// Out from the supply point, along the route and back, seconds.
+    pub flight_time_s: f64,
+    pub battery_percent: f64,
+    /// Where it ends with a return (`null` for the last), in the input's coordinates.
+    pub return_point: Option<[f64; 3]>,
 }
 
 /// Flight time of the transfers: legs inside a field at turn speed; climbing legs at transit
@@ -90,6 +115,7 @@ impl Report {
         scenario: &Scenario,
         plan: &CoveragePlan,
         route: &Route,
+        sorties: Option<&PlannedSorties>,
         settings: &PlanSettings,
         runtime_s: f64,
     ) -> Self {
@@ -127,7 +153,33 @@ impl Report {
             .sum();
         let (turns, u_turns) = route.turns();
         let spray_time_s = (spray_length_m + edge_length_m) / vehicle.spray_speed_mps;
-        let non_spray_time_s = transfer_time_s(route, vehicle);
+        let return_time_s = sorties.map_or(0.0, |split| split.plan.return_time_s);
+        let non_spray_time_s = transfer_time_s(route, vehicle) + return_time_s;
+        let sortie_details = sorties.map_or_else(Vec::new, |split| {
+            split
+                .plan
+                .sorties
+                .iter()
+                .enumerate()
+                .map(|(index, sortie)| SortieReport {
+                    sortie: index,
+                    spray_m: round(sortie.spray_m, 1e-4),
+                    litres: sortie.litres.map(|l| round(l, 1e-3)),
+                    tank_percent: sortie.tank_fraction.map(|f| round(100.0 * f, 1e-3)),
+                    flight_time_s: round(sortie.flight_s, 1e-3),
+                    battery_percent: round(100.0 * sortie.battery_fraction, 1e-3),
+                    return_point: (index + 1 < split.plan.sorties.len()).then(|| {
+                        let point = split.work_route.points()[sortie.last];
+                        let (x, y) = scenario.farm.coordinate_system.to_input(point.x, point.y);
+                        [
+                            round(x, 1e-9),
+                            round(y, 1e-9),
+                            round(point.ground_m + vehicle.spray_height_m, 1e-4),
+                        ]
+                    }),
+                })
+                .collect()
+        });
         Self {
             scenario: scenario.name.clone(),
             coordinate_system: scenario.farm.coordinate_system.describe(),
@@ -153,7 +205,11 @@ impl Report {
             climbing_transfers: route.legs().filter(|transfer| transfer.climbs).count(),
             turns,
             u_turns,
-            sorties: 1,
+            sorties: sorties.map_or(1, |split| split.plan.sorties.len()),
+            sortie_planner: sorties.map(|split| split.plan.planner),
+            return_length_m: round(sorties.map_or(0.0, |split| split.plan.round_trip_m), 1e-4),
+            return_time_s: round(return_time_s, 1e-3),
+            sortie_details,
             sprayable_area_m2: round(sprayable, 1e-4),
             covered_fraction: round(
                 if sprayable > 0.0 {
@@ -235,6 +291,20 @@ impl Report {
                 field.edge_length_m,
                 100.0 * field.covered_fraction,
                 field.overlap_m2
+            ));
+        }
+        if let Some(planner) = self.sortie_planner {
+            text.push_str(&format!(
+                "sorties ({}): {}, returns {:.1} m round trip, {:.1} min at the supply point and flying to it; battery per sortie {}\n",
+                planner,
+                self.sorties,
+                self.return_length_m,
+                self.return_time_s / 60.0,
+                self.sortie_details
+                    .iter()
+                    .map(|sortie| format!("{:.0}%", sortie.battery_percent))
+                    .collect::<Vec<_>>()
+                    .join(" ")
             ));
         }
         text.push_str(&format!(

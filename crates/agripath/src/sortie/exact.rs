@@ -14,41 +14,61 @@
 //! a route point: routes carry points every cell (grid) or every draping step (plans).
 
 use super::route::WorkRoute;
-use super::SortieModel;
+use super::{SortieModel, TOLERANCE};
 use crate::error::Fault;
 
 /// The optimal break points.
 pub fn breaks(route: &WorkRoute, model: &SortieModel) -> Result<Vec<usize>, Fault> {
     let count = route.len();
+    let spray = route.spray_prefix();
+    let flight = route.flight_prefix();
+    let tank = model.spray_per_tank_m.unwrap_or(f64::INFINITY) + TOLERANCE;
+    let endurance = model.endurance_s + TOLERANCE;
+    // Per point: the one-way return in seconds, and the refill slope of eq. (5).
+    let leg_s: Vec<f64> = route
+        .points()
+        .iter()
+        .map(|point| model.leg_m(point) / model.transit_mps)
+        .collect();
+    let refill_per_m = model.spray_per_tank_m.map_or(0.0, |tank| {
+        (model.refill_max_s - model.refill_base_s) / tank
+    });
     let mut cost = vec![f64::INFINITY; count];
+    // cost(i) plus the round trip from i: what a return at i costs before its service.
+    let mut base = vec![f64::INFINITY; count];
     let mut previous = vec![usize::MAX; count];
     cost[0] = 0.0;
+    base[0] = 0.0;
     let mut lowest = 0;
     for j in 1..count {
         // Below `lowest`, a sortie to j already sprays more than a tank or flies longer than
-        // the battery along the route alone.
+        // the battery along the route alone; both only grow as j moves on.
         while lowest < j
-            && (model
-                .spray_per_tank_m
-                .is_some_and(|tank| route.spray_between(lowest, j) > tank + 1e-6)
-                || route.flight_between(lowest, j) > model.endurance_s + 1e-6)
+            && (spray[j] - spray[lowest] > tank || flight[j] - flight[lowest] > endurance)
         {
             lowest += 1;
         }
+        let (mut best, mut from) = (f64::INFINITY, usize::MAX);
         for i in lowest..j {
-            if !cost[i].is_finite() || !model.feasible(route, i, j) {
+            if !base[i].is_finite() || leg_s[i] + flight[j] - flight[i] + leg_s[j] > endurance {
                 continue;
             }
             let step = if i == 0 {
                 0.0
             } else {
-                model.return_cost_s(route, i, j)
+                // max(T_e, T_p) of eq. (5) for the sortie i..=j.
+                model
+                    .battery_swap_s
+                    .max(model.refill_base_s + refill_per_m * (spray[j] - spray[i]))
             };
-            if cost[i] + step < cost[j] {
-                cost[j] = cost[i] + step;
-                previous[j] = i;
+            if base[i] + step < best {
+                best = base[i] + step;
+                from = i;
             }
         }
+        cost[j] = best;
+        previous[j] = from;
+        base[j] = best + 2.0 * leg_s[j];
     }
     let last = count - 1;
     if !cost[last].is_finite() {

@@ -428,8 +428,15 @@ mod tests {
         fn every_planner_keeps_every_sortie_within_tank_and_battery(seed in 0u64..10_000, count in 20usize..120) {
             let route = random_route(seed, count);
             let model = model(300.0, 600.0);
+            // GSA with a small budget: the property is about its decoding, not its search.
+            let small = gsa::GsaSettings { population: 10, iterations: 20, extra_returns: 1 };
             for planner in SortiePlanner::ALL {
-                if let Ok(plan) = plan_sorties(&route, &model, planner, seed) {
+                let plan = match planner {
+                    SortiePlanner::Gsa => gsa::search(&route, &model, &small, seed)
+                        .map(|found| model.evaluate(&route, planner, found.breaks)),
+                    _ => plan_sorties(&route, &model, planner, seed),
+                };
+                if let Ok(plan) = plan {
                     prop_assert!(plan.feasible, "{planner}");
                     for sortie in &plan.sorties {
                         prop_assert!(sortie.spray_m <= 300.0 + 1e-6);

@@ -160,6 +160,16 @@ impl WorkRoute {
         &self.segments
     }
 
+    /// Spray metres from the start to each point.
+    pub fn spray_prefix(&self) -> &[f64] {
+        &self.spray_m
+    }
+
+    /// Flight seconds from the start to each point.
+    pub fn flight_prefix(&self) -> &[f64] {
+        &self.flight_s
+    }
+
     /// Spray metres between points `from` and `to` (indices, from ≤ to).
     pub fn spray_between(&self, from: usize, to: usize) -> f64 {
         self.spray_m[to] - self.spray_m[from]
