@@ -408,3 +408,65 @@ fn bench_functions_prints_the_table_and_writes_its_folder_repeatably() {
     };
     assert_eq!(numbers(&first), numbers(&again));
 }
+
+#[test]
+fn plans_split_into_sorties_within_tank_and_battery_with_returns_in_the_geojson() {
+    let folder = scratch("sorties");
+    for planner in ["exact", "simple", "unplanned"] {
+        let out = format!("out-{planner}");
+        let scenario = data("scenarios/seed001_farm.toml");
+        stdout(&agripath(
+            &[
+                "plan",
+                scenario.to_str().unwrap(),
+                "--sorties",
+                planner,
+                "--out",
+                &out,
+            ],
+            &folder,
+        ));
+        let report: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(folder.join(&out).join("report.json")).unwrap(),
+        )
+        .unwrap();
+        let plan: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(folder.join(&out).join("plan.geojson")).unwrap(),
+        )
+        .unwrap();
+        let sorties = report["sorties"].as_u64().unwrap() as usize;
+        assert!(sorties > 1, "{planner}: the farm needs more than one tank");
+        assert_eq!(report["sortie_planner"], planner);
+        let details = report["sortie_details"].as_array().unwrap();
+        assert_eq!(details.len(), sorties);
+        for sortie in details {
+            assert!(sortie["battery_percent"].as_f64().unwrap() <= 100.0 + 1e-6);
+            assert!(sortie["tank_percent"].as_f64().unwrap() <= 100.0 + 1e-6);
+        }
+        let features = plan["features"].as_array().unwrap();
+        let returns = |role: &str| {
+            features
+                .iter()
+                .filter(|f| f["properties"]["kind"] == "return" && f["properties"]["role"] == role)
+                .count()
+        };
+        assert_eq!(returns("point"), sorties - 1, "{planner}");
+        assert_eq!(returns("leg"), sorties - 1, "{planner}");
+        let highest = features
+            .iter()
+            .filter_map(|f| f["properties"]["sortie"].as_u64())
+            .max()
+            .unwrap();
+        assert_eq!(highest as usize, sorties - 1);
+    }
+}
+
+#[test]
+fn repro_seed003_table4_prints_every_planner_beside_the_paper() {
+    let folder = scratch("table4");
+    let text = stdout(&agripath(&["repro", "seed003-table4"], &folder));
+    for planner in ["gsa ", "simple ", "unplanned ", "exact "] {
+        assert!(text.contains(planner), "{planner}");
+    }
+    assert!(text.contains("(440.2)") && text.contains("Table 5"));
+}
