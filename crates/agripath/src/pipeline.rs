@@ -6,13 +6,20 @@ use std::time::Instant;
 use crate::coverage::drape::GroundPoint;
 use crate::coverage::{plan_coverage, CoveragePlan, CoverageSettings};
 use crate::error::Fault;
+use crate::mission::csv::waypoints_csv;
+use crate::mission::flight::{build_missions, MissionSettings};
+use crate::mission::kml::mission_kml;
 use crate::mission::plan_geojson::plan_geojson;
-use crate::model::Scenario;
+use crate::mission::{qgc_plan, wpl};
+use crate::model::{CoordinateSystem, Scenario};
 use crate::plot::map_svg::plan_svg;
+use crate::plot::plan_html::{plan_html, Overlay};
 use crate::report::Report;
 use crate::sequence::{route, Route, Sequencer, TransferModel};
 use crate::sortie::route::{RoutePoint, Speeds, WorkRoute};
 use crate::sortie::{plan_sorties, SortieModel, SortiePlan, SortiePlanner};
+use crate::terrain::hillshade::hillshade;
+use crate::terrain::Extent;
 
 /// Everything a coverage plan is asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
@@ -23,6 +30,7 @@ pub struct PlanSettings {
     /// file, else a free start.
     pub start: Option<[f64; 2]>,
     pub sorties: SortieSettings,
+    pub mission: MissionSettings,
 }
 
 /// How the route is split into sorties (seed 003): the planner, or `None` for one flight
@@ -93,6 +101,7 @@ pub struct PlannedMission {
     pub route: Route,
     pub sorties: Option<PlannedSorties>,
     pub report: Report,
+    pub settings: PlanSettings,
 }
 
 /// Splits the route into sorties at the launch point (or the route's first point).
@@ -167,40 +176,120 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
         route,
         sorties,
         report,
+        settings: *settings,
     })
 }
 
-/// The files of a plan folder, by name.
-pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Vec<(&'static str, Vec<u8>)> {
+/// The hillshade under the plan: the farm's box with a margin, heights exaggerated so that
+/// low relief still shows ((50 m / relief) clamped to 1..10).
+pub fn terrain_overlay(scenario: &Scenario) -> (Extent, Vec<u8>) {
+    let bounds = scenario.farm.bounds();
+    let margin = 0.05 * bounds.width().max(bounds.height()) + 10.0;
+    let extent = Extent {
+        min_x: bounds.min().x - margin,
+        min_y: bounds.min().y - margin,
+        max_x: bounds.max().x + margin,
+        max_y: bounds.max().y + margin,
+    };
+    let relief = scenario
+        .terrain
+        .height_range_m(extent)
+        .map_or(0.0, |(low, high)| high - low);
+    let exaggeration = (50.0 / relief.max(1e-9)).clamp(1.0, 10.0);
+    let shaded = hillshade(scenario.terrain.as_ref(), extent, 1024, exaggeration);
+    (extent, shaded.to_png())
+}
+
+/// The files of a plan folder, by name: the contract files (`plan.geojson`, `report.json`),
+/// the maps (`plan.svg`, `plan.html`, `terrain.png`) and the mission files (per sortie
+/// `sortie_NN.plan` and `sortie_NN.waypoints`, `mission.kml`, `waypoints.csv`).
+pub fn render(
+    scenario: &Scenario,
+    mission: &PlannedMission,
+) -> Result<Vec<(String, Vec<u8>)>, Fault> {
+    let vehicle = &scenario.vehicle;
     let geojson = plan_geojson(
         &scenario.farm,
         &mission.coverage,
         &mission.route,
         mission.sorties.as_ref(),
-        scenario.vehicle.spray_height_m,
-        scenario.vehicle.safe_height_m,
+        vehicle.spray_height_m,
+        vehicle.safe_height_m,
     );
     let title = format!(
         "{} — {} fields, swath {} m, {:.0} m sprayed, {:.1}% covered",
         scenario.name,
         scenario.farm.fields.len(),
-        scenario.vehicle.swath_width_m,
+        vehicle.swath_width_m,
         mission.report.spray_length_m + mission.report.edge_length_m,
         100.0 * mission.report.covered_fraction
     );
-    vec![
+    let json = |value: &serde_json::Value| {
+        (serde_json::to_string_pretty(value).expect("JSON value") + "\n").into_bytes()
+    };
+    let mut files = vec![
+        ("plan.geojson".to_string(), json(&geojson)),
         (
-            "plan.geojson",
-            (serde_json::to_string_pretty(&geojson).expect("JSON value") + "\n").into_bytes(),
-        ),
-        (
-            "report.json",
+            "report.json".to_string(),
             (serde_json::to_string_pretty(&mission.report).expect("report serialises") + "\n")
                 .into_bytes(),
         ),
         (
-            "plan.svg",
+            "plan.svg".to_string(),
             plan_svg(&scenario.farm, &mission.coverage, &mission.route, &title).into_bytes(),
         ),
-    ]
+    ];
+    // The viewer draws in plan metres: the same features in the local frame.
+    let mut local_farm = scenario.farm.clone();
+    local_farm.coordinate_system = CoordinateSystem::Local;
+    let local = plan_geojson(
+        &local_farm,
+        &mission.coverage,
+        &mission.route,
+        mission.sorties.as_ref(),
+        vehicle.spray_height_m,
+        vehicle.safe_height_m,
+    );
+    let (extent, png) = terrain_overlay(scenario);
+    let overlay = Overlay {
+        png: &png,
+        min_x: extent.min_x,
+        min_y: extent.min_y,
+        max_x: extent.max_x,
+        max_y: extent.max_y,
+    };
+    files.push((
+        "plan.html".to_string(),
+        plan_html(&title, &local, Some(&overlay)).into_bytes(),
+    ));
+    let settings = &mission.settings.mission;
+    let missions = build_missions(scenario, mission, settings)?;
+    for sortie in &missions {
+        let name = format!("sortie_{:02}", sortie.sortie + 1);
+        files.push((
+            format!("{name}.plan"),
+            qgc_plan::plan_file(
+                sortie,
+                &scenario.farm,
+                settings,
+                vehicle.transit_speed_mps,
+                vehicle.spray_speed_mps,
+            )
+            .into_bytes(),
+        ));
+        files.push((
+            format!("{name}.waypoints"),
+            wpl::waypoints_file(sortie, settings).into_bytes(),
+        ));
+    }
+    files.push((
+        "mission.kml".to_string(),
+        mission_kml(&scenario.name, &scenario.farm, &missions, settings).into_bytes(),
+    ));
+    files.push((
+        "waypoints.csv".to_string(),
+        waypoints_csv(&missions).into_bytes(),
+    ));
+    files.push(("terrain.png".to_string(), png));
+    Ok(files)
 }

@@ -36,6 +36,8 @@ pub enum Command {
         coverage: CoverageArgs,
         #[command(flatten)]
         order: OrderArgs,
+        #[command(flatten)]
+        mission: MissionArgs,
         /// Output folder (replaced as a whole when planning succeeds).
         #[arg(long)]
         out: PathBuf,
@@ -152,6 +154,26 @@ pub struct OrderArgs {
     /// `gsa` (the seed's gravitational search), `simple`, `unplanned`, or `none` (one flight).
     #[arg(long, default_value = "exact", value_parser = ["exact", "gsa", "simple", "unplanned", "none"])]
     pub sorties: String,
+}
+
+/// How mission files are written.
+#[derive(Debug, Args)]
+pub struct MissionArgs {
+    /// Altitudes in mission files: `sea-level` (from our terrain model, MAV_FRAME_GLOBAL) or
+    /// `terrain` (above ground, MAV_FRAME_GLOBAL_TERRAIN_ALT, for ArduPilot).
+    #[arg(long, default_value = "sea-level", value_parser = ["sea-level", "terrain"])]
+    pub altitude: String,
+    /// Sprayer switching: `do-sprayer` (MAV_CMD_DO_SPRAYER) or `servo:CHANNEL:ON_PWM:OFF_PWM`
+    /// (MAV_CMD_DO_SET_SERVO).
+    #[arg(long, default_value = "do-sprayer")]
+    pub sprayer: String,
+    /// Terrain following: the largest gap, metres, between the flown altitude and terrain +
+    /// spray height along a swath before another waypoint is added.
+    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
+    pub terrain_tolerance: f64,
+    /// For fields in local metres: LON,LAT of their origin in mission files (default 126.63,45.75).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    pub origin: Option<Vec<f64>>,
 }
 
 #[derive(Debug, Subcommand)]

@@ -13,6 +13,7 @@ use agripath::{Fault, InputError};
 
 use agripath::coverage::heading::HeadingObjective;
 use agripath::coverage::CoverageSettings;
+use agripath::mission::flight::{AltitudeReference, MissionSettings, SprayerCommand};
 use agripath::pipeline::{plan_mission, render, PlanSettings, SortieSettings};
 use agripath::sequence::ant_colony::AntColonySettings;
 use agripath::sequence::local_search::LocalSearchSettings;
@@ -21,7 +22,8 @@ use agripath::sequence::Sequencer;
 use agripath::bench::functions::{FunctionBench, FunctionTable};
 
 use crate::args::{
-    Arguments, BenchAction, Command, CoverageArgs, Inputs, OrderArgs, ReproTable, TerrainAction,
+    Arguments, BenchAction, Command, CoverageArgs, Inputs, MissionArgs, OrderArgs, ReproTable,
+    TerrainAction,
 };
 use crate::Failure;
 
@@ -56,8 +58,9 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
             inputs,
             coverage,
             order,
+            mission,
             out,
-        } => plan(&inputs, &coverage, &order, &out),
+        } => plan(&inputs, &coverage, &order, &mission, &out),
         Command::Repro {
             table,
             runs,
@@ -83,17 +86,8 @@ fn demo(out: &Path) -> Result<(), Failure> {
     };
     let mission = plan_mission(&scenario, &settings)
         .map_err(|fault| InputError::new(agripath::demo::FARM_LABEL, fault))?;
-    let bounds = scenario.farm.bounds();
-    let margin = 20.0;
-    let extent = Extent {
-        min_x: bounds.min().x - margin,
-        min_y: bounds.min().y - margin,
-        max_x: bounds.max().x + margin,
-        max_y: bounds.max().y + margin,
-    };
-    let shaded = hillshade(scenario.terrain.as_ref(), extent, 1024, 5.0);
-    let mut files = render(&scenario, &mission);
-    files.push(("terrain.png", shaded.to_png()));
+    let files = render(&scenario, &mission)
+        .map_err(|fault| InputError::new(agripath::demo::FARM_LABEL, fault))?;
     let written = write_folder(out, &files)?;
     emit!("{}", mission.report.to_text());
     emitln!(
@@ -101,7 +95,7 @@ fn demo(out: &Path) -> Result<(), Failure> {
         written.display(),
         files
             .iter()
-            .map(|(name, _)| *name)
+            .map(|(name, _)| name.as_str())
             .collect::<Vec<_>>()
             .join(", ")
     );
@@ -109,11 +103,14 @@ fn demo(out: &Path) -> Result<(), Failure> {
 }
 
 /// Writes every file into a staged folder and moves it into place.
-fn write_folder(out: &Path, files: &[(&str, Vec<u8>)]) -> Result<PathBuf, Failure> {
+fn write_folder<Name: AsRef<str>>(
+    out: &Path,
+    files: &[(Name, Vec<u8>)],
+) -> Result<PathBuf, Failure> {
     let staged = StagedFolder::new(out).map_err(|error| output_failure(out, error))?;
     for (name, bytes) in files {
         staged
-            .write(name, bytes)
+            .write(name.as_ref(), bytes)
             .map_err(|error| output_failure(out, error))?;
     }
     staged.commit().map_err(|error| output_failure(out, error))
@@ -195,8 +192,10 @@ fn plan(
     inputs: &Inputs,
     coverage: &CoverageArgs,
     order: &OrderArgs,
+    mission_args: &MissionArgs,
     out: &Path,
 ) -> Result<(), Failure> {
+    let mission_settings = mission_settings(mission_args)?;
     let scenario = load_scenario(inputs)?;
     let start = match &order.start {
         Some(values) if values.len() == 2 && values.iter().all(|value| value.is_finite()) => {
@@ -230,17 +229,89 @@ fn plan(
             },
             seed: order.seed,
         },
+        mission: mission_settings,
     };
     let mission = plan_mission(&scenario, &settings)
         .map_err(|fault| InputError::new(&scenario.farm.source, fault))?;
-    let files = render(&scenario, &mission);
+    let files = render(&scenario, &mission)
+        .map_err(|fault| InputError::new(&scenario.farm.source, fault))?;
     let written = write_folder(out, &files)?;
     emit!("{}", mission.report.to_text());
     emitln!(
-        "wrote {}/: plan.geojson, report.json, plan.svg",
-        written.display()
+        "wrote {}/: {}",
+        written.display(),
+        files
+            .iter()
+            .map(|(name, _)| name.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
     );
     Ok(())
+}
+
+/// The mission-file options, checked.
+fn mission_settings(arguments: &MissionArgs) -> Result<MissionSettings, InputError> {
+    let invalid = |what: &str, value: String, why: &str| {
+        InputError::new(
+            "arguments",
+            Fault::InvalidValue {
+                what: what.into(),
+                value,
+                why: why.into(),
+            },
+        )
+    };
+    let mut settings = MissionSettings {
+        altitude: match arguments.altitude.as_str() {
+            "terrain" => AltitudeReference::Terrain,
+            _ => AltitudeReference::SeaLevel,
+        },
+        ..MissionSettings::default()
+    };
+    if arguments.sprayer != "do-sprayer" {
+        let parts: Vec<&str> = arguments.sprayer.split(':').collect();
+        let numbers: Option<Vec<u16>> = parts
+            .get(1..)
+            .map(|rest| rest.iter().filter_map(|p| p.parse().ok()).collect());
+        match (parts.first(), numbers) {
+            (Some(&"servo"), Some(numbers)) if parts.len() == 4 && numbers.len() == 3 => {
+                settings.sprayer = SprayerCommand::Servo {
+                    channel: numbers[0],
+                    on_pwm: numbers[1],
+                    off_pwm: numbers[2],
+                };
+            }
+            _ => {
+                return Err(invalid(
+                    "--sprayer",
+                    arguments.sprayer.clone(),
+                    "expected do-sprayer or servo:CHANNEL:ON_PWM:OFF_PWM",
+                ))
+            }
+        }
+    }
+    if !(arguments.terrain_tolerance.is_finite() && arguments.terrain_tolerance > 0.0) {
+        return Err(invalid(
+            "--terrain-tolerance",
+            arguments.terrain_tolerance.to_string(),
+            "must be a finite number above 0",
+        ));
+    }
+    settings.terrain_tolerance_m = arguments.terrain_tolerance;
+    if let Some(origin) = &arguments.origin {
+        let valid = origin.len() == 2
+            && (-180.0..=180.0).contains(&origin[0])
+            && (-80.0..=84.0).contains(&origin[1]);
+        if !valid {
+            return Err(invalid(
+                "--origin",
+                format!("{origin:?}"),
+                "expected LON,LAT with longitude in -180..180 and latitude in -80..84",
+            ));
+        }
+        settings.local_origin = (origin[0], origin[1]);
+    }
+    Ok(settings)
 }
 
 /// A progress bar on stderr for `total` steps (hidden when stderr is not a terminal).

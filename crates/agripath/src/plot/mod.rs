@@ -2,3 +2,4 @@
 
 pub mod line_chart;
 pub mod map_svg;
+pub mod plan_html;

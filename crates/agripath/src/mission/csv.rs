@@ -1,0 +1,36 @@
+//! Every mission item of every sortie as CSV, for spreadsheets and other tools:
+//! `sortie,index,action,value,lon,lat,ground_m,above_ground_m,sea_level_m`.
+
+use std::fmt::Write;
+
+use super::flight::{Action, SortieMission};
+
+pub fn waypoints_csv(missions: &[SortieMission]) -> String {
+    let mut text =
+        String::from("sortie,index,action,value,lon,lat,ground_m,above_ground_m,sea_level_m\n");
+    for mission in missions {
+        for (index, item) in mission.items.iter().enumerate() {
+            let (action, value) = match item.action {
+                Action::Takeoff => ("takeoff", String::new()),
+                Action::Waypoint => ("waypoint", String::new()),
+                Action::Land => ("land", String::new()),
+                Action::Speed { mps } => ("speed", format!("{mps}")),
+                Action::Spray { on } => ("spray", if on { "on".into() } else { "off".into() }),
+            };
+            let _ = writeln!(
+                text,
+                "{},{},{},{},{:.9},{:.9},{:.3},{:.3},{:.3}",
+                mission.sortie,
+                index,
+                action,
+                value,
+                item.lon,
+                item.lat,
+                item.ground_m,
+                item.above_ground_m,
+                item.sea_level_m()
+            );
+        }
+    }
+    text
+}

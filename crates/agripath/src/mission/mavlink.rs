@@ -1,0 +1,90 @@
+//! The MAVLink numbers the mission files use (checked against pymavlink's `ardupilotmega`
+//! dialect; `../shared/reference/ecosystem.md` §8.3), and how each [`Action`] becomes a
+//! command with its seven parameters.
+
+use super::flight::{Action, AltitudeReference, Item, SprayerCommand};
+
+pub const FRAME_GLOBAL: u8 = 0;
+pub const FRAME_GLOBAL_TERRAIN_ALT: u8 = 10;
+pub const CMD_NAV_WAYPOINT: u16 = 16;
+pub const CMD_NAV_LAND: u16 = 21;
+pub const CMD_NAV_TAKEOFF: u16 = 22;
+pub const CMD_DO_CHANGE_SPEED: u16 = 178;
+pub const CMD_DO_SET_SERVO: u16 = 183;
+pub const CMD_DO_SPRAYER: u16 = 216;
+
+/// A command as mission files store it: number, frame, p1…p7 (`None` = NaN/null).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Command {
+    pub command: u16,
+    pub frame: u8,
+    pub params: [Option<f64>; 7],
+}
+
+impl Command {
+    /// The altitude written for `item` in `reference`.
+    pub fn altitude(item: &Item, reference: AltitudeReference) -> f64 {
+        match reference {
+            AltitudeReference::SeaLevel => item.sea_level_m(),
+            AltitudeReference::Terrain => item.above_ground_m,
+        }
+    }
+
+    pub fn of(item: &Item, reference: AltitudeReference, sprayer: SprayerCommand) -> Self {
+        let frame = match reference {
+            AltitudeReference::SeaLevel => FRAME_GLOBAL,
+            AltitudeReference::Terrain => FRAME_GLOBAL_TERRAIN_ALT,
+        };
+        let place = |command: u16, first: [Option<f64>; 4]| Command {
+            command,
+            frame,
+            params: [
+                first[0],
+                first[1],
+                first[2],
+                first[3],
+                Some(item.lat),
+                Some(item.lon),
+                Some(Self::altitude(item, reference)),
+            ],
+        };
+        let act = |command: u16, first: [f64; 3]| Command {
+            command,
+            frame: FRAME_GLOBAL,
+            params: [
+                Some(first[0]),
+                Some(first[1]),
+                Some(first[2]),
+                Some(0.0),
+                Some(0.0),
+                Some(0.0),
+                Some(0.0),
+            ],
+        };
+        match item.action {
+            // Hold 0 s, acceptance radius 1 m, pass through, default yaw.
+            Action::Waypoint => place(CMD_NAV_WAYPOINT, [Some(0.0), Some(1.0), Some(0.0), None]),
+            Action::Takeoff => place(CMD_NAV_TAKEOFF, [Some(0.0), Some(0.0), Some(0.0), None]),
+            Action::Land => place(CMD_NAV_LAND, [Some(0.0), Some(0.0), Some(0.0), None]),
+            // Ground speed (1), m/s, throttle unchanged (−1).
+            Action::Speed { mps } => act(CMD_DO_CHANGE_SPEED, [1.0, mps, -1.0]),
+            Action::Spray { on } => match sprayer {
+                SprayerCommand::DoSprayer => {
+                    act(CMD_DO_SPRAYER, [if on { 1.0 } else { 0.0 }, 0.0, 0.0])
+                }
+                SprayerCommand::Servo {
+                    channel,
+                    on_pwm,
+                    off_pwm,
+                } => act(
+                    CMD_DO_SET_SERVO,
+                    [
+                        f64::from(channel),
+                        f64::from(if on { on_pwm } else { off_pwm }),
+                        0.0,
+                    ],
+                ),
+            },
+        }
+    }
+}
