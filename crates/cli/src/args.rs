@@ -56,6 +56,18 @@ pub enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Serve a plan folder on 127.0.0.1 and print the address of its plan.html (the page also
+    /// works opened straight from disk). Runs until stopped (Ctrl-C).
+    View {
+        /// A folder written by `plan` or `demo`.
+        folder: PathBuf,
+        /// Port on 127.0.0.1 (0: any free port).
+        #[arg(long, default_value_t = 8765)]
+        port: u16,
+        /// Also open the page in the desktop's browser (xdg-open / open).
+        #[arg(long)]
+        open: bool,
+    },
     /// Benchmarks: optimizers on the test functions of seed 000 Table 1.
     Bench {
         #[command(subcommand)]

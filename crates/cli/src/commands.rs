@@ -68,6 +68,7 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
             out,
         } => repro(table, runs, seed, out.as_deref()),
         Command::Bench { action } => bench(action),
+        Command::View { folder, port, open } => view(&folder, port, open),
         Command::Validate { inputs, json } => validate(&inputs, json),
         Command::Terrain { action } => terrain(action),
     }
@@ -247,6 +248,33 @@ fn plan(
             .join(", ")
     );
     Ok(())
+}
+
+fn view(folder: &Path, port: u16, open: bool) -> Result<(), Failure> {
+    if !folder.join("plan.html").is_file() {
+        return Err(InputError::new(
+            folder,
+            Fault::Structure(
+                "no plan.html here: give a folder written by `agripath plan` or `agripath demo`"
+                    .into(),
+            ),
+        )
+        .into());
+    }
+    crate::view::serve(folder, port, |url| {
+        emitln!("serving {} at {url} (Ctrl-C to stop)", folder.display());
+        if open {
+            let opener = if cfg!(target_os = "macos") {
+                "open"
+            } else {
+                "xdg-open"
+            };
+            if std::process::Command::new(opener).arg(url).spawn().is_err() {
+                eprintln!("agripath: could not start {opener}; open {url} yourself");
+            }
+        }
+    })
+    .map_err(|error| Failure::Output(format!("cannot serve on 127.0.0.1:{port}: {error}")))
 }
 
 /// The mission-file options, checked.

@@ -5,6 +5,7 @@
 
 mod args;
 mod commands;
+mod view;
 
 use std::process::ExitCode;
 

@@ -40,7 +40,16 @@ fn demo_writes_its_folder_and_is_byte_identical_when_run_again() {
     let text = stdout(&agripath(&["demo"], &folder));
     assert!(text.contains("S4") && text.contains("covered"), "{text}");
     let out = folder.join("agripath-demo");
-    let names = ["plan.geojson", "plan.svg", "terrain.png"];
+    let names = [
+        "plan.geojson",
+        "plan.svg",
+        "plan.html",
+        "terrain.png",
+        "mission.kml",
+        "waypoints.csv",
+        "sortie_01.plan",
+        "sortie_01.waypoints",
+    ];
     let first: Vec<Vec<u8>> = names
         .iter()
         .map(|name| std::fs::read(out.join(name)).unwrap())
@@ -320,6 +329,65 @@ fn plan_in_lon_lat_comes_back_in_lon_lat_over_the_real_dem() {
         (100.0..260.0).contains(&altitude),
         "terrain + 2.5 m: {altitude}"
     );
+    // The mission KML gives the same corner back, and the mission files sit beside.
+    let kml = std::fs::read_to_string(folder.join("island/mission.kml")).unwrap();
+    assert!(
+        kml.contains("105.621420730,-10.497627840,0.000"),
+        "field corner in mission.kml"
+    );
+    for name in [
+        "sortie_01.plan",
+        "sortie_01.waypoints",
+        "waypoints.csv",
+        "plan.html",
+        "terrain.png",
+    ] {
+        assert!(folder.join("island").join(name).is_file(), "{name}");
+    }
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+#[test]
+fn view_serves_the_plan_folder_on_loopback_only() {
+    use std::io::{BufRead, BufReader, Read, Write};
+    let folder = scratch("view");
+    stdout(&agripath(&["demo", "--out", "demo"], &folder));
+    let mut child = Command::new(env!("CARGO_BIN_EXE_agripath"))
+        .args(["view", "demo", "--port", "0"])
+        .current_dir(&folder)
+        .stdout(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut line = String::new();
+    BufReader::new(child.stdout.take().unwrap())
+        .read_line(&mut line)
+        .unwrap();
+    let address = line
+        .split("http://")
+        .nth(1)
+        .unwrap()
+        .split('/')
+        .next()
+        .unwrap()
+        .to_string();
+    assert!(address.starts_with("127.0.0.1:"), "{line}");
+    let get = |path: &str| {
+        let mut stream = std::net::TcpStream::connect(&address).unwrap();
+        write!(stream, "GET {path} HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
+        let mut response = String::new();
+        stream.read_to_string(&mut response).unwrap();
+        response
+    };
+    let page = get("/plan.html");
+    let geojson = get("/plan.geojson");
+    let outside = get("/../Cargo.toml");
+    child.kill().unwrap();
+    let _ = child.wait();
+    assert!(page.starts_with("HTTP/1.1 200") && page.contains("L.CRS.Simple"));
+    assert!(geojson.contains("application/json") && geojson.contains("FeatureCollection"));
+    assert!(outside.starts_with("HTTP/1.1 404"));
+    let missing = agripath(&["view", "nowhere"], &folder);
+    assert_eq!(missing.status.code(), Some(2));
     std::fs::remove_dir_all(&folder).unwrap();
 }
 

@@ -172,14 +172,16 @@ fn simplify(profile: &[(f64, f64)], tolerance: f64, keep: &mut [bool], first: us
 }
 
 /// The terrain-following waypoints of a spray run through `points` (plan metres and ground
-/// heights): the run's ends and every sample the terrain needs.
+/// heights): the run's ends, every corner (an edge pass turns at the boundary's vertices),
+/// and every sample the terrain needs between them.
 fn follow_terrain(
     points: &[RoutePoint],
     terrain: &dyn Terrain,
     settings: &MissionSettings,
 ) -> Result<Vec<RoutePoint>, Fault> {
     let mut samples = vec![points[0]];
-    for pair in points.windows(2) {
+    let mut anchors = vec![0];
+    for (index, pair) in points.windows(2).enumerate() {
         let (a, b) = (pair[0], pair[1]);
         let length = (b.x - a.x).hypot(b.y - a.y);
         let steps = (length / settings.sample_spacing_m).ceil().max(1.0) as usize;
@@ -193,6 +195,15 @@ fn follow_terrain(
             });
         }
         samples.push(b);
+        let corner = points.get(index + 2).is_some_and(|c| {
+            let (incoming, outgoing) = ((b.x - a.x, b.y - a.y), (c.x - b.x, c.y - b.y));
+            let cross = incoming.0 * outgoing.1 - incoming.1 * outgoing.0;
+            let dot = incoming.0 * outgoing.0 + incoming.1 * outgoing.1;
+            cross.atan2(dot).abs() > 0.5_f64.to_radians()
+        });
+        if corner || index + 2 == points.len() {
+            anchors.push(samples.len() - 1);
+        }
     }
     let mut along = 0.0;
     let profile: Vec<(f64, f64)> = samples
@@ -207,10 +218,17 @@ fn follow_terrain(
         })
         .collect();
     let mut keep = vec![false; samples.len()];
-    keep[0] = true;
-    let last = samples.len() - 1;
-    keep[last] = true;
-    simplify(&profile, settings.terrain_tolerance_m, &mut keep, 0, last);
+    for pair in anchors.windows(2) {
+        keep[pair[0]] = true;
+        keep[pair[1]] = true;
+        simplify(
+            &profile,
+            settings.terrain_tolerance_m,
+            &mut keep,
+            pair[0],
+            pair[1],
+        );
+    }
     Ok(samples
         .into_iter()
         .zip(keep)
@@ -386,6 +404,60 @@ mod tests {
         simplify(&profile, 0.1, &mut keep, 0, 20);
         let kept: Vec<usize> = (0..=20).filter(|&i| keep[i]).collect();
         assert_eq!(kept, vec![0, 10, 20]);
+    }
+
+    struct Waves;
+
+    impl Terrain for Waves {
+        fn height_m(&self, x: f64, y: f64) -> Result<f64, crate::TerrainError> {
+            Ok(4.0 * (x / 23.0).sin() + 2.0 * (y / 17.0).cos())
+        }
+        fn extent(&self) -> Option<crate::terrain::Extent> {
+            None
+        }
+        fn describe(&self) -> String {
+            "waves".into()
+        }
+    }
+
+    #[test]
+    fn terrain_following_keeps_corners_and_stays_within_the_tolerance() {
+        let at = |x: f64, y: f64| RoutePoint {
+            x,
+            y,
+            ground_m: Waves.height_m(x, y).unwrap(),
+        };
+        // An L-shaped run: along x, then along y.
+        let points = [at(0.0, 0.0), at(100.0, 0.0), at(100.0, 80.0)];
+        let settings = MissionSettings {
+            terrain_tolerance_m: 0.5,
+            sample_spacing_m: 1.0,
+            ..MissionSettings::default()
+        };
+        let kept = follow_terrain(&points, &Waves, &settings).unwrap();
+        assert!(
+            kept.iter().any(|p| p.x == 100.0 && p.y == 0.0),
+            "the corner is a waypoint"
+        );
+        assert!(
+            kept.len() > 3 && kept.len() < 60,
+            "{} waypoints",
+            kept.len()
+        );
+        for pair in kept.windows(2) {
+            let (a, b) = (pair[0], pair[1]);
+            let length = (b.x - a.x).hypot(b.y - a.y);
+            for k in 0..=100 {
+                let t = k as f64 / 100.0;
+                let (x, y) = (a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
+                let flown = a.ground_m + t * (b.ground_m - a.ground_m);
+                // Sampled every metre: between samples the gap can grow by the slope × 1 m.
+                assert!(
+                    (flown - Waves.height_m(x, y).unwrap()).abs() <= 0.5 + 0.2,
+                    "{length} m leg at t = {t}"
+                );
+            }
+        }
     }
 
     #[test]

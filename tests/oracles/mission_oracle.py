@@ -1,0 +1,93 @@
+"""Mission files checked by the tools autopilots use.
+
+Every `.waypoints` file of two plans (the embedded demo; the Christmas Island plantation in
+lon/lat over the real DEM, with terrain-frame altitudes and a servo sprayer) is loaded with
+pymavlink's `mavwp.MAVWPLoader` (what MAVProxy and Mission Planner-compatible tools use),
+each item packed as an ArduPilot MISSION_ITEM (which refuses out-of-range fields), and the
+matching `.plan` must hold the same commands, frames and parameters.
+
+Run: python tests/oracles/mission_oracle.py target/debug/agripath
+"""
+import glob
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+
+from pymavlink import mavwp
+from pymavlink.dialects.v20 import ardupilotmega as mavlink
+
+AGRIPATH = sys.argv[1]
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+KNOWN_COMMANDS = {16, 21, 22, 178, 183, 216}
+
+passed = failed = 0
+
+
+def check(ok, what):
+    global passed, failed
+    if ok:
+        passed += 1
+    else:
+        failed += 1
+        print("FAILED:", what)
+
+
+def same(a, b):
+    if a is None:
+        return b is None or (isinstance(b, float) and math.isnan(b))
+    return abs(float(a) - float(b)) <= 1e-6 * max(1.0, abs(float(a)))
+
+
+def check_folder(folder, frames):
+    mav = mavlink.MAVLink(None)
+    waypoint_files = sorted(glob.glob(os.path.join(folder, "*.waypoints")))
+    check(len(waypoint_files) >= 1, f"{folder}: no .waypoints written")
+    for path in waypoint_files:
+        name = os.path.basename(path)
+        with open(path) as handle:
+            lines = [line for line in handle.read().splitlines() if line.strip()]
+        loader = mavwp.MAVWPLoader()
+        count = loader.load(path)
+        check(count == len(lines) - 1, f"{name}: pymavlink read {count} of {len(lines) - 1} items")
+        for index in range(count):
+            item = loader.wp(index)
+            try:
+                item.pack(mav)
+                packed = True
+            except Exception as error:  # noqa: BLE001 - any refusal is the finding
+                packed = False
+                print("  ", name, index, error)
+            check(packed, f"{name}: item {index} packs as MISSION_ITEM")
+            check(item.command in KNOWN_COMMANDS, f"{name}: item {index} command {item.command}")
+            if item.command in (16, 21, 22) and index > 0:  # row 0 is home, always AMSL
+                check(item.frame in frames, f"{name}: item {index} frame {item.frame}")
+                check(-90 <= item.x <= 90 and -180 <= item.y <= 180 and item.x != 0, f"{name}: item {index} position")
+        check(loader.wp(1).command == 22 and loader.wp(count - 1).command == 21, f"{name}: takeoff first, land last")
+        plan_path = path[: -len(".waypoints")] + ".plan"
+        with open(plan_path) as handle:
+            plan = json.load(handle)
+        items = plan["mission"]["items"]
+        check(len(items) == count - 1, f"{os.path.basename(plan_path)}: {len(items)} items, .waypoints has {count - 1}")
+        for index, plan_item in enumerate(items[: count - 1]):
+            item = loader.wp(index + 1)
+            params = [item.param1, item.param2, item.param3, item.param4, item.x, item.y, item.z]
+            check(plan_item["command"] == item.command and plan_item["frame"] == item.frame,
+                  f"{name}: item {index + 1} command/frame differ from the .plan")
+            check(all(same(p, q) for p, q in zip(plan_item["params"], params)),
+                  f"{name}: item {index + 1} params {plan_item['params']} vs {params}")
+
+
+with tempfile.TemporaryDirectory() as scratch:
+    demo = os.path.join(scratch, "demo")
+    subprocess.run([AGRIPATH, "demo", "--out", demo], check=True, stdout=subprocess.DEVNULL)
+    check_folder(demo, {0})
+    island = os.path.join(scratch, "island")
+    subprocess.run([AGRIPATH, "plan", os.path.join(ROOT, "data/scenarios/christmas_island.toml"), "--altitude", "terrain",
+                    "--sprayer", "servo:9:1900:1100", "--out", island], check=True, stdout=subprocess.DEVNULL)
+    check_folder(island, {10})
+
+print(f"missions: {passed} passed, {failed} failed")
+sys.exit(1 if failed else 0)

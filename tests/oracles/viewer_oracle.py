@@ -1,0 +1,55 @@
+"""plan.html drawn by a real browser: headless Chromium loads the demo's viewer from disk
+(offline: no server, no network) and the DOM after its scripts ran must hold one drawn
+Leaflet shape per feature of plan.geojson and a layer per sortie. A screenshot is left in
+the scratch folder named on stdout for a person to look at.
+
+Run: python tests/oracles/viewer_oracle.py target/debug/agripath [CHROMIUM]
+"""
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+import tempfile
+
+AGRIPATH = sys.argv[1]
+CHROMIUM = sys.argv[2] if len(sys.argv) > 2 else (shutil.which("chromium") or shutil.which("chromium-browser"))
+if not CHROMIUM:
+    print("viewer: FAILED: no chromium on PATH (.ci/run installs Debian's chromium)")
+    sys.exit(1)
+
+FLAGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+         "--disable-background-networking", "--disable-component-update", "--disable-sync",
+         "--virtual-time-budget=5000", "--window-size=1400,900"]
+
+scratch = tempfile.mkdtemp(prefix="agripath-viewer-")
+demo = os.path.join(scratch, "demo")
+subprocess.run([AGRIPATH, "demo", "--out", demo], check=True, stdout=subprocess.DEVNULL)
+page = "file://" + os.path.join(demo, "plan.html")
+profile = os.path.join(scratch, "profile")
+dom = subprocess.run([CHROMIUM, *FLAGS, f"--user-data-dir={profile}", "--dump-dom", page],
+                     check=True, capture_output=True, text=True, timeout=120).stdout
+subprocess.run([CHROMIUM, *FLAGS, f"--user-data-dir={profile}", "--screenshot=" + os.path.join(scratch, "plan.png"), page],
+               check=True, capture_output=True, timeout=120)
+
+with open(os.path.join(demo, "plan.geojson")) as handle:
+    features = json.load(handle)["features"]
+with open(os.path.join(demo, "report.json")) as handle:
+    sorties = json.load(handle)["sorties"]
+
+failures = []
+drawn = len(re.findall(r'<path[^>]*class="[^"]*leaflet-interactive', dom))
+if f'data-features="{len(features)}"' not in dom:
+    failures.append("the page script did not finish (data-features missing)")
+if drawn != len(features):
+    failures.append(f"{drawn} shapes drawn for {len(features)} features")
+layers = re.findall(r"<span> sortie (\d+)</span>", dom)
+if sorted(map(int, layers)) != list(range(1, sorties + 1)):
+    failures.append(f"sortie layers {layers}, report has {sorties} sorties")
+if "leaflet-image-layer" not in dom:
+    failures.append("no hillshade overlay")
+for failure in failures:
+    print("FAILED:", failure)
+print(f"viewer: {drawn} shapes for {len(features)} features, {len(layers)} sortie layers; screenshot {scratch}/plan.png")
+sys.exit(1 if failures else 0)
