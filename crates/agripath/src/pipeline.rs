@@ -12,8 +12,9 @@ use crate::mission::kml::mission_kml;
 use crate::mission::plan_geojson::plan_geojson;
 use crate::mission::{qgc_plan, wpl};
 use crate::model::{CoordinateSystem, Scenario};
-use crate::plot::map_svg::plan_svg;
+use crate::plot::map_svg::{plan_svg, Underlay};
 use crate::plot::plan_html::{plan_html, Overlay};
+use crate::plot::raster::svg_to_png;
 use crate::report::Report;
 use crate::sequence::{route, Route, Sequencer, TransferModel};
 use crate::sortie::route::{RoutePoint, Speeds, WorkRoute};
@@ -234,10 +235,6 @@ pub fn render(
             (serde_json::to_string_pretty(&mission.report).expect("report serialises") + "\n")
                 .into_bytes(),
         ),
-        (
-            "plan.svg".to_string(),
-            plan_svg(&scenario.farm, &mission.coverage, &mission.route, &title).into_bytes(),
-        ),
     ];
     // The viewer draws in plan metres: the same features in the local frame.
     let mut local_farm = scenario.farm.clone();
@@ -251,6 +248,26 @@ pub fn render(
         vehicle.safe_height_m,
     );
     let (extent, png) = terrain_overlay(scenario);
+    let underlay = Underlay {
+        png: &png,
+        min_x: extent.min_x,
+        min_y: extent.min_y,
+        max_x: extent.max_x,
+        max_y: extent.max_y,
+    };
+    let map = plan_svg(
+        &scenario.farm,
+        &mission.coverage,
+        &mission.route,
+        mission.sorties.as_ref(),
+        Some(&underlay),
+        &title,
+    );
+    files.push((
+        "plan.png".to_string(),
+        svg_to_png(&map, 1600).map_err(Fault::Structure)?,
+    ));
+    files.push(("plan.svg".to_string(), map.into_bytes()));
     let overlay = Overlay {
         png: &png,
         min_x: extent.min_x,

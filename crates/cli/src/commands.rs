@@ -232,10 +232,16 @@ fn plan(
         },
         mission: mission_settings,
     };
+    // A spinner for big farms (heading scans, ordering, sorties, mission files).
+    let spinner = indicatif::ProgressBar::new_spinner();
+    spinner.set_message(format!("planning {} field(s)", scenario.farm.fields.len()));
+    spinner.enable_steady_tick(std::time::Duration::from_millis(120));
     let mission = plan_mission(&scenario, &settings)
         .map_err(|fault| InputError::new(&scenario.farm.source, fault))?;
+    spinner.set_message("writing mission files and maps");
     let files = render(&scenario, &mission)
         .map_err(|fault| InputError::new(&scenario.farm.source, fault))?;
+    spinner.finish_and_clear();
     let written = write_folder(out, &files)?;
     emit!("{}", mission.report.to_text());
     emitln!(

@@ -1,6 +1,8 @@
-//! `plan.svg`: a map of the plan people can look at — fields, holes and obstacles, the
-//! strips each pass sprays (swath-wide, translucent, so gaps and overlaps show), flight lines,
-//! transfers (climbing ones in red), labels, legend, scale bar and north arrow.
+//! `plan.svg` (and `plan.png`): a map of the plan people can look at — the terrain's
+//! hillshade, fields, holes and obstacles, the strips each pass sprays (swath-wide,
+//! translucent, so gaps and overlaps show) coloured by sortie, flight lines, transfers
+//! (climbing ones in red), return legs and points, the supply point, labels, legend, scale bar
+//! and north arrow.
 
 use std::fmt::Write;
 
@@ -9,11 +11,27 @@ use geo::{Centroid, Polygon};
 use crate::coverage::drape::GroundPoint;
 use crate::coverage::CoveragePlan;
 use crate::model::Farm;
+use crate::pipeline::PlannedSorties;
 use crate::sequence::{Pass, Route};
+
+/// Sortie colours (Okabe and Ito, then darker tones), repeating after ten.
+pub const SORTIE_COLOURS: [&str; 10] = [
+    "#0072B2", "#E69F00", "#009E73", "#CC79A7", "#D55E00", "#56B4E9", "#332288", "#999933",
+    "#882255", "#117733",
+];
+
+/// A picture under the map: PNG bytes and the plan-metre box it covers.
+pub struct Underlay<'a> {
+    pub png: &'a [u8],
+    pub min_x: f64,
+    pub min_y: f64,
+    pub max_x: f64,
+    pub max_y: f64,
+}
 
 const WIDTH_PX: f64 = 1200.0;
 const PAD_PX: f64 = 40.0;
-const LEGEND_PX: f64 = 70.0;
+const LEGEND_PX: f64 = 95.0;
 
 struct Canvas {
     min_x: f64,
@@ -71,8 +89,16 @@ fn scale_bar_m(width_m: f64) -> f64 {
         .unwrap_or(magnitude)
 }
 
-/// Draws the plan. `title` heads the map.
-pub fn plan_svg(farm: &Farm, plan: &CoveragePlan, route: &Route, title: &str) -> String {
+/// Draws the plan. `title` heads the map; `sorties` colours passes by sortie and adds the
+/// returns; `underlay` (the hillshade) goes beneath everything.
+pub fn plan_svg(
+    farm: &Farm,
+    plan: &CoveragePlan,
+    route: &Route,
+    sorties: Option<&PlannedSorties>,
+    underlay: Option<&Underlay>,
+    title: &str,
+) -> String {
     let bounds = farm.bounds();
     let span_x = bounds.width().max(1.0);
     let span_y = bounds.height().max(1.0);
@@ -98,11 +124,30 @@ pub fn plan_svg(farm: &Farm, plan: &CoveragePlan, route: &Route, title: &str) ->
         r##"<text x="{PAD_PX}" y="24" font-size="16" fill="#222">{}</text>"##,
         escape(title)
     );
+    let map_height = span_y * scale + 2.0 * PAD_PX - 30.0;
+    let _ = writeln!(
+        svg,
+        r##"<clipPath id="map-area"><rect x="0" y="30" width="{WIDTH_PX:.0}" height="{map_height:.0}"/></clipPath>"##
+    );
+    if let Some(underlay) = underlay {
+        let _ = writeln!(
+            svg,
+            r##"<image clip-path="url(#map-area)" x="{:.2}" y="{:.2}" width="{:.2}" height="{:.2}" preserveAspectRatio="none" opacity="0.55" href="data:image/png;base64,{}"/>"##,
+            canvas.x(underlay.min_x),
+            canvas.y(underlay.max_y),
+            (underlay.max_x - underlay.min_x) * scale,
+            (underlay.max_y - underlay.min_y) * scale,
+            super::plan_html::base64(underlay.png)
+        );
+    }
+    // The sortie flying each pass (0 when the route is not split).
+    let sortie_of =
+        |index: usize| sorties.map_or(0, |split| split.sortie_at(split.visit_offsets[index]));
     let _ = writeln!(svg, r##"<g id="fields">"##);
     for field in &farm.fields {
         let _ = writeln!(
             svg,
-            r##"<path d="{}" fill="#e3efcf" fill-rule="evenodd" stroke="#4a7a2a" stroke-width="1.2"/>"##,
+            r##"<path d="{}" fill="#e3efcf" fill-opacity="0.55" fill-rule="evenodd" stroke="#4a7a2a" stroke-width="1.2"/>"##,
             canvas.polygon(&field.polygon)
         );
     }
@@ -119,11 +164,8 @@ pub fn plan_svg(farm: &Farm, plan: &CoveragePlan, route: &Route, title: &str) ->
         svg,
         r##"<g id="strips" fill="none" stroke-linecap="butt" stroke-linejoin="miter" stroke-opacity="0.22">"##
     );
-    for visit in &route.visits {
-        let colour = match visit.pass {
-            Pass::Swath { .. } => "#1565c0",
-            Pass::Edge { .. } => "#2e7d32",
-        };
+    for (index, visit) in route.visits.iter().enumerate() {
+        let colour = SORTIE_COLOURS[sortie_of(index) % SORTIE_COLOURS.len()];
         let _ = writeln!(
             svg,
             r##"<path d="{}" stroke="{colour}" stroke-width="{strip_px:.2}"/>"##,
@@ -132,14 +174,16 @@ pub fn plan_svg(farm: &Farm, plan: &CoveragePlan, route: &Route, title: &str) ->
     }
     let _ = writeln!(svg, "</g>");
     let _ = writeln!(svg, r##"<g id="passes" fill="none" stroke-width="1">"##);
-    for visit in &route.visits {
-        let colour = match visit.pass {
-            Pass::Swath { .. } => "#0d47a1",
-            Pass::Edge { .. } => "#1b5e20",
+    for (index, visit) in route.visits.iter().enumerate() {
+        let colour = SORTIE_COLOURS[sortie_of(index) % SORTIE_COLOURS.len()];
+        // Edge passes dashed, so they read apart from the swaths of the same sortie.
+        let dash = match visit.pass {
+            Pass::Swath { .. } => "",
+            Pass::Edge { .. } => r#" stroke-dasharray="6 2""#,
         };
         let _ = writeln!(
             svg,
-            r##"<path d="{}" stroke="{colour}"/>"##,
+            r##"<path d="{}" stroke="{colour}"{dash}/>"##,
             canvas.line(&visit.points)
         );
     }
@@ -161,6 +205,33 @@ pub fn plan_svg(farm: &Farm, plan: &CoveragePlan, route: &Route, title: &str) ->
         );
     }
     let _ = writeln!(svg, "</g>");
+    if let Some(split) = sorties {
+        let supply = split.supply;
+        let _ = writeln!(
+            svg,
+            r##"<g id="returns" fill="none" stroke="#6a1b9a" stroke-width="1.2" stroke-dasharray="7 4">"##
+        );
+        for &at in &split.plan.breaks {
+            let point = split.work_route.points()[at];
+            let _ = writeln!(
+                svg,
+                r##"<path d="{}"/><circle cx="{:.2}" cy="{:.2}" r="4" fill="#6a1b9a" stroke="white" stroke-dasharray="none"/>"##,
+                canvas.path(
+                    [(point.x, point.y), (supply.x, supply.y)].into_iter(),
+                    false
+                ),
+                canvas.x(point.x),
+                canvas.y(point.y)
+            );
+        }
+        let _ = writeln!(
+            svg,
+            r##"</g><g id="supply"><circle cx="{x:.2}" cy="{y:.2}" r="7" fill="#ffeb3b" stroke="#222" stroke-width="2"/><text x="{x:.2}" y="{:.2}" font-size="12" text-anchor="middle" fill="#222" stroke="#fbfbf8" stroke-width="3" paint-order="stroke">supply</text></g>"##,
+            canvas.y(supply.y) - 11.0,
+            x = canvas.x(supply.x),
+            y = canvas.y(supply.y)
+        );
+    }
     let _ = writeln!(
         svg,
         r##"<g id="labels" font-size="13" fill="#111" text-anchor="middle">"##
@@ -179,12 +250,33 @@ pub fn plan_svg(farm: &Farm, plan: &CoveragePlan, route: &Route, title: &str) ->
     }
     let _ = writeln!(svg, "</g>");
     // Legend, scale bar, north arrow along the bottom.
-    let base = height_px - LEGEND_PX + 25.0;
+    let base = height_px - LEGEND_PX + 55.0;
+    let sortie_count = sorties.map_or(1, |split| split.plan.sorties.len());
+    let shown = sortie_count.min(SORTIE_COLOURS.len());
+    for (k, colour) in SORTIE_COLOURS.iter().enumerate().take(shown) {
+        let x = PAD_PX + 60.0 + k as f64 * 16.0;
+        let _ = writeln!(
+            svg,
+            r##"<rect x="{x:.0}" y="{:.0}" width="14" height="10" fill="{colour}"/>"##,
+            base - 27.0
+        );
+    }
+    let _ = writeln!(
+        svg,
+        r##"<text x="{PAD_PX}" y="{:.0}" font-size="12" fill="#222">sorties</text><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">1 … {sortie_count}{}  (swaths solid, edge passes dashed)</text>"##,
+        base - 18.0,
+        PAD_PX + 66.0 + shown as f64 * 16.0,
+        base - 18.0,
+        if sortie_count > SORTIE_COLOURS.len() {
+            ", colours repeat"
+        } else {
+            ""
+        }
+    );
     let items = [
-        ("#1565c0", "swath", ""),
-        ("#2e7d32", "edge pass", ""),
         ("#ef6c00", "transfer", "4 3"),
         ("#d32f2f", "transfer climbing h", "4 3"),
+        ("#6a1b9a", "return to supply", "7 4"),
     ];
     for (index, (colour, label, dash)) in items.iter().enumerate() {
         let x = PAD_PX + index as f64 * 170.0;
