@@ -8,6 +8,7 @@ pub mod coverage;
 pub mod demo;
 pub mod error;
 pub mod geometry;
+pub mod grid_cover;
 pub mod input;
 pub mod mission;
 pub mod model;

@@ -56,6 +56,29 @@ pub enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Fewest-turn coverage of one field on a grid of path points (seed 004): `ours`, the
+    /// seed's `hpso`, or the `baseline` boustrophedon decomposition. Writes DIR/plan.geojson,
+    /// DIR/report.json and DIR/plan.svg.
+    Grid {
+        /// Field file (GeoJSON, KML or KMZ); obstacles as in `plan`.
+        fields: PathBuf,
+        /// Which field, by name (default: the first).
+        #[arg(long)]
+        field: Option<String>,
+        #[arg(long, default_value = "ours", value_parser = ["ours", "hpso", "baseline"])]
+        method: String,
+        /// Path-point spacing = swath width, metres (default: the file's `swath_width_m`, else 5).
+        #[arg(long, allow_negative_numbers = true)]
+        swath_width: Option<f64>,
+        /// Read coordinates as local metres.
+        #[arg(long, value_parser = ["local"])]
+        crs: Option<String>,
+        /// Seed of HPSO.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Serve a plan folder on 127.0.0.1 and print the address of its plan.html (the page also
     /// works opened straight from disk). Runs until stopped (Ctrl-C).
     View {
@@ -228,6 +251,9 @@ pub enum ReproTable {
     /// Seed 003 Tables 4 and 5: return points on the strip, unplanned / simple / GSA / exact.
     #[value(name = "seed003-table4")]
     Seed003Table4,
+    /// Seed 004: fewest-turn grid coverage of six fields: HPSO, the baseline and ours.
+    #[value(name = "seed004")]
+    Seed004,
     /// Seed 001 Table 7: headings, swath counts and lengths of the five-field farm.
     #[value(name = "seed001-table7")]
     Seed001Table7,

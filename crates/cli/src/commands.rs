@@ -69,6 +69,23 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
         } => repro(table, runs, seed, out.as_deref()),
         Command::Bench { action } => bench(action),
         Command::View { folder, port, open } => view(&folder, port, open),
+        Command::Grid {
+            fields,
+            field,
+            method,
+            swath_width,
+            crs,
+            seed,
+            out,
+        } => grid(
+            &fields,
+            field.as_deref(),
+            &method,
+            swath_width,
+            crs.is_some(),
+            seed,
+            &out,
+        ),
         Command::Validate { inputs, json } => validate(&inputs, json),
         Command::Terrain { action } => terrain(action),
     }
@@ -252,6 +269,78 @@ fn plan(
             .map(|(name, _)| name.as_str())
             .collect::<Vec<_>>()
             .join(", ")
+    );
+    Ok(())
+}
+
+fn grid(
+    fields: &Path,
+    field: Option<&str>,
+    method: &str,
+    swath_width: Option<f64>,
+    local: bool,
+    seed: u64,
+    out: &Path,
+) -> Result<(), Failure> {
+    use agripath::grid_cover::{boustrophedon, fewest_turns, hybrid_pso, PointGrid};
+    let choice = if local {
+        CoordinateChoice::Local
+    } else {
+        CoordinateChoice::FromFile
+    };
+    let farm = agripath::input::read_farm(fields, choice)?;
+    let index = match field {
+        None => 0,
+        Some(name) => farm
+            .fields
+            .iter()
+            .position(|f| f.name == name)
+            .ok_or_else(|| {
+                InputError::new(fields, Fault::Structure(format!("no field named '{name}'")))
+            })?,
+    };
+    let from_file = std::fs::read_to_string(fields)
+        .ok()
+        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
+        .and_then(|json| json["swath_width_m"].as_f64());
+    let width = swath_width.or(from_file).unwrap_or(5.0);
+    if !(width.is_finite() && width > 0.0) {
+        return Err(InputError::new(
+            "arguments",
+            Fault::InvalidValue {
+                what: "--swath-width".into(),
+                value: width.to_string(),
+                why: "must be a finite number above 0".into(),
+            },
+        )
+        .into());
+    }
+    let grid =
+        PointGrid::new(&farm, index, width).map_err(|fault| InputError::new(fields, fault))?;
+    let started = std::time::Instant::now();
+    let route = match method {
+        "hpso" => {
+            let settings = hybrid_pso::HpsoSettings {
+                seed,
+                ..Default::default()
+            };
+            hybrid_pso::plan(&grid, &settings).0
+        }
+        "baseline" => boustrophedon::plan(&grid),
+        _ => fewest_turns::plan(&grid),
+    };
+    let runtime_s = started.elapsed().as_secs_f64();
+    let (files, title) =
+        agripath::grid_cover::render(&farm, index, &grid, &route, method, runtime_s);
+    let written = write_folder(out, &files)?;
+    emitln!(
+        "{title} ({} points, planned in {:.3} s)",
+        grid.points.len(),
+        runtime_s
+    );
+    emitln!(
+        "wrote {}/: plan.geojson, report.json, plan.svg",
+        written.display()
     );
     Ok(())
 }
@@ -481,6 +570,38 @@ fn repro(
             emitln!();
             emitln!("Non-spray time = round trips + max(battery swap, refill) per return (the turns, equal for every");
             emitln!("plan, are left out as in the paper's Table 4). 'exact' is ours: the optimal returns for this route.");
+            Ok(())
+        }
+        ReproTable::Seed004 => {
+            use agripath::grid_cover::hybrid_pso::HpsoSettings;
+            use agripath::repro::seed004;
+            let settings = HpsoSettings {
+                seed,
+                ..HpsoSettings::default()
+            };
+            emitln!("Seed 004: turns on the six fields with obstacles (grid of 5 m path points)");
+            let rows = seed004::table(&settings)?;
+            let text = seed004::to_text(&rows, &settings);
+            emit!("{text}");
+            emitln!();
+            emitln!("'1-direction': the best single-direction boustrophedon, 2 × (runs − 1); 'lower bd': no route of");
+            emitln!("axis-parallel legs can turn fewer times (König cover of the points by row and column runs, − 1).");
+            emitln!("'!' marks a route that misses a point or crosses an obstacle.");
+            if let Some(out) = out {
+                let mut files: Vec<(String, Vec<u8>)> =
+                    vec![("seed004.txt".into(), text.into_bytes())];
+                for row in &rows {
+                    files.push((
+                        format!("{}.svg", row.name),
+                        seed004::map_svg(row).into_bytes(),
+                    ));
+                }
+                let written = write_folder(out, &files)?;
+                emitln!(
+                    "wrote {}/: seed004.txt and a map per field",
+                    written.display()
+                );
+            }
             Ok(())
         }
         ReproTable::Seed001Table8 => {

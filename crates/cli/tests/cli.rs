@@ -538,3 +538,44 @@ fn repro_seed003_table4_prints_every_planner_beside_the_paper() {
     }
     assert!(text.contains("(440.2)") && text.contains("Table 5"));
 }
+
+#[test]
+fn grid_covers_a_seed004_field_with_fewer_turns_than_one_direction() {
+    let folder = scratch("grid");
+    let field = data("seed004_double_1.geojson");
+    let text = stdout(&agripath(
+        &["grid", field.to_str().unwrap(), "--out", "grid"],
+        &folder,
+    ));
+    assert!(text.contains("double_1 ours"), "{text}");
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("grid/report.json")).unwrap()).unwrap();
+    let turns = report["turns"].as_u64().unwrap();
+    assert!(
+        turns <= report["single_direction_turns"].as_u64().unwrap(),
+        "{report}"
+    );
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("grid/plan.geojson")).unwrap()).unwrap();
+    let waypoints = plan["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|f| f["properties"]["kind"] == "waypoint")
+        .count();
+    assert_eq!(waypoints as u64, report["points"].as_u64().unwrap());
+    let missing = agripath(
+        &[
+            "grid",
+            field.to_str().unwrap(),
+            "--field",
+            "nope",
+            "--out",
+            "x",
+        ],
+        &folder,
+    );
+    assert_eq!(missing.status.code(), Some(2));
+    assert!(!folder.join("x").exists());
+    std::fs::remove_dir_all(&folder).unwrap();
+}

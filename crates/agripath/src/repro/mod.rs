@@ -4,3 +4,4 @@ pub mod seed000_table2;
 pub mod seed001_table7;
 pub mod seed001_table8;
 pub mod seed003_table4;
+pub mod seed004;

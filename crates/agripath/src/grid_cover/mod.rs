@@ -1,0 +1,690 @@
+//! Fewest-turn coverage of a field with obstacles on a grid of path points (seed 004).
+//!
+//! Path points sit at the centres of square cells of swath width laid over the field's
+//! bounding rectangle; a point is valid when it lies inside the field and outside every
+//! obstacle (the seed's rule, §1). A route visits every valid point exactly once. Moves
+//! between 4-neighbours spray; a move to any other point is allowed when the straight segment
+//! crosses no obstacle and stays in the field, and counts as non-spray distance. A route may
+//! also pass through transit vertices (to go round an obstacle) without visiting anything.
+//!
+//! Turns (MISSION.md decision 5): every change of direction at a vertex of the flown
+//! polyline, whatever its angle; a U-turn between neighbouring rows is two turns.
+//!
+//! Methods, chosen by value: `hpso` (the seed's hybrid PSO, [`hybrid_pso`]), `baseline`
+//! (boustrophedon cell decomposition, fixed order, [`boustrophedon`]) and `ours`
+//! ([`fewest_turns`]: cells, the best sweep direction per cell, runs joined to save turns).
+
+pub mod boustrophedon;
+pub mod fewest_turns;
+pub mod hybrid_pso;
+
+use std::collections::VecDeque;
+
+use geo::{Contains, Coord, Intersects, Line, Point, Polygon};
+use serde::Serialize;
+
+use crate::error::Fault;
+use crate::model::Farm;
+
+/// The path points of one field.
+#[derive(Debug, Clone)]
+pub struct PointGrid {
+    pub cell_m: f64,
+    pub columns: usize,
+    pub rows: usize,
+    pub origin: Coord<f64>,
+    /// Row-major (index = row · columns + column): whether the point is valid.
+    pub valid: Vec<bool>,
+    /// Valid point indices in row-major order.
+    pub points: Vec<usize>,
+    field: Polygon<f64>,
+    /// A convex field without holes holds every segment between two of its points.
+    field_convex: bool,
+    obstacles: Vec<Polygon<f64>>,
+    /// Each obstacle's box, to skip the exact test for segments far from it.
+    obstacle_boxes: Vec<geo::Rect<f64>>,
+    /// Cells near an obstacle's box (dilated by one cell): a segment that only meets other
+    /// cells is clear without the exact test.
+    near_obstacle: Vec<bool>,
+    /// Per point, bit d set when the move to its neighbour in direction d (of the eight) is clear.
+    neighbour_clear: Vec<u8>,
+}
+
+/// The eight neighbour directions (column step, row step).
+const NEIGHBOURS: [(i64, i64); 8] = [
+    (1, 0),
+    (-1, 0),
+    (0, 1),
+    (0, -1),
+    (1, 1),
+    (1, -1),
+    (-1, 1),
+    (-1, -1),
+];
+
+impl PointGrid {
+    /// The grid of field `field` of `farm` (every obstacle of the farm counts).
+    pub fn new(farm: &Farm, field: usize, cell_m: f64) -> Result<Self, Fault> {
+        let polygon = farm.fields[field].polygon.clone();
+        let bounds = geo::BoundingRect::bounding_rect(&polygon).ok_or(Fault::NoFields)?;
+        let columns = ((bounds.width() / cell_m) - 1e-9).ceil().max(1.0) as usize;
+        let rows = ((bounds.height() / cell_m) - 1e-9).ceil().max(1.0) as usize;
+        if columns.saturating_mul(rows) > 40_000 {
+            return Err(Fault::TooLarge(format!(
+                "{columns} × {rows} path points (grid coverage is for fields up to 40,000 points)"
+            )));
+        }
+        let obstacles: Vec<Polygon<f64>> =
+            farm.obstacles.iter().map(|o| o.polygon.clone()).collect();
+        let origin = bounds.min();
+        let mut valid = vec![false; columns * rows];
+        for (index, slot) in valid.iter_mut().enumerate() {
+            let (row, column) = (index / columns, index % columns);
+            let centre = Point::new(
+                origin.x + (column as f64 + 0.5) * cell_m,
+                origin.y + (row as f64 + 0.5) * cell_m,
+            );
+            *slot = polygon.contains(&centre) && !obstacles.iter().any(|o| o.intersects(&centre));
+        }
+        let points = (0..valid.len()).filter(|&i| valid[i]).collect();
+        let field_convex =
+            polygon.interiors().is_empty() && geo::IsConvex::is_convex(polygon.exterior());
+        let obstacle_boxes: Vec<geo::Rect<f64>> = obstacles
+            .iter()
+            .filter_map(geo::BoundingRect::bounding_rect)
+            .collect();
+        let mut near_obstacle = vec![false; columns * rows];
+        for rect in &obstacle_boxes {
+            let column = |x: f64| -> i64 { ((x - origin.x) / cell_m).floor() as i64 };
+            let row = |y: f64| -> i64 { ((y - origin.y) / cell_m).floor() as i64 };
+            for r in (row(rect.min().y) - 1)..=(row(rect.max().y) + 1) {
+                for c in (column(rect.min().x) - 1)..=(column(rect.max().x) + 1) {
+                    if r >= 0 && c >= 0 && (r as usize) < rows && (c as usize) < columns {
+                        near_obstacle[r as usize * columns + c as usize] = true;
+                    }
+                }
+            }
+        }
+        let mut grid = Self {
+            cell_m,
+            columns,
+            rows,
+            origin,
+            valid,
+            points,
+            field: polygon,
+            field_convex,
+            obstacles,
+            obstacle_boxes,
+            near_obstacle,
+            neighbour_clear: Vec::new(),
+        };
+        grid.neighbour_clear = (0..grid.valid.len())
+            .map(|index| {
+                let mut bits = 0u8;
+                for (d, (dc, dr)) in NEIGHBOURS.iter().enumerate() {
+                    if let Some(next) = grid.neighbour(index, *dc, *dr) {
+                        if grid.clear(grid.centre(index), grid.centre(next)) {
+                            bits |= 1 << d;
+                        }
+                    }
+                }
+                bits
+            })
+            .collect();
+        Ok(grid)
+    }
+
+    pub fn centre(&self, index: usize) -> Coord<f64> {
+        Coord {
+            x: self.origin.x + ((index % self.columns) as f64 + 0.5) * self.cell_m,
+            y: self.origin.y + ((index / self.columns) as f64 + 0.5) * self.cell_m,
+        }
+    }
+
+    /// (column, row) of a point.
+    pub fn cell(&self, index: usize) -> (i64, i64) {
+        ((index % self.columns) as i64, (index / self.columns) as i64)
+    }
+
+    /// Whether two points are 4-neighbours (a spraying move).
+    pub fn adjacent(&self, a: usize, b: usize) -> bool {
+        let ((ca, ra), (cb, rb)) = (self.cell(a), self.cell(b));
+        (ca - cb).abs() + (ra - rb).abs() == 1
+    }
+
+    /// Whether the straight move between two places crosses no obstacle and stays in the field.
+    pub fn clear(&self, a: Coord<f64>, b: Coord<f64>) -> bool {
+        if self.field_convex && self.far_from_obstacles(a, b) {
+            return true;
+        }
+        let line = Line::new(a, b);
+        let (low_x, high_x) = (a.x.min(b.x), a.x.max(b.x));
+        let (low_y, high_y) = (a.y.min(b.y), a.y.max(b.y));
+        let near = |rect: &geo::Rect<f64>| {
+            low_x <= rect.max().x
+                && high_x >= rect.min().x
+                && low_y <= rect.max().y
+                && high_y >= rect.min().y
+        };
+        let hits_obstacle = self
+            .obstacles
+            .iter()
+            .zip(&self.obstacle_boxes)
+            .any(|(obstacle, rect)| near(rect) && obstacle.intersects(&line));
+        !hits_obstacle && (self.field_convex || self.field.contains(&line))
+    }
+
+    /// The point one step (dc, dr) away, if on the grid.
+    fn neighbour(&self, index: usize, dc: i64, dr: i64) -> Option<usize> {
+        let (column, row) = self.cell(index);
+        let (c, r) = (column + dc, row + dr);
+        (c >= 0 && r >= 0 && c < self.columns as i64 && r < self.rows as i64)
+            .then(|| r as usize * self.columns + c as usize)
+    }
+
+    /// Whether the segment meets only cells away from every obstacle's box (sampled every
+    /// quarter cell; the one-cell dilation of the boxes keeps the sampling from skipping one).
+    fn far_from_obstacles(&self, a: Coord<f64>, b: Coord<f64>) -> bool {
+        let length = (b.x - a.x).hypot(b.y - a.y);
+        let steps = ((length / (0.25 * self.cell_m)).ceil() as usize).max(1);
+        (0..=steps).all(|k| {
+            let t = k as f64 / steps as f64;
+            let (x, y) = (a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
+            let column = ((x - self.origin.x) / self.cell_m).floor();
+            let row = ((y - self.origin.y) / self.cell_m).floor();
+            if column < 0.0 || row < 0.0 || column >= self.columns as f64 || row >= self.rows as f64
+            {
+                return false;
+            }
+            !self.near_obstacle[row as usize * self.columns + column as usize]
+        })
+    }
+
+    /// For every ordered pair of valid points (positions in `points`), whether the straight
+    /// move is clear: the table HPSO's fitness reads.
+    pub fn clear_table(&self) -> Vec<bool> {
+        let n = self.points.len();
+        let mut table = vec![true; n * n];
+        for a in 0..n {
+            for b in (a + 1)..n {
+                let (pa, pb) = (self.points[a], self.points[b]);
+                let ok = self.adjacent(pa, pb) || self.clear(self.centre(pa), self.centre(pb));
+                table[a * n + b] = ok;
+                table[b * n + a] = ok;
+            }
+        }
+        table
+    }
+
+    /// A shortest clear way from `a` to `b` through cell centres not inside obstacles
+    /// (8-neighbour moves), simplified to the vertices where it changes direction; the
+    /// direct move when it is clear.
+    pub fn transit(&self, a: usize, b: usize) -> Option<Vec<Coord<f64>>> {
+        let (start, goal) = (self.centre(a), self.centre(b));
+        if self.adjacent(a, b) || self.clear(start, goal) {
+            return Some(vec![]);
+        }
+        let total = self.columns * self.rows;
+        let mut previous = vec![usize::MAX; total];
+        let mut queue = VecDeque::from([a]);
+        previous[a] = a;
+        while let Some(at) = queue.pop_front() {
+            if at == b {
+                break;
+            }
+            for (d, (dc, dr)) in NEIGHBOURS.iter().enumerate() {
+                let Some(next) = self.neighbour(at, *dc, *dr) else {
+                    continue;
+                };
+                // Transits pass over centres outside obstacles (visited points included).
+                if self.valid[next]
+                    && previous[next] == usize::MAX
+                    && self.neighbour_clear[at] & (1 << d) != 0
+                {
+                    previous[next] = at;
+                    queue.push_back(next);
+                }
+            }
+        }
+        if previous[b] == usize::MAX {
+            return None;
+        }
+        let mut path = vec![b];
+        while *path.last().expect("not empty") != a {
+            path.push(previous[*path.last().expect("not empty")]);
+        }
+        path.reverse();
+        // Keep only the vertices a straight clear move cannot skip.
+        let mut vertices = Vec::new();
+        let mut anchor = 0;
+        let mut k = 1;
+        while k < path.len() {
+            if k + 1 < path.len() && self.clear(self.centre(path[anchor]), self.centre(path[k + 1]))
+            {
+                k += 1;
+                continue;
+            }
+            if k + 1 < path.len() {
+                vertices.push(self.centre(path[k]));
+                anchor = k;
+            }
+            k += 1;
+        }
+        Some(vertices)
+    }
+}
+
+/// A route over a grid: the points in visiting order, and the transit vertices between each
+/// point and the next (empty for a direct move).
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct GridRoute {
+    pub visits: Vec<usize>,
+    pub via: Vec<Vec<[f64; 2]>>,
+}
+
+/// What a route costs, as seed 004 and operators count it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct RouteMeasure {
+    pub turns: usize,
+    pub u_turns: usize,
+    /// Length of the moves that are not between 4-neighbours (incl. transits), metres.
+    pub non_spray_m: f64,
+    pub length_m: f64,
+    /// Moves that cross an obstacle or leave the field (0 for a valid route).
+    pub crossings: usize,
+}
+
+impl GridRoute {
+    /// A route of direct moves.
+    pub fn direct(visits: Vec<usize>) -> Self {
+        let via = vec![vec![]; visits.len().saturating_sub(1)];
+        Self { visits, via }
+    }
+
+    /// The flown polyline.
+    pub fn polyline(&self, grid: &PointGrid) -> Vec<Coord<f64>> {
+        let mut line = Vec::new();
+        for (k, &visit) in self.visits.iter().enumerate() {
+            line.push(grid.centre(visit));
+            if let Some(via) = self.via.get(k) {
+                line.extend(via.iter().map(|&[x, y]| Coord { x, y }));
+            }
+        }
+        line
+    }
+
+    pub fn measure(&self, grid: &PointGrid) -> RouteMeasure {
+        let line = self.polyline(grid);
+        let mut measure = RouteMeasure {
+            turns: 0,
+            u_turns: 0,
+            non_spray_m: 0.0,
+            length_m: 0.0,
+            crossings: 0,
+        };
+        let direction = |a: Coord<f64>, b: Coord<f64>| {
+            let (dx, dy) = (b.x - a.x, b.y - a.y);
+            let length = dx.hypot(dy);
+            (dx / length, dy / length)
+        };
+        for triple in line.windows(3) {
+            let (u, v) = (
+                direction(triple[0], triple[1]),
+                direction(triple[1], triple[2]),
+            );
+            let cross = u.0 * v.1 - u.1 * v.0;
+            if cross.abs() > 1e-9 || u.0 * v.0 + u.1 * v.1 < 0.0 {
+                measure.turns += 1;
+            }
+        }
+        // A U-turn: a run, a sideways step, a run back.
+        for quad in line.windows(4) {
+            let (u, w) = (direction(quad[0], quad[1]), direction(quad[2], quad[3]));
+            if u.0 * w.0 + u.1 * w.1 < -0.999 {
+                measure.u_turns += 1;
+            }
+        }
+        for (k, pair) in self.visits.windows(2).enumerate() {
+            let mut previous = grid.centre(pair[0]);
+            let mut leg = 0.0;
+            let mut clear = true;
+            for &[x, y] in &self.via[k] {
+                let next = Coord { x, y };
+                leg += (next.x - previous.x).hypot(next.y - previous.y);
+                clear &= grid.clear(previous, next);
+                previous = next;
+            }
+            let end = grid.centre(pair[1]);
+            leg += (end.x - previous.x).hypot(end.y - previous.y);
+            let adjacent = self.via[k].is_empty() && grid.adjacent(pair[0], pair[1]);
+            clear &= adjacent || grid.clear(previous, end);
+            if !adjacent {
+                measure.non_spray_m += leg;
+            }
+            measure.length_m += leg;
+            if !clear {
+                measure.crossings += 1;
+            }
+        }
+        measure
+    }
+
+    /// Whether the route visits every valid point exactly once.
+    pub fn visits_every_point_once(&self, grid: &PointGrid) -> bool {
+        let mut sorted = self.visits.clone();
+        sorted.sort_unstable();
+        sorted == grid.points
+    }
+}
+
+/// The best single-direction boustrophedon's turn count under decision 5: 2 × (runs − 1)
+/// for the straight runs along x or along y, whichever is fewer.
+pub fn single_direction_turns(grid: &PointGrid) -> usize {
+    [fewest_turns::Sweep::AlongY, fewest_turns::Sweep::AlongX]
+        .into_iter()
+        .map(|sweep| {
+            2 * (fewest_turns::runs(grid, &grid.points, sweep)
+                .len()
+                .saturating_sub(1))
+        })
+        .min()
+        .unwrap_or(0)
+}
+
+/// A lower bound on the turns of any route made of axis-parallel legs: with R the fewest
+/// axis-parallel runs that cover every point (König: a maximum matching between row runs and
+/// column runs, each point an edge), any such route has at least R − 1 turns.
+pub fn axis_lower_bound(grid: &PointGrid) -> usize {
+    let rows = fewest_turns::runs(grid, &grid.points, fewest_turns::Sweep::AlongX);
+    let columns = fewest_turns::runs(grid, &grid.points, fewest_turns::Sweep::AlongY);
+    let mut row_of = vec![usize::MAX; grid.valid.len()];
+    for (r, run) in rows.iter().enumerate() {
+        for &p in run {
+            row_of[p] = r;
+        }
+    }
+    // Edges: column run → row runs of its points. Kuhn's augmenting paths.
+    let adjacency: Vec<Vec<usize>> = columns
+        .iter()
+        .map(|run| run.iter().map(|&p| row_of[p]).collect())
+        .collect();
+    let mut matched_row = vec![usize::MAX; rows.len()];
+    fn augment(
+        column: usize,
+        adjacency: &[Vec<usize>],
+        seen: &mut [bool],
+        matched_row: &mut [usize],
+    ) -> bool {
+        for &row in &adjacency[column] {
+            if !seen[row] {
+                seen[row] = true;
+                if matched_row[row] == usize::MAX
+                    || augment(matched_row[row], adjacency, seen, matched_row)
+                {
+                    matched_row[row] = column;
+                    return true;
+                }
+            }
+        }
+        false
+    }
+    let mut matching = 0usize;
+    for column in 0..columns.len() {
+        let mut seen = vec![false; rows.len()];
+        if augment(column, &adjacency, &mut seen, &mut matched_row) {
+            matching += 1;
+        }
+    }
+    matching.saturating_sub(1)
+}
+
+/// The files of `agripath grid`: `plan.geojson` (field, obstacles, the route as a `grid_route`
+/// LineString with its figures, every path point as a `waypoint` with its `seq`),
+/// `report.json` and `plan.svg`; and the map's title.
+pub fn render(
+    farm: &Farm,
+    field: usize,
+    grid: &PointGrid,
+    route: &GridRoute,
+    method: &str,
+    runtime_s: f64,
+) -> (Vec<(&'static str, Vec<u8>)>, String) {
+    use serde_json::json;
+    let measure = route.measure(grid);
+    let system = farm.coordinate_system;
+    let position = |x: f64, y: f64| {
+        let (a, b) = system.to_input(x, y);
+        json!([a, b])
+    };
+    let ring = |polygon: &Polygon<f64>| -> Vec<serde_json::Value> {
+        polygon
+            .exterior()
+            .0
+            .iter()
+            .map(|c| position(c.x, c.y))
+            .collect()
+    };
+    let name = &farm.fields[field].name;
+    let mut features = vec![
+        json!({"type": "Feature", "properties": {"kind": "field", "name": name},
+        "geometry": {"type": "Polygon", "coordinates": [ring(&farm.fields[field].polygon)]}}),
+    ];
+    for obstacle in &farm.obstacles {
+        features.push(
+            json!({"type": "Feature", "properties": {"kind": "obstacle", "name": obstacle.name},
+            "geometry": {"type": "Polygon", "coordinates": [ring(&obstacle.polygon)]}}),
+        );
+    }
+    let line: Vec<serde_json::Value> = route
+        .polyline(grid)
+        .iter()
+        .map(|c| position(c.x, c.y))
+        .collect();
+    features.push(json!({"type": "Feature",
+        "properties": {"kind": "grid_route", "method": method, "seq": 0, "sortie": 0, "turns": measure.turns,
+                       "u_turns": measure.u_turns, "non_spray_m": crate::report::round(measure.non_spray_m, 1e-4),
+                       "length_m": crate::report::round(measure.length_m, 1e-4)},
+        "geometry": {"type": "LineString", "coordinates": line}}));
+    for (seq, &visit) in route.visits.iter().enumerate() {
+        let c = grid.centre(visit);
+        features.push(
+            json!({"type": "Feature", "properties": {"kind": "waypoint", "seq": seq},
+            "geometry": {"type": "Point", "coordinates": position(c.x, c.y)}}),
+        );
+    }
+    let mut collection = json!({"type": "FeatureCollection", "features": features});
+    if system == crate::model::CoordinateSystem::Local {
+        collection["crs"] = json!("local");
+    }
+    let report = json!({
+        "field": name, "method": method, "swath_width_m": grid.cell_m,
+        "points": grid.points.len(), "turns": measure.turns, "u_turns": measure.u_turns,
+        "non_spray_m": crate::report::round(measure.non_spray_m, 1e-4),
+        "length_m": crate::report::round(measure.length_m, 1e-4),
+        "single_direction_turns": single_direction_turns(grid),
+        "axis_lower_bound_turns": axis_lower_bound(grid),
+        "runtime_s": crate::report::round(runtime_s, 1e-4),
+    });
+    let title = format!(
+        "{name} {method}: {} turns, {} U-turns, {:.0} m non-spray",
+        measure.turns, measure.u_turns, measure.non_spray_m
+    );
+    let files = vec![
+        (
+            "plan.geojson",
+            (serde_json::to_string_pretty(&collection).expect("JSON") + "\n").into_bytes(),
+        ),
+        (
+            "report.json",
+            (serde_json::to_string_pretty(&report).expect("JSON") + "\n").into_bytes(),
+        ),
+        (
+            "plan.svg",
+            routes_svg(grid, &[(title.clone(), route)]).into_bytes(),
+        ),
+    ];
+    (files, title)
+}
+
+/// Routes over a grid side by side, one titled panel each (SVG): the field's box, the points
+/// no route may visit (red), the flown polyline, its start (orange).
+pub fn routes_svg(grid: &PointGrid, routes: &[(String, &GridRoute)]) -> String {
+    use std::fmt::Write;
+    let panel = 320.0;
+    let scale = (panel - 40.0) / (grid.columns.max(grid.rows) as f64 * grid.cell_m);
+    let mut svg = String::new();
+    let _ = writeln!(
+        svg,
+        r##"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" font-family="sans-serif" font-size="11"><rect width="100%" height="100%" fill="white"/>"##,
+        routes.len() as f64 * panel,
+        grid.rows as f64 * grid.cell_m * scale + 60.0
+    );
+    for (k, (title, route)) in routes.iter().enumerate() {
+        let left = k as f64 * panel + 20.0;
+        let top = 40.0;
+        let x = |v: f64| left + (v - grid.origin.x) * scale;
+        let y = |v: f64| top + (grid.rows as f64 * grid.cell_m - (v - grid.origin.y)) * scale;
+        let escaped = title.replace('&', "&amp;").replace('<', "&lt;");
+        let _ = writeln!(svg, r##"<text x="{left}" y="22">{escaped}</text>"##);
+        let _ = writeln!(
+            svg,
+            r##"<rect x="{left}" y="{top}" width="{:.1}" height="{:.1}" fill="#eef5e6" stroke="#4a7a2a"/>"##,
+            grid.columns as f64 * grid.cell_m * scale,
+            grid.rows as f64 * grid.cell_m * scale
+        );
+        for index in (0..grid.valid.len()).filter(|&i| !grid.valid[i]) {
+            let c = grid.centre(index);
+            let _ = writeln!(
+                svg,
+                r##"<circle cx="{:.1}" cy="{:.1}" r="2.5" fill="#c62828"/>"##,
+                x(c.x),
+                y(c.y)
+            );
+        }
+        let line = route.polyline(grid);
+        let points: Vec<String> = line
+            .iter()
+            .map(|c| format!("{:.1},{:.1}", x(c.x), y(c.y)))
+            .collect();
+        let _ = writeln!(
+            svg,
+            r##"<polyline points="{}" fill="none" stroke="#0072B2" stroke-width="1.5" stroke-linejoin="round"/>"##,
+            points.join(" ")
+        );
+        if let Some(first) = line.first() {
+            let _ = writeln!(
+                svg,
+                r##"<circle cx="{:.1}" cy="{:.1}" r="4" fill="#E69F00"/>"##,
+                x(first.x),
+                y(first.y)
+            );
+        }
+    }
+    svg.push_str("</svg>\n");
+    svg
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::input::{geojson, CoordinateChoice};
+    use crate::repro::seed004::FIELDS;
+
+    fn grid_of(text: &str) -> PointGrid {
+        let farm = geojson::parse(
+            std::path::Path::new("t.geojson"),
+            text,
+            CoordinateChoice::Local,
+        )
+        .unwrap();
+        PointGrid::new(&farm, 0, 5.0).unwrap()
+    }
+
+    fn assert_valid(grid: &PointGrid, route: &GridRoute, what: &str) -> RouteMeasure {
+        assert!(
+            route.visits_every_point_once(grid),
+            "{what}: every valid point exactly once"
+        );
+        let measure = route.measure(grid);
+        assert_eq!(measure.crossings, 0, "{what}: no move crosses an obstacle");
+        measure
+    }
+
+    #[test]
+    fn the_seed_fields_are_covered_validly_and_ours_beats_one_direction() {
+        for (name, text) in FIELDS {
+            let grid = grid_of(text);
+            let ours = assert_valid(&grid, &fewest_turns::plan(&grid), name);
+            let baseline = assert_valid(&grid, &boustrophedon::plan(&grid), name);
+            assert!(
+                ours.turns <= single_direction_turns(&grid),
+                "{name}: {} turns",
+                ours.turns
+            );
+            assert!(ours.turns <= baseline.turns, "{name}");
+            assert!(
+                axis_lower_bound(&grid) <= ours.turns,
+                "{name}: the bound is a bound"
+            );
+        }
+    }
+
+    #[test]
+    fn hpso_returns_a_valid_route_and_repeats_with_a_seed() {
+        let grid = grid_of(FIELDS[0].1);
+        let settings = hybrid_pso::HpsoSettings {
+            particles: 20,
+            iterations: 150,
+            seed: 3,
+        };
+        let (route, cost) = hybrid_pso::plan(&grid, &settings);
+        assert!(route.visits_every_point_once(&grid));
+        assert_eq!(hybrid_pso::plan(&grid, &settings), (route.clone(), cost));
+        // Without crossings the cost is the turn count; with them, 1,000 more each.
+        let measure = route.measure(&grid);
+        assert_eq!(cost, measure.turns + 1000 * measure.crossings);
+    }
+
+    #[test]
+    fn turns_count_every_change_of_direction() {
+        let grid =
+            grid_of(r#"{"type":"Polygon","coordinates":[[[0,0],[10,0],[10,10],[0,10],[0,0]]]}"#);
+        // 2 × 2 points: (0,0) (1,0) (0,1) (1,1) as indices 0 1 2 3; a U: up, right, down.
+        let route = GridRoute::direct(vec![0, 2, 3, 1]);
+        let measure = route.measure(&grid);
+        assert_eq!((measure.turns, measure.u_turns), (2, 1));
+        assert_eq!(measure.non_spray_m, 0.0);
+        // A diagonal jump: not a spraying move.
+        let route = GridRoute::direct(vec![0, 3, 1, 2]);
+        assert!(route.measure(&grid).non_spray_m > 7.0);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(24))]
+
+        #[test]
+        fn random_fields_with_an_obstacle_are_covered_validly(
+            width in 4usize..12, height in 4usize..12, ox in 0.2f64..0.6, oy in 0.2f64..0.6, size in 0.1f64..0.35
+        ) {
+            let (w, h) = (width as f64 * 5.0, height as f64 * 5.0);
+            let (x0, y0) = (ox * w, oy * h);
+            let (x1, y1) = (x0 + size * w + 1.0, y0 + size * h + 1.0);
+            let text = format!(
+                r#"{{"type":"FeatureCollection","features":[
+                {{"type":"Feature","properties":{{}},"geometry":{{"type":"Polygon","coordinates":[[[0,0],[{w},0],[{w},{h}],[0,{h}],[0,0]]]}}}},
+                {{"type":"Feature","properties":{{"kind":"obstacle"}},"geometry":{{"type":"Polygon","coordinates":[[[{x0},{y0}],[{x1},{y0}],[{x1},{y1}],[{x0},{y1}],[{x0},{y0}]]]}}}}]}}"#
+            );
+            let grid = grid_of(&text);
+            let ours = fewest_turns::plan(&grid);
+            prop_assert!(ours.visits_every_point_once(&grid));
+            prop_assert_eq!(ours.measure(&grid).crossings, 0);
+            prop_assert!(ours.measure(&grid).turns <= single_direction_turns(&grid));
+            let baseline = boustrophedon::plan(&grid);
+            prop_assert!(baseline.visits_every_point_once(&grid));
+            prop_assert_eq!(baseline.measure(&grid).crossings, 0);
+        }
+    }
+}
