@@ -71,6 +71,7 @@ fn rendered() -> Vec<(String, Vec<u8>)> {
 fn every_exporter_matches_its_golden_file() {
     let files = rendered();
     let exporters = [
+        "plan.geojson",
         "sortie_01.plan",
         "sortie_01.waypoints",
         "sortie_02.plan",
