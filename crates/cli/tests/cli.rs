@@ -579,3 +579,75 @@ fn grid_covers_a_seed004_field_with_fewer_turns_than_one_direction() {
     assert!(!folder.join("x").exists());
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+#[test]
+fn outputs_are_byte_identical_whatever_the_thread_count() {
+    let folder = scratch("threads");
+    let scenario = data("scenarios/seed001_farm.toml");
+    let run = |threads: &str, out: &str, extra: &[&str]| {
+        let mut arguments = vec![
+            "plan",
+            scenario.to_str().unwrap(),
+            "--sorties",
+            "gsa",
+            "--out",
+            out,
+        ];
+        arguments.extend_from_slice(extra);
+        let output = Command::new(env!("CARGO_BIN_EXE_agripath"))
+            .args(&arguments)
+            .env("RAYON_NUM_THREADS", threads)
+            .current_dir(&folder)
+            .output()
+            .unwrap();
+        stdout(&output);
+    };
+    run("1", "one", &[]);
+    run("4", "four", &[]);
+    for name in ["plan.geojson", "sortie_01.plan", "mission.kml", "plan.svg"] {
+        assert_eq!(
+            std::fs::read(folder.join("one").join(name)).unwrap(),
+            std::fs::read(folder.join("four").join(name)).unwrap(),
+            "{name}"
+        );
+    }
+    let bench = |threads: &str, out: &str| {
+        let output = Command::new(env!("CARGO_BIN_EXE_agripath"))
+            .args([
+                "bench",
+                "functions",
+                "--dim",
+                "5",
+                "--pop",
+                "10",
+                "--iters",
+                "10",
+                "--runs",
+                "4",
+            ])
+            .args([
+                "--algorithms",
+                "pso,iba-fcs",
+                "--functions",
+                "f1",
+                "--out",
+                out,
+            ])
+            .env("RAYON_NUM_THREADS", threads)
+            .current_dir(&folder)
+            .output()
+            .unwrap();
+        stdout(&output);
+        let csv = std::fs::read_to_string(folder.join(out).join("table.csv")).unwrap();
+        // Drop the timing column; every other figure must match.
+        csv.lines()
+            .map(|line| {
+                let mut fields: Vec<&str> = line.split(',').collect();
+                fields.remove(9);
+                fields.join(",")
+            })
+            .collect::<Vec<_>>()
+    };
+    assert_eq!(bench("1", "b1"), bench("3", "b3"));
+    std::fs::remove_dir_all(&folder).unwrap();
+}

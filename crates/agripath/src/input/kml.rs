@@ -28,6 +28,15 @@ pub fn read_kml(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputErro
 /// A KMZ is a zip holding `doc.kml` (or another `.kml` at its root).
 pub fn read_kmz(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputError> {
     let bytes = read_bytes(path)?;
+    parse_kmz(path, bytes, choice)
+}
+
+/// A KMZ's bytes (`path` names it in messages).
+pub fn parse_kmz(
+    path: &Path,
+    bytes: Vec<u8>,
+    choice: CoordinateChoice,
+) -> Result<Farm, InputError> {
     let fail = |message: String| InputError::new(path, Fault::Kml(message));
     let mut archive = zip::ZipArchive::new(std::io::Cursor::new(bytes))
         .map_err(|error| fail(format!("not a KMZ (zip) archive: {error}")))?;
