@@ -108,16 +108,26 @@ fn demo(out: &Path) -> Result<(), Failure> {
         .map_err(|fault| InputError::new(agripath::demo::FARM_LABEL, fault))?;
     let written = write_folder(out, &files)?;
     emit!("{}", mission.report.to_text());
-    emitln!(
-        "wrote {}/: {}",
-        written.display(),
-        files
-            .iter()
-            .map(|(name, _)| name.as_str())
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
+    emitln!("wrote {}/: {}", written.display(), files_summary(&files));
     Ok(())
+}
+
+/// The files written, in one short line: mission files per sortie are counted, not listed.
+fn files_summary(files: &[(String, Vec<u8>)]) -> String {
+    let sorties = files
+        .iter()
+        .filter(|(name, _)| name.ends_with(".plan"))
+        .count();
+    let mut names: Vec<&str> = files
+        .iter()
+        .map(|(name, _)| name.as_str())
+        .filter(|name| !name.starts_with("sortie_"))
+        .collect();
+    let per_sortie = format!("sortie_NN.plan and .waypoints for {sorties} sortie(s)");
+    if sorties > 0 {
+        names.push(&per_sortie);
+    }
+    names.join(", ")
 }
 
 /// Writes every file into a staged folder and moves it into place.
@@ -261,15 +271,7 @@ fn plan(
     spinner.finish_and_clear();
     let written = write_folder(out, &files)?;
     emit!("{}", mission.report.to_text());
-    emitln!(
-        "wrote {}/: {}",
-        written.display(),
-        files
-            .iter()
-            .map(|(name, _)| name.as_str())
-            .collect::<Vec<_>>()
-            .join(", ")
-    );
+    emitln!("wrote {}/: {}", written.display(), files_summary(&files));
     Ok(())
 }
 

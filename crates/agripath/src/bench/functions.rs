@@ -53,6 +53,33 @@ impl FunctionBench {
         self.population as u64 * (self.iterations as u64 + 1)
     }
 
+    /// The settings in one line.
+    pub fn describe(&self) -> String {
+        format!(
+            "D = {}, population {}, {} iterations ({} evaluations per run), {} runs, seed {}",
+            self.dimension,
+            self.population,
+            self.iterations,
+            self.evaluation_budget(),
+            self.runs,
+            self.seed
+        )
+    }
+
+    /// The head of a Markdown table with a column per algorithm.
+    pub fn table_header(&self) -> String {
+        let mut text = String::from("| function | statistic |");
+        for algorithm in &self.algorithms {
+            let _ = write!(text, " {} |", algorithm.label());
+        }
+        text.push_str("\n|---|---|");
+        for _ in &self.algorithms {
+            text.push_str("---:|");
+        }
+        text.push('\n');
+        text
+    }
+
     /// Runs in total (for a progress display).
     pub fn total_runs(&self) -> u64 {
         self.runs * (self.algorithms.len() * self.functions.len()) as u64
@@ -252,26 +279,8 @@ impl FunctionTable {
     /// Table 2's layout: a row per function and statistic, a column per algorithm.
     pub fn markdown(&self) -> String {
         let settings = &self.settings;
-        let mut text = String::new();
-        let _ = writeln!(
-            text,
-            "D = {}, population {}, {} iterations ({} evaluations per run), {} runs, seed {}\n",
-            settings.dimension,
-            settings.population,
-            settings.iterations,
-            settings.evaluation_budget(),
-            settings.runs,
-            settings.seed
-        );
-        let _ = write!(text, "| function | statistic |");
-        for algorithm in &settings.algorithms {
-            let _ = write!(text, " {} |", algorithm.label());
-        }
-        let _ = write!(text, "\n|---|---|");
-        for _ in &settings.algorithms {
-            text.push_str("---:|");
-        }
-        text.push('\n');
+        let mut text = format!("{}\n\n", settings.describe());
+        text.push_str(&settings.table_header());
         for function in &settings.functions {
             let rows: [(&str, ShowStatistic); 5] = [
                 ("best", |s| scientific(s.best)),

@@ -117,23 +117,10 @@ pub fn comparison(table: &FunctionTable) -> String {
     let settings = &table.settings;
     let _ = writeln!(
         text,
-        "Seed 000 Table 2 — ours / paper. D = {}, population {}, {} iterations ({} evaluations per run), {} runs (paper: 50), seed {}.\n",
-        settings.dimension,
-        settings.population,
-        settings.iterations,
-        settings.evaluation_budget(),
-        settings.runs,
-        settings.seed
+        "Seed 000 Table 2 — ours / paper. {} (paper: 50 runs).\n",
+        settings.describe()
     );
-    let _ = write!(text, "| function | statistic |");
-    for algorithm in &settings.algorithms {
-        let _ = write!(text, " {} |", algorithm.label());
-    }
-    let _ = write!(text, "\n|---|---|");
-    for _ in &settings.algorithms {
-        text.push_str("---:|");
-    }
-    text.push('\n');
+    text.push_str(&settings.table_header());
     for (key, paper_rows) in PAPER.iter() {
         if !settings.functions.iter().any(|f| f.key == *key) {
             continue;

@@ -49,17 +49,75 @@ impl Default for BatParameters {
     }
 }
 
+/// A colony of bats: what BA and ILSSIWBA keep between iterations.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Colony {
+    pub positions: Vec<Vec<f64>>,
+    pub velocities: Vec<Vec<f64>>,
+    pub costs: Vec<f64>,
+    pub loudness: Vec<f64>,
+    pub pulse_rate: Vec<f64>,
+    pub best: Vec<f64>,
+    pub best_cost: f64,
+}
+
+impl Colony {
+    /// `population` bats at random, still, evaluated, with loudness and pulse rate drawn
+    /// uniformly from the given ranges.
+    pub fn new(
+        search: &mut Search,
+        population: usize,
+        (loud_low, loud_high): (f64, f64),
+        (rate_low, rate_high): (f64, f64),
+    ) -> Self {
+        let population = population.max(1);
+        let positions: Vec<Vec<f64>> = (0..population).map(|_| search.random_position()).collect();
+        let velocities = vec![vec![0.0; search.dimension()]; population];
+        let costs: Vec<f64> = positions.iter().map(|x| search.evaluate(x)).collect();
+        let loudness = (0..population)
+            .map(|_| search.uniform_in(loud_low, loud_high))
+            .collect();
+        let pulse_rate = (0..population)
+            .map(|_| search.uniform_in(rate_low, rate_high))
+            .collect();
+        let best = index_of_smallest(&costs);
+        Self {
+            best: positions[best].clone(),
+            best_cost: costs[best],
+            positions,
+            velocities,
+            costs,
+            loudness,
+            pulse_rate,
+        }
+    }
+
+    pub fn mean_loudness(&self) -> f64 {
+        self.loudness.iter().sum::<f64>() / self.loudness.len() as f64
+    }
+
+    /// The local walk of eq. (4) around the best, in place of `candidate`; `mean_loudness`
+    /// is Ā^t, taken at the start of the iteration.
+    pub fn walk_near_best(&self, candidate: &mut [f64], mean_loudness: f64, search: &mut Search) {
+        for (d, value) in candidate.iter_mut().enumerate() {
+            *value = self.best[d] + search.uniform_in(-1.0, 1.0) * mean_loudness;
+        }
+    }
+
+    /// Keeps `candidate` as the best when it is better.
+    pub fn offer_best(&mut self, candidate: &[f64], cost: f64) {
+        if cost < self.best_cost {
+            self.best.copy_from_slice(candidate);
+            self.best_cost = cost;
+        }
+    }
+}
+
 /// The bat algorithm.
 #[derive(Debug, Clone, Default)]
 pub struct Bat {
     parameters: BatParameters,
-    positions: Vec<Vec<f64>>,
-    velocities: Vec<Vec<f64>>,
-    costs: Vec<f64>,
-    loudness: Vec<f64>,
-    pulse_rate: Vec<f64>,
-    best: Vec<f64>,
-    best_cost: f64,
+    colony: Colony,
 }
 
 impl Bat {
@@ -77,56 +135,42 @@ impl Optimizer for Bat {
     }
 
     fn start(&mut self, search: &mut Search) {
-        let population = self.parameters.population.max(1);
-        let dimension = search.dimension();
-        self.positions = (0..population).map(|_| search.random_position()).collect();
-        self.velocities = vec![vec![0.0; dimension]; population];
-        self.costs = self.positions.iter().map(|x| search.evaluate(x)).collect();
-        let (low, high) = self.parameters.initial_loudness;
-        self.loudness = (0..population)
-            .map(|_| search.uniform_in(low, high))
-            .collect();
-        let (low, high) = self.parameters.initial_pulse_rate;
-        self.pulse_rate = (0..population)
-            .map(|_| search.uniform_in(low, high))
-            .collect();
-        let best = index_of_smallest(&self.costs);
-        self.best = self.positions[best].clone();
-        self.best_cost = self.costs[best];
+        let p = &self.parameters;
+        self.colony = Colony::new(
+            search,
+            p.population,
+            p.initial_loudness,
+            p.initial_pulse_rate,
+        );
     }
 
     fn step(&mut self, search: &mut Search) {
         let parameters = &self.parameters;
         let t = search.iteration() as f64;
-        let mean_loudness = self.loudness.iter().sum::<f64>() / self.loudness.len() as f64;
+        let colony = &mut self.colony;
+        let mean_loudness = colony.mean_loudness();
         let mut candidate = vec![0.0; search.dimension()];
-        for bat in 0..self.positions.len() {
+        for bat in 0..colony.positions.len() {
             let frequency = search.uniform_in(parameters.frequency_min, parameters.frequency_max);
-            let (position, velocity) = (&self.positions[bat], &mut self.velocities[bat]);
+            let (position, velocity) = (&colony.positions[bat], &mut colony.velocities[bat]);
             for d in 0..candidate.len() {
-                velocity[d] += (position[d] - self.best[d]) * frequency; // eq. (2)
+                velocity[d] += (position[d] - colony.best[d]) * frequency; // eq. (2)
                 candidate[d] = position[d] + velocity[d]; // eq. (1)
             }
-            if search.uniform() > self.pulse_rate[bat] {
-                for (d, value) in candidate.iter_mut().enumerate() {
-                    *value = self.best[d] + search.uniform_in(-1.0, 1.0) * mean_loudness;
-                    // eq. (4)
-                }
+            if search.uniform() > colony.pulse_rate[bat] {
+                colony.walk_near_best(&mut candidate, mean_loudness, search); // eq. (4)
             }
             search.clamp(&mut candidate);
             let cost = search.evaluate(&candidate);
-            if cost <= self.costs[bat] && search.uniform() < self.loudness[bat] {
-                self.positions[bat].copy_from_slice(&candidate);
-                self.costs[bat] = cost;
-                self.loudness[bat] *= parameters.alpha; // eq. (5)
-                self.pulse_rate[bat] =
+            if cost <= colony.costs[bat] && search.uniform() < colony.loudness[bat] {
+                colony.positions[bat].copy_from_slice(&candidate);
+                colony.costs[bat] = cost;
+                colony.loudness[bat] *= parameters.alpha; // eq. (5)
+                colony.pulse_rate[bat] =
                     parameters.pulse_rate_max * (1.0 - (-parameters.gamma * t).exp());
                 // eq. (6)
             }
-            if cost < self.best_cost {
-                self.best.copy_from_slice(&candidate);
-                self.best_cost = cost;
-            }
+            colony.offer_best(&candidate, cost);
         }
     }
 }

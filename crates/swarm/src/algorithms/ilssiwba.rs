@@ -19,7 +19,7 @@
 //! Initial loudness U(1, 2) and pulse rate U(0, 0.5) as in the BA baseline. Positions are
 //! clamped to the box.
 
-use super::bat::index_of_smallest;
+use super::bat::Colony;
 use crate::runner::{Optimizer, Search};
 
 /// ILSSIWBA's parameters; `Default` is seed 000 §2.5 plus the documented ILS budget.
@@ -64,13 +64,7 @@ impl Default for IlssiwbaParameters {
 #[derive(Debug, Clone, Default)]
 pub struct Ilssiwba {
     parameters: IlssiwbaParameters,
-    positions: Vec<Vec<f64>>,
-    velocities: Vec<Vec<f64>>,
-    costs: Vec<f64>,
-    loudness: Vec<f64>,
-    pulse_rate: Vec<f64>,
-    best: Vec<f64>,
-    best_cost: f64,
+    colony: Colony,
 }
 
 impl Ilssiwba {
@@ -93,7 +87,7 @@ impl Ilssiwba {
             .map(|d| search.bounds().width(d) * (0.05 * (1.0 - k) + 1e-9))
             .collect();
         let mut current: Vec<f64> = (0..dimension)
-            .map(|d| self.best[d] + scale[d] * search.normal())
+            .map(|d| self.colony.best[d] + scale[d] * search.normal())
             .collect();
         search.clamp(&mut current);
         let mut current_cost = search.evaluate(&current);
@@ -112,10 +106,7 @@ impl Ilssiwba {
                 step *= 0.5;
             }
         }
-        if current_cost < self.best_cost {
-            self.best = current;
-            self.best_cost = current_cost;
-        }
+        self.colony.offer_best(&current, current_cost);
     }
 }
 
@@ -125,54 +116,42 @@ impl Optimizer for Ilssiwba {
     }
 
     fn start(&mut self, search: &mut Search) {
-        let population = self.parameters.population.max(1);
-        self.positions = (0..population).map(|_| search.random_position()).collect();
-        self.velocities = vec![vec![0.0; search.dimension()]; population];
-        self.costs = self.positions.iter().map(|x| search.evaluate(x)).collect();
-        let (low, high) = self.parameters.initial_loudness;
-        self.loudness = (0..population)
-            .map(|_| search.uniform_in(low, high))
-            .collect();
-        let (low, high) = self.parameters.initial_pulse_rate;
-        self.pulse_rate = (0..population)
-            .map(|_| search.uniform_in(low, high))
-            .collect();
-        let best = index_of_smallest(&self.costs);
-        self.best = self.positions[best].clone();
-        self.best_cost = self.costs[best];
+        let p = &self.parameters;
+        self.colony = Colony::new(
+            search,
+            p.population,
+            p.initial_loudness,
+            p.initial_pulse_rate,
+        );
     }
 
     fn step(&mut self, search: &mut Search) {
         let p = self.parameters.clone();
         let t = search.iteration() as f64;
-        let mean_loudness = self.loudness.iter().sum::<f64>() / self.loudness.len() as f64;
+        let colony = &mut self.colony;
+        let mean_loudness = colony.mean_loudness();
         let mut candidate = vec![0.0; search.dimension()];
-        for bat in 0..self.positions.len() {
+        for bat in 0..colony.positions.len() {
             let frequency = search.uniform_in(p.frequency_min, p.frequency_max);
             let inertia = search.uniform_in(p.inertia_mean_min, p.inertia_mean_max)
                 + p.inertia_deviation * search.normal();
-            let (position, velocity) = (&self.positions[bat], &mut self.velocities[bat]);
+            let (position, velocity) = (&colony.positions[bat], &mut colony.velocities[bat]);
             for d in 0..candidate.len() {
-                velocity[d] = inertia * velocity[d] + (position[d] - self.best[d]) * frequency;
+                velocity[d] = inertia * velocity[d] + (position[d] - colony.best[d]) * frequency;
                 candidate[d] = position[d] + velocity[d];
             }
-            if search.uniform() > self.pulse_rate[bat] {
-                for (d, value) in candidate.iter_mut().enumerate() {
-                    *value = self.best[d] + search.uniform_in(-1.0, 1.0) * mean_loudness;
-                }
+            if search.uniform() > colony.pulse_rate[bat] {
+                colony.walk_near_best(&mut candidate, mean_loudness, search);
             }
             search.clamp(&mut candidate);
             let cost = search.evaluate(&candidate);
-            if cost <= self.costs[bat] && search.uniform() < self.loudness[bat] {
-                self.positions[bat].copy_from_slice(&candidate);
-                self.costs[bat] = cost;
-                self.loudness[bat] = (self.loudness[bat] * p.alpha).max(p.loudness_floor);
-                self.pulse_rate[bat] = p.pulse_rate_cap * (1.0 - (-p.gamma * t).exp());
+            if cost <= colony.costs[bat] && search.uniform() < colony.loudness[bat] {
+                colony.positions[bat].copy_from_slice(&candidate);
+                colony.costs[bat] = cost;
+                colony.loudness[bat] = (colony.loudness[bat] * p.alpha).max(p.loudness_floor);
+                colony.pulse_rate[bat] = p.pulse_rate_cap * (1.0 - (-p.gamma * t).exp());
             }
-            if cost < self.best_cost {
-                self.best.copy_from_slice(&candidate);
-                self.best_cost = cost;
-            }
+            colony.offer_best(&candidate, cost);
         }
         self.iterated_local_search(search);
     }
