@@ -13,6 +13,9 @@ pub const MAX_LOCAL_COORDINATE_M: f64 = 1.0e7;
 pub const MAX_TERRAIN_CELLS: u64 = 400_000_000;
 /// Points of an XYZ point cloud.
 pub const MAX_POINT_CLOUD_POINTS: usize = 50_000_000;
+/// Cells a point cloud may be gridded into: 12 bytes each while gridding (heights, bucket
+/// offsets twice), so at most 1.2 GB.
+pub const MAX_GRIDDED_CELLS: u64 = 100_000_000;
 /// Input file size, bytes, for text formats read whole.
 pub const MAX_TEXT_FILE_BYTES: u64 = 2_000_000_000;
 /// Scan lines across one field (its diagonal over the swath width).

@@ -8,7 +8,7 @@ use std::path::Path;
 use super::Grid;
 use crate::error::{Fault, InputError};
 use crate::input::read_text;
-use crate::model::limits::{MAX_POINT_CLOUD_POINTS, MAX_TERRAIN_CELLS};
+use crate::model::limits::{MAX_GRIDDED_CELLS, MAX_POINT_CLOUD_POINTS};
 
 /// Cells searched around a cell centre for its nearest point.
 const SEARCH_RADIUS_CELLS: i64 = 3;
@@ -107,25 +107,38 @@ pub fn grid_points(points: &[[f64; 3]], cell_m: Option<f64>) -> Result<Grid, Fau
         }
         None => (width * height / points.len() as f64).sqrt(),
     };
-    let columns = (width / cell).floor() as u64 + 1;
-    let rows = (height / cell).floor() as u64 + 1;
-    if columns * rows > MAX_TERRAIN_CELLS {
+    // In floating point first: a cloud kilometres wide at a tiny cell (or coordinates of
+    // 1e23, as fuzzing found) must be refused, not wrap around in integer arithmetic.
+    let (columns, rows) = ((width / cell).floor() + 1.0, (height / cell).floor() + 1.0);
+    if !(columns * rows <= MAX_GRIDDED_CELLS as f64) {
         return Err(Fault::TooLarge(format!(
-            "gridding at {cell} m gives {columns} × {rows} cells (limit {MAX_TERRAIN_CELLS})"
+            "gridding at {cell} m gives {columns:.0} × {rows:.0} cells (limit {MAX_GRIDDED_CELLS} for point clouds)"
         )));
     }
     let (columns, rows) = (columns as usize, rows as usize);
-    // Bucket the points by cell so each centre only looks at its neighbourhood.
-    let mut buckets: Vec<Vec<u32>> = vec![Vec::new(); columns * rows];
+    // Bucket the points by cell (offsets into one index array: 8 bytes per cell, 4 per
+    // point) so each centre only looks at its neighbourhood.
     let bucket_of = |x: f64, y: f64| {
         let column = (((x - min_x) / cell).round() as usize).min(columns - 1);
         let row = (((max_y - y) / cell).round() as usize).min(rows - 1);
-        (row, column)
+        row * columns + column
     };
-    for (index, &[x, y, _]) in points.iter().enumerate() {
-        let (row, column) = bucket_of(x, y);
-        buckets[row * columns + column].push(index as u32);
+    let mut offsets = vec![0u32; columns * rows + 1];
+    for &[x, y, _] in points {
+        offsets[bucket_of(x, y) + 1] += 1;
     }
+    for k in 1..offsets.len() {
+        offsets[k] += offsets[k - 1];
+    }
+    let mut members = vec![0u32; points.len()];
+    let mut filled = offsets.clone();
+    for (index, &[x, y, _]) in points.iter().enumerate() {
+        let bucket = bucket_of(x, y);
+        members[filled[bucket] as usize] = index as u32;
+        filled[bucket] += 1;
+    }
+    drop(filled);
+    let bucket = |k: usize| &members[offsets[k] as usize..offsets[k + 1] as usize];
     let mut heights = vec![f32::NAN; columns * rows];
     let limit = (SEARCH_RADIUS_CELLS as f64 * cell).powi(2);
     for row in 0..rows {
@@ -144,7 +157,7 @@ pub fn grid_points(points: &[[f64; 3]], cell_m: Option<f64>) -> Result<Grid, Fau
                     {
                         continue;
                     }
-                    for &index in &buckets[bucket_row as usize * columns + bucket_column as usize] {
+                    for &index in bucket(bucket_row as usize * columns + bucket_column as usize) {
                         let [x, y, z] = points[index as usize];
                         let distance = (x - centre_x).powi(2) + (y - centre_y).powi(2);
                         if distance <= best.0 {
@@ -174,6 +187,24 @@ pub fn grid_points(points: &[[f64; 3]], cell_m: Option<f64>) -> Result<Grid, Fau
 
 #[cfg(test)]
 mod tests {
+
+    #[test]
+    fn huge_coordinates_are_refused_not_wrapped() {
+        // Found by `cargo fuzz run xyz` (docs/fuzzing.md): the column count overflowed u64
+        // and wrapped to 0, then indexing panicked.
+        let points = [
+            [4.444444444440445e23, 100.0, 1.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 51.0, 3.0],
+        ];
+        for cell in [Some(5.0), None] {
+            assert!(matches!(
+                grid_points(&points, cell),
+                Err(Fault::TooLarge(_))
+            ));
+        }
+    }
+
     use super::*;
     use crate::terrain::Terrain;
 
