@@ -110,7 +110,8 @@ pub fn grid_points(points: &[[f64; 3]], cell_m: Option<f64>) -> Result<Grid, Fau
     // In floating point first: a cloud kilometres wide at a tiny cell (or coordinates of
     // 1e23, as fuzzing found) must be refused, not wrap around in integer arithmetic.
     let (columns, rows) = ((width / cell).floor() + 1.0, (height / cell).floor() + 1.0);
-    if !(columns * rows <= MAX_GRIDDED_CELLS as f64) {
+    let cells = columns * rows;
+    if cells.is_nan() || cells > MAX_GRIDDED_CELLS as f64 {
         return Err(Fault::TooLarge(format!(
             "gridding at {cell} m gives {columns:.0} × {rows:.0} cells (limit {MAX_GRIDDED_CELLS} for point clouds)"
         )));
