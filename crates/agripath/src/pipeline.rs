@@ -58,6 +58,8 @@ pub struct PlannedSorties {
     /// Where the drone refills and swaps batteries: the launch point, else the first point
     /// of the route.
     pub supply: RoutePoint,
+    /// The costs and limits the split was made with (return legs, service times).
+    pub model: SortieModel,
     /// The route as the planner saw it.
     pub work_route: WorkRoute,
     /// The index in `work_route` of each visit's first point.
@@ -145,6 +147,7 @@ fn split_into_sorties(
     Ok(Some(PlannedSorties {
         plan,
         supply,
+        model,
         work_route,
         visit_offsets,
     }))

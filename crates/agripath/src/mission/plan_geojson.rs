@@ -191,9 +191,7 @@ pub fn plan_geojson(
                 properties.insert("role".into(), json!("leg"));
                 properties.insert("seq".into(), json!(seq));
                 properties.insert("sortie".into(), json!(sortie));
-                let one_way = (point.x - split.supply.x).hypot(point.y - split.supply.y)
-                    + (point.ground_m - split.supply.ground_m).abs()
-                    + 2.0 * safe_height_m;
+                let one_way = split.model.leg_m(&point);
                 properties.insert(
                     "length_m".into(),
                     json!(crate::report::round(2.0 * one_way, 1e-4)),

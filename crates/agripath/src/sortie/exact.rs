@@ -24,15 +24,12 @@ pub fn breaks(route: &WorkRoute, model: &SortieModel) -> Result<Vec<usize>, Faul
     let flight = route.flight_prefix();
     let tank = model.spray_per_tank_m.unwrap_or(f64::INFINITY) + TOLERANCE;
     let endurance = model.endurance_s + TOLERANCE;
-    // Per point: the one-way return in seconds, and the refill slope of eq. (5).
+    // Per point: the one-way return in seconds.
     let leg_s: Vec<f64> = route
         .points()
         .iter()
         .map(|point| model.leg_m(point) / model.transit_mps)
         .collect();
-    let refill_per_m = model.spray_per_tank_m.map_or(0.0, |tank| {
-        (model.refill_max_s - model.refill_base_s) / tank
-    });
     let mut cost = vec![f64::INFINITY; count];
     // cost(i) plus the round trip from i: what a return at i costs before its service.
     let mut base = vec![f64::INFINITY; count];
@@ -53,13 +50,11 @@ pub fn breaks(route: &WorkRoute, model: &SortieModel) -> Result<Vec<usize>, Faul
             if !base[i].is_finite() || leg_s[i] + flight[j] - flight[i] + leg_s[j] > endurance {
                 continue;
             }
+            // max(T_e, T_p) of eq. (5) for the sortie i..=j.
             let step = if i == 0 {
                 0.0
             } else {
-                // max(T_e, T_p) of eq. (5) for the sortie i..=j.
-                model
-                    .battery_swap_s
-                    .max(model.refill_base_s + refill_per_m * (spray[j] - spray[i]))
+                model.service_s(spray[j] - spray[i])
             };
             if base[i] + step < best {
                 best = base[i] + step;

@@ -92,15 +92,52 @@ impl Colony {
         }
     }
 
-    pub fn mean_loudness(&self) -> f64 {
+    fn mean_loudness(&self) -> f64 {
         self.loudness.iter().sum::<f64>() / self.loudness.len() as f64
     }
 
     /// The local walk of eq. (4) around the best, in place of `candidate`; `mean_loudness`
     /// is Ā^t, taken at the start of the iteration.
-    pub fn walk_near_best(&self, candidate: &mut [f64], mean_loudness: f64, search: &mut Search) {
+    fn walk_near_best(&self, candidate: &mut [f64], mean_loudness: f64, search: &mut Search) {
         for (d, value) in candidate.iter_mut().enumerate() {
             *value = self.best[d] + search.uniform_in(-1.0, 1.0) * mean_loudness;
+        }
+    }
+
+    /// One BA iteration over every bat: `velocity` updates a bat's velocity (its own draws
+    /// and rule: eq. 2 for BA, the inertia-weighted form for ILSSIWBA), the bat flies to
+    /// x + v (eq. 1) or walks near the best when rand > R_i (eq. 4), and the new point is
+    /// accepted when no worse and rand < A_i (Yang), after which `accepted` updates the bat's
+    /// loudness and pulse rate.
+    pub fn fly(
+        &mut self,
+        search: &mut Search,
+        mut velocity: impl FnMut(&mut Search, &mut [f64], &[f64], &[f64]),
+        mut accepted: impl FnMut(&mut f64, &mut f64),
+    ) {
+        let mean_loudness = self.mean_loudness();
+        let mut candidate = vec![0.0; search.dimension()];
+        for bat in 0..self.positions.len() {
+            velocity(
+                search,
+                &mut self.velocities[bat],
+                &self.positions[bat],
+                &self.best,
+            );
+            for (d, value) in candidate.iter_mut().enumerate() {
+                *value = self.positions[bat][d] + self.velocities[bat][d]; // eq. (1)
+            }
+            if search.uniform() > self.pulse_rate[bat] {
+                self.walk_near_best(&mut candidate, mean_loudness, search); // eq. (4)
+            }
+            search.clamp(&mut candidate);
+            let cost = search.evaluate(&candidate);
+            if cost <= self.costs[bat] && search.uniform() < self.loudness[bat] {
+                self.positions[bat].copy_from_slice(&candidate);
+                self.costs[bat] = cost;
+                accepted(&mut self.loudness[bat], &mut self.pulse_rate[bat]);
+            }
+            self.offer_best(&candidate, cost);
         }
     }
 
@@ -145,33 +182,21 @@ impl Optimizer for Bat {
     }
 
     fn step(&mut self, search: &mut Search) {
-        let parameters = &self.parameters;
+        let p = &self.parameters;
         let t = search.iteration() as f64;
-        let colony = &mut self.colony;
-        let mean_loudness = colony.mean_loudness();
-        let mut candidate = vec![0.0; search.dimension()];
-        for bat in 0..colony.positions.len() {
-            let frequency = search.uniform_in(parameters.frequency_min, parameters.frequency_max);
-            let (position, velocity) = (&colony.positions[bat], &mut colony.velocities[bat]);
-            for d in 0..candidate.len() {
-                velocity[d] += (position[d] - colony.best[d]) * frequency; // eq. (2)
-                candidate[d] = position[d] + velocity[d]; // eq. (1)
-            }
-            if search.uniform() > colony.pulse_rate[bat] {
-                colony.walk_near_best(&mut candidate, mean_loudness, search); // eq. (4)
-            }
-            search.clamp(&mut candidate);
-            let cost = search.evaluate(&candidate);
-            if cost <= colony.costs[bat] && search.uniform() < colony.loudness[bat] {
-                colony.positions[bat].copy_from_slice(&candidate);
-                colony.costs[bat] = cost;
-                colony.loudness[bat] *= parameters.alpha; // eq. (5)
-                colony.pulse_rate[bat] =
-                    parameters.pulse_rate_max * (1.0 - (-parameters.gamma * t).exp());
-                // eq. (6)
-            }
-            colony.offer_best(&candidate, cost);
-        }
+        self.colony.fly(
+            search,
+            |search, velocity, position, best| {
+                let frequency = search.uniform_in(p.frequency_min, p.frequency_max); // eq. (3)
+                for d in 0..velocity.len() {
+                    velocity[d] += (position[d] - best[d]) * frequency; // eq. (2)
+                }
+            },
+            |loudness, pulse_rate| {
+                *loudness *= p.alpha; // eq. (5)
+                *pulse_rate = p.pulse_rate_max * (1.0 - (-p.gamma * t).exp()); // eq. (6)
+            },
+        );
     }
 }
 

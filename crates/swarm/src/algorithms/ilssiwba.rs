@@ -128,31 +128,21 @@ impl Optimizer for Ilssiwba {
     fn step(&mut self, search: &mut Search) {
         let p = self.parameters.clone();
         let t = search.iteration() as f64;
-        let colony = &mut self.colony;
-        let mean_loudness = colony.mean_loudness();
-        let mut candidate = vec![0.0; search.dimension()];
-        for bat in 0..colony.positions.len() {
-            let frequency = search.uniform_in(p.frequency_min, p.frequency_max);
-            let inertia = search.uniform_in(p.inertia_mean_min, p.inertia_mean_max)
-                + p.inertia_deviation * search.normal();
-            let (position, velocity) = (&colony.positions[bat], &mut colony.velocities[bat]);
-            for d in 0..candidate.len() {
-                velocity[d] = inertia * velocity[d] + (position[d] - colony.best[d]) * frequency;
-                candidate[d] = position[d] + velocity[d];
-            }
-            if search.uniform() > colony.pulse_rate[bat] {
-                colony.walk_near_best(&mut candidate, mean_loudness, search);
-            }
-            search.clamp(&mut candidate);
-            let cost = search.evaluate(&candidate);
-            if cost <= colony.costs[bat] && search.uniform() < colony.loudness[bat] {
-                colony.positions[bat].copy_from_slice(&candidate);
-                colony.costs[bat] = cost;
-                colony.loudness[bat] = (colony.loudness[bat] * p.alpha).max(p.loudness_floor);
-                colony.pulse_rate[bat] = p.pulse_rate_cap * (1.0 - (-p.gamma * t).exp());
-            }
-            colony.offer_best(&candidate, cost);
-        }
+        self.colony.fly(
+            search,
+            |search, velocity, position, best| {
+                let frequency = search.uniform_in(p.frequency_min, p.frequency_max);
+                let inertia = search.uniform_in(p.inertia_mean_min, p.inertia_mean_max)
+                    + p.inertia_deviation * search.normal(); // stochastic inertia weight
+                for d in 0..velocity.len() {
+                    velocity[d] = inertia * velocity[d] + (position[d] - best[d]) * frequency;
+                }
+            },
+            |loudness, pulse_rate| {
+                *loudness = (*loudness * p.alpha).max(p.loudness_floor);
+                *pulse_rate = p.pulse_rate_cap * (1.0 - (-p.gamma * t).exp());
+            },
+        );
         self.iterated_local_search(search);
     }
 }
