@@ -21,5 +21,6 @@ pub mod sequence;
 pub mod sortie;
 pub mod summary;
 pub mod terrain;
+pub mod track;
 
 pub use error::{Fault, InputError, TerrainError};

@@ -393,7 +393,7 @@ impl Observer for () {
     fn observe(&mut self, _record: &Record) {}
 }
 
-impl Optimizer for Box<dyn Optimizer> {
+impl Optimizer for Box<dyn Optimizer + '_> {
     fn name(&self) -> &'static str {
         self.as_ref().name()
     }

@@ -7,7 +7,7 @@
 //! Deviations from the paper (MISSION.md decision 6): z1 follows seed 002's eq. (1), since
 //! seed 000's eq. (16) misprints the f and g terms; the seventh y_s, missing in print, is 200.
 //! Seed 002 gives no coefficients: its 1000 × 1000 × 60 m space uses seed 000's terrain with
-//! heights scaled by 0.12 (documented in `docs/decisions/0003-terrain.md`).
+//! heights scaled by 0.5 (documented in `docs/decisions/0003-terrain.md`).
 
 use super::{Extent, Terrain};
 use crate::error::TerrainError;
@@ -27,7 +27,7 @@ pub struct Composite {
     /// Coefficients a..g of z1.
     pub coefficients: [f64; 7],
     pub hills: Vec<Hill>,
-    /// Factor applied to every height (1 for seed 000, 0.12 for seed 002).
+    /// Factor applied to every height (1 for seed 000, 0.5 for seed 002).
     pub height_scale: f64,
     pub extent: Extent,
 }
@@ -62,10 +62,10 @@ impl Composite {
         }
     }
 
-    /// Seed 002's survey space: seed 000's terrain with heights × 0.12 (peaks near 60 m).
+    /// Seed 002's survey space: seed 000's terrain with heights × 0.5 (peaks near 61 m, above its 60 m ceiling).
     pub fn seed002() -> Self {
         Self {
-            height_scale: 0.12,
+            height_scale: 0.5,
             ..Self::seed000()
         }
     }
@@ -140,6 +140,6 @@ mod tests {
         assert!((terrain.height_m(0.0, 0.0).unwrap() - expected).abs() < 1e-12);
         assert!(terrain.height_m(-1.0, 0.0).is_err());
         let scaled = Composite::seed002().height_m(600.0, 110.0).unwrap();
-        assert!((scaled - 0.12 * peak).abs() < 1e-9);
+        assert!((scaled - 0.5 * peak).abs() < 1e-9);
     }
 }

@@ -8,6 +8,11 @@
 //! Deviation, stated: each velocity coordinate is limited to ± the box width in that
 //! coordinate (with c1 = c2 = 2 and w = 0.729 the swarm sits at the edge of divergence, and
 //! without a limit velocities can overflow), and positions are clamped to the box.
+//!
+//! [`ParticleSwarmParameters::spso`] is the PSO of SPSO's code (Phung & Ha 2021, from
+//! Yarpiz): w = 1 damped by 0.98 after every iteration, c1 = c2 = 1.5, velocities within
+//! ± half the box width, and a coordinate that leaves the box is clamped with its velocity
+//! reversed ("mirrored").
 
 use super::bat::index_of_smallest;
 use crate::runner::{Optimizer, Search};
@@ -21,6 +26,25 @@ pub struct ParticleSwarmParameters {
     pub social: f64,
     /// Velocity limit as a share of the box width.
     pub velocity_limit: f64,
+    /// w is multiplied by this after every iteration (1: constant).
+    pub inertia_damping: f64,
+    /// Reverse a velocity coordinate whose position left the box.
+    pub mirror_velocity: bool,
+}
+
+impl ParticleSwarmParameters {
+    /// SPSO's PSO settings (its `SPSO_MAIN.m`), for `population` particles.
+    pub fn spso(population: usize) -> Self {
+        Self {
+            population,
+            inertia: 1.0,
+            cognitive: 1.5,
+            social: 1.5,
+            velocity_limit: 0.5,
+            inertia_damping: 0.98,
+            mirror_velocity: true,
+        }
+    }
 }
 
 impl Default for ParticleSwarmParameters {
@@ -31,6 +55,8 @@ impl Default for ParticleSwarmParameters {
             cognitive: 2.0,
             social: 2.0,
             velocity_limit: 1.0,
+            inertia_damping: 1.0,
+            mirror_velocity: false,
         }
     }
 }
@@ -45,6 +71,7 @@ pub struct ParticleSwarm {
     personal_best_cost: Vec<f64>,
     best: Vec<f64>,
     best_cost: f64,
+    inertia: f64,
 }
 
 impl ParticleSwarm {
@@ -70,6 +97,7 @@ impl Optimizer for ParticleSwarm {
         let best = index_of_smallest(&self.personal_best_cost);
         self.best = self.positions[best].clone();
         self.best_cost = self.personal_best_cost[best];
+        self.inertia = self.parameters.inertia;
     }
 
     fn step(&mut self, search: &mut Search) {
@@ -82,11 +110,15 @@ impl Optimizer for ParticleSwarm {
             for d in 0..dimension {
                 let limit = p.velocity_limit * search.bounds().width(d);
                 let (r1, r2) = (search.uniform(), search.uniform());
-                velocity[d] = (p.inertia * velocity[d]
+                velocity[d] = (self.inertia * velocity[d]
                     + p.cognitive * r1 * (personal[d] - position[d])
                     + p.social * r2 * (self.best[d] - position[d]))
                     .clamp(-limit, limit);
                 position[d] += velocity[d];
+                let (low, high) = (search.bounds().lower()[d], search.bounds().upper()[d]);
+                if p.mirror_velocity && !(low..=high).contains(&position[d]) {
+                    velocity[d] = -velocity[d];
+                }
             }
             search.clamp(position);
             let cost = search.evaluate(position);
@@ -99,5 +131,6 @@ impl Optimizer for ParticleSwarm {
                 }
             }
         }
+        self.inertia *= p.inertia_damping;
     }
 }

@@ -1,0 +1,285 @@
+//! The planners by name, and independent seeded runs of one planner on one scenario.
+//!
+//! Every planner runs on the swarm engine's one loop under the same evaluation budget (the
+//! scenario's [`TrackScenario::evaluation_budget`]); runs are independent streams run in
+//! parallel, equal number for number to serial runs. Each returned track is checked by
+//! [`super::safety::check`].
+
+use std::time::Duration;
+
+use swarm::algorithms::{ParticleSwarm, ParticleSwarmParameters};
+use swarm::{Algorithm, Optimizer, Record, Runner, Termination};
+
+use super::bspline;
+use super::cost::CostBreakdown;
+use super::encoding::Encoding;
+use super::improved_genetic::{ImprovedGenetic, ImprovedGeneticParameters};
+use super::problem::TrackProblem;
+use super::refine::LatticeRefine;
+use super::safety::{self, Verdict};
+use super::scenario::TrackScenario;
+use crate::error::Fault;
+
+/// A track planner.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Planner {
+    /// An algorithm of the swarm engine on the scenario's encoding.
+    Swarm(Algorithm),
+    /// SPSO: PSO with its code's settings on the spherical encoding.
+    Spso,
+    /// Seed 002's improved GA, then cubic B-spline smoothing.
+    ImprovedGenetic,
+    /// Ours: lattice corridors refined waypoint by waypoint.
+    Lattice,
+}
+
+impl Planner {
+    pub fn key(self) -> &'static str {
+        match self {
+            Planner::Swarm(algorithm) => algorithm.key(),
+            Planner::Spso => "spso",
+            Planner::ImprovedGenetic => "improved-ga",
+            Planner::Lattice => "lattice",
+        }
+    }
+
+    pub fn label(self) -> &'static str {
+        match self {
+            Planner::Swarm(algorithm) => algorithm.label(),
+            Planner::Spso => "SPSO",
+            Planner::ImprovedGenetic => "improved GA",
+            Planner::Lattice => "lattice+refine (ours)",
+        }
+    }
+
+    pub fn all() -> Vec<Planner> {
+        let mut all: Vec<Planner> = Algorithm::ALL.into_iter().map(Planner::Swarm).collect();
+        all.extend([Planner::Spso, Planner::ImprovedGenetic, Planner::Lattice]);
+        all
+    }
+
+    pub fn parse(text: &str) -> Result<Planner, String> {
+        let wanted = text.trim().to_ascii_lowercase();
+        if let Some(planner) = [Planner::Spso, Planner::ImprovedGenetic, Planner::Lattice]
+            .into_iter()
+            .find(|p| p.key() == wanted)
+        {
+            return Ok(planner);
+        }
+        if wanted == "ours" {
+            return Ok(Planner::Lattice);
+        }
+        wanted
+            .parse::<Algorithm>()
+            .map(Planner::Swarm)
+            .map_err(|_| {
+                let names: Vec<&str> = Planner::all().iter().map(|p| p.key()).collect();
+                format!("unknown planner '{text}' (known: {})", names.join(", "))
+            })
+    }
+
+    /// The encoding the planner searches, given the one asked for (swarm algorithms only).
+    pub fn encoding(self, scenario: &TrackScenario, asked: Option<Encoding>) -> Encoding {
+        match self {
+            Planner::Spso => Encoding::Spherical,
+            Planner::ImprovedGenetic | Planner::Lattice => Encoding::Cartesian,
+            Planner::Swarm(_) => asked.unwrap_or(scenario.default_encoding()),
+        }
+    }
+}
+
+/// What to run.
+#[derive(Debug, Clone)]
+pub struct TrackSettings {
+    pub planner: Planner,
+    /// For the swarm algorithms; `None`: the scenario's paper's encoding.
+    pub encoding: Option<Encoding>,
+    pub runs: u64,
+    pub seed: u64,
+    /// `None`: the scenario's budget.
+    pub evaluations: Option<u64>,
+}
+
+/// A track smoothed by B-spline, with its own cost and check.
+#[derive(Debug, Clone)]
+pub struct Smoothed {
+    pub points: Vec<[f64; 3]>,
+    pub cost: CostBreakdown,
+    pub verdict: Verdict,
+}
+
+/// One run's result.
+#[derive(Debug, Clone)]
+pub struct TrackRun {
+    pub run: u64,
+    /// Start, waypoints and goal, altitudes above sea level.
+    pub points: Vec<[f64; 3]>,
+    pub cost: CostBreakdown,
+    pub verdict: Verdict,
+    pub evaluations: u64,
+    pub elapsed: Duration,
+    pub history: Vec<Record>,
+    /// The improved GA's smoothed track (its cost is the run's `final_cost`).
+    pub smoothed: Option<Smoothed>,
+}
+
+impl TrackRun {
+    /// The cost of the track the planner hands over: the smoothed one when smoothing kept it
+    /// safe, else the planned one.
+    pub fn final_cost(&self) -> f64 {
+        match &self.smoothed {
+            Some(smoothed) if smoothed.verdict.is_safe() => smoothed.cost.total,
+            _ => self.cost.total,
+        }
+    }
+
+    pub fn final_points(&self) -> &[[f64; 3]] {
+        match &self.smoothed {
+            Some(smoothed) if smoothed.verdict.is_safe() => &smoothed.points,
+            _ => &self.points,
+        }
+    }
+
+    pub fn is_safe(&self) -> bool {
+        match &self.smoothed {
+            Some(smoothed) if smoothed.verdict.is_safe() => true,
+            _ => self.verdict.is_safe(),
+        }
+    }
+}
+
+impl TrackScenario {
+    /// Evaluations every planner may spend: population × (iterations + 1), and for seed
+    /// 002 population × (1 + iterations × 3), what its improved GA spends with three
+    /// mutation tries per child (decision 0011).
+    pub fn evaluation_budget(&self) -> u64 {
+        let (population, iterations) = (self.population as u64, self.iterations as u64);
+        match self.cost {
+            super::cost::CostModel::Seed002(_) => population * (1 + 3 * iterations),
+            _ => population * (iterations + 1),
+        }
+    }
+
+    /// The encoding of the scenario's paper: cylindrical for seed 000, spherical for SPSO,
+    /// Cartesian for seed 002.
+    pub fn default_encoding(&self) -> Encoding {
+        match self.cost {
+            super::cost::CostModel::Seed000(_) => Encoding::Cylindrical,
+            super::cost::CostModel::Spso(_) => Encoding::Spherical,
+            super::cost::CostModel::Seed002(_) => Encoding::Cartesian,
+        }
+    }
+}
+
+/// Runs `settings.runs` independent runs; `finished` is called as each ends.
+pub fn plan(
+    scenario: &TrackScenario,
+    settings: &TrackSettings,
+    finished: &(dyn Fn() + Sync),
+) -> Result<Vec<TrackRun>, Fault> {
+    if settings.runs == 0 {
+        return Err(Fault::InvalidValue {
+            what: "--runs".into(),
+            value: "0".into(),
+            why: "at least one run".into(),
+        });
+    }
+    let budget = settings
+        .evaluations
+        .unwrap_or_else(|| scenario.evaluation_budget());
+    let runner = Runner::new(Termination::evaluations(budget), settings.seed).map_err(|error| {
+        Fault::InvalidValue {
+            what: "evaluations".into(),
+            value: budget.to_string(),
+            why: error.to_string(),
+        }
+    })?;
+    let encoding = settings.planner.encoding(scenario, settings.encoding);
+    let genetic = ImprovedGeneticParameters {
+        population: scenario.population,
+        initial_length: scenario.free_waypoints,
+        max_length: 2 * scenario.free_waypoints,
+        ..Default::default()
+    };
+    let problem = match settings.planner {
+        Planner::ImprovedGenetic => {
+            TrackProblem::with_waypoints(scenario, encoding, genetic.max_length)
+        }
+        _ => TrackProblem::new(scenario, encoding),
+    };
+    let population = scenario.population;
+    let make = || -> Box<dyn Optimizer + '_> {
+        match settings.planner {
+            Planner::Swarm(algorithm) => algorithm.build(population),
+            Planner::Spso => Box::new(ParticleSwarm::new(ParticleSwarmParameters::spso(
+                population,
+            ))),
+            Planner::ImprovedGenetic => Box::new(ImprovedGenetic::new(scenario, genetic.clone())),
+            Planner::Lattice => Box::new(LatticeRefine::new(scenario)),
+        }
+    };
+    let outcomes = runner.run_many(make, &problem, settings.runs, &|_| finished());
+    Ok(outcomes
+        .into_iter()
+        .map(|outcome| {
+            let mut points = problem.track(&outcome.best_position);
+            if settings.planner == Planner::ImprovedGenetic {
+                // Drop the padding: waypoints parked at the goal.
+                let goal = scenario.sea_level(scenario.goal);
+                points.dedup_by(|a, b| a == b && *a == goal);
+            }
+            let cost = scenario.cost.evaluate(scenario, &points);
+            let verdict = safety::check(scenario, &points);
+            let smoothed = (settings.planner == Planner::ImprovedGenetic).then(|| {
+                let curve = bspline::smooth(&points);
+                Smoothed {
+                    cost: scenario.cost.evaluate(scenario, &curve),
+                    verdict: safety::check(scenario, &curve),
+                    points: curve,
+                }
+            });
+            TrackRun {
+                run: outcome.run,
+                points,
+                cost,
+                verdict,
+                evaluations: outcome.evaluations,
+                elapsed: outcome.elapsed,
+                history: outcome.history,
+                smoothed,
+            }
+        })
+        .collect())
+}
+
+/// Best, worst, mean and standard deviation of the runs' final costs, and how many are safe.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RunStatistics {
+    pub best: f64,
+    pub worst: f64,
+    pub mean: f64,
+    pub standard_deviation: f64,
+    pub safe_runs: usize,
+    pub runs: usize,
+    pub mean_seconds: f64,
+}
+
+pub fn statistics(runs: &[TrackRun]) -> RunStatistics {
+    let costs: Vec<f64> = runs.iter().map(TrackRun::final_cost).collect();
+    let count = costs.len().max(1) as f64;
+    let mean = costs.iter().sum::<f64>() / count;
+    let variance = costs.iter().map(|c| (c - mean).powi(2)).sum::<f64>() / (count - 1.0).max(1.0);
+    RunStatistics {
+        best: costs.iter().copied().fold(f64::INFINITY, f64::min),
+        worst: costs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
+        mean,
+        standard_deviation: variance.sqrt(),
+        safe_runs: runs.iter().filter(|run| run.is_safe()).count(),
+        runs: runs.len(),
+        mean_seconds: runs
+            .iter()
+            .map(|run| run.elapsed.as_secs_f64())
+            .sum::<f64>()
+            / count,
+    }
+}

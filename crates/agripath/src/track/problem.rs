@@ -1,0 +1,65 @@
+//! A track scenario, an encoding and a cost model as one [`swarm::Problem`]: every planner on
+//! the swarm engine sees a box and a cost, nothing of terrain or threats.
+
+use swarm::{Bounds, Problem};
+
+use super::cost::CostBreakdown;
+use super::encoding::Encoding;
+use super::scenario::TrackScenario;
+
+pub struct TrackProblem<'a> {
+    pub scenario: &'a TrackScenario,
+    pub encoding: Encoding,
+    waypoints: usize,
+    bounds: Bounds,
+}
+
+impl<'a> TrackProblem<'a> {
+    /// The scenario's own number of free waypoints.
+    pub fn new(scenario: &'a TrackScenario, encoding: Encoding) -> Self {
+        Self::with_waypoints(scenario, encoding, scenario.free_waypoints)
+    }
+
+    /// Room for `waypoints` free waypoints (seed 002's variable-length chromosomes use more
+    /// room than their initial length; see [`super::improved_genetic`]).
+    pub fn with_waypoints(
+        scenario: &'a TrackScenario,
+        encoding: Encoding,
+        waypoints: usize,
+    ) -> Self {
+        Self {
+            scenario,
+            encoding,
+            waypoints,
+            bounds: encoding.bounds(scenario, waypoints),
+        }
+    }
+
+    pub fn waypoints(&self) -> usize {
+        self.waypoints
+    }
+
+    /// Start, waypoints and goal with altitudes above sea level.
+    pub fn track(&self, x: &[f64]) -> Vec<[f64; 3]> {
+        let mut points = Vec::with_capacity(self.waypoints + 2);
+        self.encoding.decode_into(self.scenario, x, &mut points);
+        for point in &mut points {
+            *point = self.scenario.sea_level(*point);
+        }
+        points
+    }
+
+    pub fn breakdown(&self, x: &[f64]) -> CostBreakdown {
+        self.scenario.cost.evaluate(self.scenario, &self.track(x))
+    }
+}
+
+impl Problem for TrackProblem<'_> {
+    fn bounds(&self) -> &Bounds {
+        &self.bounds
+    }
+
+    fn evaluate(&self, x: &[f64]) -> f64 {
+        self.breakdown(x).total
+    }
+}

@@ -1,0 +1,156 @@
+//! Our planner: lattice corridors ([`super::lattice`]) refined waypoint by waypoint on the
+//! real cost.
+//!
+//! Every cost model here is a sum over legs and corners, so moving one waypoint changes only
+//! the terms next to it: the refinement moves one waypoint at a time. Each lane (one
+//! corridor) keeps a step size per waypoint; a waypoint tries a Gaussian move of its step
+//! (or, every other pass, a pull towards the middle of its neighbours, which straightens the
+//! track), keeps it if the track's cost falls, and its step grows by half on success and
+//! shrinks by a tenth on failure (a per-waypoint one-fifth rule). Once per pass a lane also
+//! tries merging a waypoint into a neighbour: with costs counted per leg, fewer legs along
+//! a threat's danger band cost less (SPSO's best runs do this too). Lanes that trail the best
+//! by then are dropped at a third of the budget, so the rest goes to the best corridor.
+//!
+//! It runs on the swarm engine like every planner (the Runner counts its evaluations and
+//! keeps its convergence history) with the Cartesian encoding.
+
+use swarm::{Optimizer, Search};
+
+use super::lattice;
+use super::scenario::TrackScenario;
+
+/// Corridors searched.
+const LANES: usize = 4;
+
+struct Lane {
+    x: Vec<f64>,
+    cost: f64,
+    /// Step per waypoint, as a share of the box width of each coordinate.
+    steps: Vec<f64>,
+}
+
+pub struct LatticeRefine<'a> {
+    scenario: &'a TrackScenario,
+    lanes: Vec<Lane>,
+    pass: usize,
+}
+
+impl<'a> LatticeRefine<'a> {
+    pub fn new(scenario: &'a TrackScenario) -> Self {
+        Self {
+            scenario,
+            lanes: Vec::new(),
+            pass: 0,
+        }
+    }
+}
+
+impl Optimizer for LatticeRefine<'_> {
+    fn name(&self) -> &'static str {
+        "lattice + refine"
+    }
+
+    fn start(&mut self, search: &mut Search) {
+        let encoding = super::encoding::Encoding::Cartesian;
+        let mut starts: Vec<Vec<f64>> = lattice::corridors(self.scenario, LANES)
+            .iter()
+            .map(|waypoints| encoding.encode(self.scenario, waypoints))
+            .collect();
+        if starts.is_empty() {
+            // No corridor on the lattice (every way closed): start from random tracks.
+            starts = (0..LANES).map(|_| search.random_position()).collect();
+        }
+        let waypoints = search.dimension() / 3;
+        self.lanes = starts
+            .into_iter()
+            .map(|mut x| {
+                search.clamp(&mut x);
+                let cost = search.evaluate(&x);
+                Lane {
+                    x,
+                    cost,
+                    steps: vec![0.02; waypoints],
+                }
+            })
+            .collect();
+    }
+
+    fn step(&mut self, search: &mut Search) {
+        self.pass += 1;
+        if search.progress() > 1.0 / 3.0 && self.lanes.len() > 1 {
+            let best = self
+                .lanes
+                .iter()
+                .map(|lane| lane.cost)
+                .fold(f64::INFINITY, f64::min);
+            self.lanes.retain(|lane| lane.cost <= best);
+            self.lanes.truncate(1);
+        }
+        let dimension = search.dimension();
+        let widths: Vec<f64> = (0..dimension).map(|d| search.bounds().width(d)).collect();
+        let straighten = self.pass.is_multiple_of(2);
+        for lane in &mut self.lanes {
+            let waypoints = lane.steps.len();
+            for _ in 0..waypoints {
+                let index = search.below(waypoints);
+                let mut candidate = lane.x.clone();
+                if straighten {
+                    // Towards the middle of the neighbours (start and goal at the ends).
+                    let neighbour = |k: isize| -> [f64; 3] {
+                        if k < 0 {
+                            self.scenario.start
+                        } else if k as usize >= waypoints {
+                            self.scenario.goal
+                        } else {
+                            let k = k as usize;
+                            [lane.x[3 * k], lane.x[3 * k + 1], lane.x[3 * k + 2]]
+                        }
+                    };
+                    let (before, after) =
+                        (neighbour(index as isize - 1), neighbour(index as isize + 1));
+                    let pull = search.uniform_in(0.1, 0.6);
+                    for axis in 0..2 {
+                        let middle = 0.5 * (before[axis] + after[axis]);
+                        candidate[3 * index + axis] +=
+                            pull * (middle - candidate[3 * index + axis]);
+                    }
+                    candidate[3 * index + 2] +=
+                        lane.steps[index] * widths[3 * index + 2] * search.normal();
+                } else {
+                    for axis in 0..3 {
+                        let d = 3 * index + axis;
+                        candidate[d] += lane.steps[index] * widths[d] * search.normal();
+                    }
+                }
+                search.clamp(&mut candidate);
+                let cost = search.evaluate(&candidate);
+                if cost < lane.cost {
+                    lane.x = candidate;
+                    lane.cost = cost;
+                    lane.steps[index] = (lane.steps[index] * 1.5).min(0.2);
+                } else {
+                    lane.steps[index] = (lane.steps[index] * 0.9).max(1e-5);
+                }
+            }
+            // Merge a waypoint into a neighbour: costs counted per leg (the threat terms of
+            // seed 000 and SPSO) fall when a track near a threat has fewer legs there.
+            let index = search.below(waypoints);
+            let other = if index + 1 < waypoints && (index == 0 || search.uniform() < 0.5) {
+                index + 1
+            } else {
+                index.saturating_sub(1)
+            };
+            if other != index {
+                let mut candidate = lane.x.clone();
+                for axis in 0..3 {
+                    candidate[3 * index + axis] = lane.x[3 * other + axis];
+                }
+                let cost = search.evaluate(&candidate);
+                if cost < lane.cost {
+                    lane.x = candidate;
+                    lane.cost = cost;
+                }
+            }
+        }
+    }
+}
