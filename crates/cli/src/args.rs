@@ -79,6 +79,36 @@ pub enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Plan a safe point-to-point 3D track over terrain and threat cylinders (seed 000's
+    /// orchard, seed 002's survey space, SPSO's scenario). Writes DIR/track.geojson,
+    /// DIR/report.json, DIR/table.md, DIR/top_view.svg/.png, DIR/profile_NAME.svg,
+    /// DIR/convergence.svg and DIR/NAME.waypoints (QGC WPL 110) per planner.
+    Track {
+        /// Scenario JSON: seed000_orchard.json, seed002_field_survey.json or spso/scenario.json.
+        scenario: PathBuf,
+        /// Seed 000's task: I, II or III.
+        #[arg(long)]
+        task: Option<String>,
+        /// Planners, comma-separated: lattice (ours), iba-fcs, ba, ilssiwba, pso, spso, ga,
+        /// aco-r, gsa, lshade, improved-ga.
+        #[arg(long, default_value = "lattice")]
+        algorithm: String,
+        /// Independent runs per planner.
+        #[arg(long, default_value_t = 5)]
+        runs: u64,
+        /// Seed of the random streams.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Encoding for the swarm algorithms: cartesian, cylindrical or spherical (default:
+        /// the scenario paper's).
+        #[arg(long)]
+        encoding: Option<String>,
+        /// Evaluations per run (default: the scenario paper's population × iterations).
+        #[arg(long)]
+        evaluations: Option<u64>,
+        #[arg(long)]
+        out: PathBuf,
+    },
     /// Serve a plan folder on 127.0.0.1 and print the address of its plan.html (the page also
     /// works opened straight from disk). Runs until stopped (Ctrl-C).
     View {
@@ -257,6 +287,18 @@ pub enum ReproTable {
     /// Seed 001 Table 7: headings, swath counts and lengths of the five-field farm.
     #[value(name = "seed001-table7")]
     Seed001Table7,
+    /// Seed 000 Table 4: PSO, BA, ILSSIWBA, IBA-FCS (and ours) on track tasks I-III.
+    #[value(name = "seed000-table4")]
+    Seed000Table4,
+    /// Seed 000 Table 5: IBA-FCS with the cylindrical and the Cartesian encoding.
+    #[value(name = "seed000-table5")]
+    Seed000Table5,
+    /// Seed 002 Table 2: GA, ACO, the improved GA with B-spline smoothing (and ours).
+    #[value(name = "seed002")]
+    Seed002,
+    /// SPSO's public scenario: SPSO, IBA-FCS and ours against SPSO's reference runs.
+    #[value(name = "spso")]
+    Spso,
     /// Seed 001 Table 8: transfer lengths of greedy, ant colony and ours from its start points.
     #[value(name = "seed001-table8")]
     Seed001Table8,

@@ -86,6 +86,25 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
             seed,
             &out,
         ),
+        Command::Track {
+            scenario,
+            task,
+            algorithm,
+            runs,
+            seed,
+            encoding,
+            evaluations,
+            out,
+        } => track(
+            &scenario,
+            task.as_deref(),
+            &algorithm,
+            runs,
+            seed,
+            encoding.as_deref(),
+            evaluations,
+            &out,
+        ),
         Command::Validate { inputs, json } => validate(&inputs, json),
         Command::Terrain { action } => terrain(action),
     }
@@ -272,6 +291,93 @@ fn plan(
     let written = write_folder(out, &files)?;
     emit!("{}", mission.report.to_text());
     emitln!("wrote {}/: {}", written.display(), files_summary(&files));
+    Ok(())
+}
+
+fn bad_argument(flag: &str, value: &str, why: impl Into<String>) -> Failure {
+    InputError::new(
+        "arguments",
+        Fault::InvalidValue {
+            what: flag.into(),
+            value: value.into(),
+            why: why.into(),
+        },
+    )
+    .into()
+}
+
+#[allow(clippy::too_many_arguments)]
+fn track(
+    scenario_path: &Path,
+    task: Option<&str>,
+    algorithms: &str,
+    runs: u64,
+    seed: u64,
+    encoding: Option<&str>,
+    evaluations: Option<u64>,
+    out: &Path,
+) -> Result<(), Failure> {
+    use agripath::track::files::{self, PlannerRuns};
+    use agripath::track::{plan, Encoding, Planner, TrackScenario, TrackSettings};
+    let planners = algorithms
+        .split(',')
+        .map(|name| Planner::parse(name).map_err(|why| bad_argument("--algorithm", name, why)))
+        .collect::<Result<Vec<_>, _>>()?;
+    let encoding = match encoding {
+        None => None,
+        Some(text) => Some(Encoding::parse(text).ok_or_else(|| {
+            bad_argument(
+                "--encoding",
+                text,
+                "expected cartesian, cylindrical or spherical",
+            )
+        })?),
+    };
+    if runs == 0 || runs > 1000 {
+        return Err(bad_argument(
+            "--runs",
+            &runs.to_string(),
+            "must be 1..=1000",
+        ));
+    }
+    if evaluations == Some(0) {
+        return Err(bad_argument("--evaluations", "0", "must be at least 1"));
+    }
+    let scenario = TrackScenario::read(scenario_path, task)?;
+    let bar = progress_bar(runs * planners.len() as u64, "runs");
+    let mut results = Vec::new();
+    for planner in planners {
+        let settings = TrackSettings {
+            planner,
+            encoding,
+            runs,
+            seed,
+            evaluations,
+        };
+        let runs = plan(&scenario, &settings, &|| bar.inc(1))
+            .map_err(|fault| InputError::new(scenario_path, fault))?;
+        results.push(PlannerRuns {
+            planner,
+            encoding: planner.encoding(&scenario, encoding),
+            runs,
+        });
+    }
+    bar.finish_and_clear();
+    let files = files::files(&scenario, &results, seed).map_err(Failure::Output)?;
+    let written = write_folder(out, &files)?;
+    emit!("{}", files::table(&scenario, &results));
+    for result in &results {
+        let best = result.best();
+        if !best.is_safe() {
+            emitln!(
+                "{}: the best track is NOT safe: {}",
+                result.planner.label(),
+                best.verdict.violations.join("; ")
+            );
+        }
+    }
+    let names: Vec<&str> = files.iter().map(|(name, _)| name.as_str()).collect();
+    emitln!("wrote {}/: {}", written.display(), names.join(", "));
     Ok(())
 }
 
@@ -558,6 +664,10 @@ fn repro(
             }
             Ok(())
         }
+        ReproTable::Seed000Table4
+        | ReproTable::Seed000Table5
+        | ReproTable::Seed002
+        | ReproTable::Spso => repro_tracks(table, runs, seed, out),
         ReproTable::Seed003Table4 => {
             use agripath::repro::seed003_table4::{case, to_text, StripSlope};
             use agripath::terrain::Flat;
@@ -852,4 +962,69 @@ fn terrain(action: TerrainAction) -> Result<(), Failure> {
             Ok(())
         }
     }
+}
+
+/// The track tables: text on stdout; with `--out`, the text, top views and convergence curves.
+fn repro_tracks(
+    table: ReproTable,
+    runs: Option<u64>,
+    seed: u64,
+    out: Option<&Path>,
+) -> Result<(), Failure> {
+    use agripath::repro::tracks;
+    use agripath::track::files;
+    let runs = runs.unwrap_or(10);
+    if runs == 0 || runs > 1000 {
+        return Err(bad_argument(
+            "--runs",
+            &runs.to_string(),
+            "must be 1..=1000",
+        ));
+    }
+    let label = "embedded track scenario";
+    let (planners, scenarios) = match table {
+        ReproTable::Seed000Table4 => (5, 3),
+        ReproTable::Seed000Table5 => (2, 1),
+        _ => (4, 1),
+    };
+    let bar = progress_bar(runs * planners * scenarios, "runs");
+    let tick = || bar.inc(1);
+    let (text, cases) = match table {
+        ReproTable::Seed000Table4 => tracks::seed000_table4(runs, seed, &tick)
+            .map_err(|fault| InputError::new(label, fault))?,
+        other => {
+            let (text, scenario, results) = match other {
+                ReproTable::Seed000Table5 => tracks::seed000_table5(runs, seed, &tick),
+                ReproTable::Seed002 => tracks::seed002(runs, seed, &tick),
+                _ => tracks::spso(runs, seed, &tick),
+            }
+            .map_err(|fault| InputError::new(label, fault))?;
+            (text, vec![(scenario, results)])
+        }
+    };
+    bar.finish_and_clear();
+    emit!("{text}");
+    if let Some(out) = out {
+        let mut written: Vec<(String, Vec<u8>)> = vec![("table.md".into(), text.into_bytes())];
+        for (index, (scenario, results)) in cases.iter().enumerate() {
+            let suffix = if cases.len() > 1 {
+                format!("_{}", index + 1)
+            } else {
+                String::new()
+            };
+            for (name, bytes) in files::files(scenario, results, seed).map_err(Failure::Output)? {
+                if name == "table.md" {
+                    continue;
+                }
+                let (stem, extension) = name.rsplit_once('.').unwrap_or((&name, ""));
+                written.push((format!("{stem}{suffix}.{extension}"), bytes));
+            }
+        }
+        let folder = write_folder(out, &written)?;
+        emitln!(
+            "wrote {}/: table.md, track, report, top views, profiles, convergence",
+            folder.display()
+        );
+    }
+    Ok(())
 }

@@ -5,3 +5,4 @@ pub mod seed001_table7;
 pub mod seed001_table8;
 pub mod seed003_table4;
 pub mod seed004;
+pub mod tracks;

@@ -1,0 +1,285 @@
+//! What `agripath track` writes: the best track of each planner as GeoJSON and as mission
+//! waypoints, the runs' statistics, a top view, an altitude profile and convergence curves.
+
+use std::fmt::Write;
+
+use serde_json::{json, Value};
+
+use super::planner::{statistics, Planner, TrackRun};
+use super::scenario::TrackScenario;
+use crate::mission::flight::{Action, Item, MissionSettings, SortieMission};
+use crate::mission::wpl;
+use crate::plot::line_chart::{self, Chart, Series};
+use crate::plot::track_svg;
+
+/// The runs of one planner.
+pub struct PlannerRuns {
+    pub planner: Planner,
+    pub encoding: super::Encoding,
+    pub runs: Vec<TrackRun>,
+}
+
+impl PlannerRuns {
+    /// The run with the lowest final cost (the first of equals).
+    pub fn best(&self) -> &TrackRun {
+        self.runs
+            .iter()
+            .min_by(|a, b| a.final_cost().total_cmp(&b.final_cost()))
+            .expect("at least one run")
+    }
+}
+
+/// Mission waypoints of a track: takeoff at the start, the track's points (at most 100,
+/// evenly thinned for a smoothed curve), land at the goal; altitudes above sea level.
+pub fn mission(scenario: &TrackScenario, points: &[[f64; 3]]) -> String {
+    let item = |action: Action, p: [f64; 3]| {
+        let (lon, lat) = scenario.lon_lat(p[0], p[1]);
+        let ground = scenario.terrain.height(p[0], p[1]);
+        Item {
+            action,
+            lon,
+            lat,
+            ground_m: ground,
+            above_ground_m: p[2] - ground,
+        }
+    };
+    let stride = points.len().div_ceil(100).max(1);
+    let mut items = vec![item(Action::Takeoff, points[0])];
+    for (index, &p) in points.iter().enumerate().skip(1) {
+        if index + 1 == points.len() {
+            break;
+        }
+        if index % stride == 0 {
+            items.push(item(Action::Waypoint, p));
+        }
+    }
+    items.push(item(Action::Land, points[points.len() - 1]));
+    let mission = SortieMission {
+        sortie: 1,
+        home: items[0],
+        items,
+    };
+    wpl::waypoints_file(&mission, &MissionSettings::default())
+}
+
+fn circle(x: f64, y: f64, radius: f64) -> Vec<[f64; 2]> {
+    (0..=48)
+        .map(|k| {
+            let angle = std::f64::consts::TAU * k as f64 / 48.0;
+            [x + radius * angle.cos(), y + radius * angle.sin()]
+        })
+        .collect()
+}
+
+/// The GeoJSON (scenario coordinates, `"crs": "local"`): threats, start, goal, and each
+/// planner's best track with its waypoints.
+pub fn geojson(scenario: &TrackScenario, results: &[PlannerRuns]) -> String {
+    let mut features: Vec<Value> = scenario
+        .threats
+        .iter()
+        .enumerate()
+        .map(|(index, threat)| {
+            json!({"type": "Feature", "properties": {"kind": "threat", "index": index, "radius": threat.radius},
+                   "geometry": {"type": "Polygon", "coordinates": [circle(threat.x, threat.y, threat.radius)]}})
+        })
+        .collect();
+    for (kind, point) in [("start", scenario.start), ("goal", scenario.goal)] {
+        let p = scenario.sea_level(point);
+        features.push(json!({"type": "Feature", "properties": {"kind": kind},
+            "geometry": {"type": "Point", "coordinates": p}}));
+    }
+    for result in results {
+        let best = result.best();
+        let points = best.final_points();
+        features.push(json!({"type": "Feature",
+            "properties": {"kind": "track", "planner": result.planner.label(), "run": best.run,
+                           "cost": best.final_cost(), "safe": best.is_safe(),
+                           "violations": best.verdict.violations},
+            "geometry": {"type": "LineString", "coordinates": points}}));
+        for (seq, p) in best
+            .points
+            .iter()
+            .enumerate()
+            .skip(1)
+            .take(best.points.len().saturating_sub(2))
+        {
+            features.push(json!({"type": "Feature",
+                "properties": {"kind": "waypoint", "planner": result.planner.label(), "seq": seq},
+                "geometry": {"type": "Point", "coordinates": p}}));
+        }
+    }
+    let collection = json!({"type": "FeatureCollection", "crs": "local", "name": scenario.name, "features": features});
+    serde_json::to_string_pretty(&collection).expect("JSON values serialise") + "\n"
+}
+
+/// The runs' statistics per planner, with each best track's cost terms and safety.
+pub fn report(scenario: &TrackScenario, results: &[PlannerRuns], seed: u64) -> String {
+    let names = scenario.cost.term_names();
+    let planners: Vec<Value> = results
+        .iter()
+        .map(|result| {
+            let stats = statistics(&result.runs);
+            let best = result.best();
+            let terms: serde_json::Map<String, Value> = names
+                .iter()
+                .zip(best.cost.terms)
+                .map(|(name, value)| ((*name).to_string(), json!(value)))
+                .collect();
+            json!({
+                "planner": result.planner.label(),
+                "encoding": result.encoding.key(),
+                "runs": stats.runs,
+                "safe_runs": stats.safe_runs,
+                "best": stats.best, "worst": stats.worst, "mean": stats.mean,
+                "standard_deviation": stats.standard_deviation,
+                "mean_runtime_s": stats.mean_seconds,
+                "evaluations_per_run": best.evaluations,
+                "best_run": {"run": best.run, "cost": best.final_cost(), "terms": terms,
+                             "lowest_clearance_m": best.verdict.lowest_clearance_m,
+                             "threat_margin": best.verdict.threat_margin,
+                             "waypoints_outside_band": best.verdict.outside_band,
+                             "smoothed": best.smoothed.as_ref().map(|s| json!({"cost": s.cost.total, "safe": s.verdict.is_safe(), "violations": s.verdict.violations})),
+                             "violations": best.verdict.violations},
+                "costs": result.runs.iter().map(TrackRun::final_cost).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    let report = json!({
+        "scenario": scenario.name,
+        "cost_model": scenario.cost.label(),
+        "free_waypoints": scenario.free_waypoints,
+        "evaluation_budget": scenario.evaluation_budget(),
+        "seed": seed,
+        "planners": planners,
+    });
+    serde_json::to_string_pretty(&report).expect("JSON values serialise") + "\n"
+}
+
+/// Mean best cost against evaluations, one curve per planner (100 points each).
+pub fn convergence(scenario: &TrackScenario, results: &[PlannerRuns]) -> String {
+    let series: Vec<Series> = results
+        .iter()
+        .map(|result| {
+            let budget = result.runs.iter().map(|r| r.evaluations).max().unwrap_or(1) as f64;
+            let points = (1..=100)
+                .map(|k| {
+                    let at = budget * k as f64 / 100.0;
+                    let mean = result
+                        .runs
+                        .iter()
+                        .map(|run| {
+                            run.history
+                                .iter()
+                                .take_while(|record| record.evaluations as f64 <= at)
+                                .last()
+                                .map_or(f64::NAN, |record| record.best_cost)
+                        })
+                        .sum::<f64>()
+                        / result.runs.len() as f64;
+                    (at, mean)
+                })
+                .filter(|(_, mean)| mean.is_finite())
+                .collect();
+            Series {
+                name: result.planner.label().to_string(),
+                points,
+            }
+        })
+        .collect();
+    line_chart::render(
+        &Chart {
+            title: &format!("{}: mean best cost", scenario.name),
+            x_label: "evaluations",
+            y_label: "cost",
+            log_y: true,
+        },
+        &series,
+    )
+}
+
+/// The table `agripath track` prints.
+pub fn table(scenario: &TrackScenario, results: &[PlannerRuns]) -> String {
+    let mut text = format!(
+        "{} — {} ({} free waypoints, {} evaluations per run)\n\n| planner | encoding | best | worst | mean | std | safe runs | s/run |\n|---|---|---:|---:|---:|---:|---:|---:|\n",
+        scenario.name,
+        scenario.cost.label(),
+        scenario.free_waypoints,
+        scenario.evaluation_budget()
+    );
+    for result in results {
+        let s = statistics(&result.runs);
+        let _ = writeln!(
+            text,
+            "| {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {}/{} | {:.2} |",
+            result.planner.label(),
+            result.encoding.key(),
+            s.best,
+            s.worst,
+            s.mean,
+            s.standard_deviation,
+            s.safe_runs,
+            s.runs,
+            s.mean_seconds
+        );
+    }
+    text
+}
+
+/// Every file of `agripath track`, by name.
+pub fn files(
+    scenario: &TrackScenario,
+    results: &[PlannerRuns],
+    seed: u64,
+) -> Result<Vec<(String, Vec<u8>)>, String> {
+    let mut files = vec![
+        (
+            "track.geojson".to_string(),
+            geojson(scenario, results).into_bytes(),
+        ),
+        (
+            "report.json".to_string(),
+            report(scenario, results, seed).into_bytes(),
+        ),
+        (
+            "table.md".to_string(),
+            table(scenario, results).into_bytes(),
+        ),
+        (
+            "convergence.svg".to_string(),
+            convergence(scenario, results).into_bytes(),
+        ),
+    ];
+    let tracks: Vec<(String, Vec<[f64; 3]>)> = results
+        .iter()
+        .map(|result| {
+            (
+                result.planner.label().to_string(),
+                result.best().final_points().to_vec(),
+            )
+        })
+        .collect();
+    let top = track_svg::top_view(scenario, &scenario.name, &tracks);
+    files.push((
+        "top_view.png".to_string(),
+        crate::plot::raster::svg_to_png(&top, 1200)?,
+    ));
+    files.push(("top_view.svg".to_string(), top.into_bytes()));
+    for result in results {
+        let best = result.best();
+        let key = result.planner.key();
+        files.push((
+            format!("{key}.waypoints"),
+            mission(scenario, best.final_points()).into_bytes(),
+        ));
+        let title = format!(
+            "{}: altitude profile of the best track ({})",
+            scenario.name,
+            result.planner.label()
+        );
+        files.push((
+            format!("profile_{key}.svg"),
+            track_svg::profile(scenario, &title, best.final_points()).into_bytes(),
+        ));
+    }
+    Ok(files)
+}
