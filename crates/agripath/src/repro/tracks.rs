@@ -14,6 +14,9 @@ use crate::track::planner::{plan, statistics, Planner, TrackSettings};
 use crate::track::{Encoding, TrackScenario};
 use swarm::Algorithm;
 
+/// A scenario and the runs of each planner on it.
+pub type TaskRuns = (TrackScenario, Vec<PlannerRuns>);
+
 /// Best, worst, mean and standard deviation as printed in a paper.
 pub type PaperRow = [f64; 4];
 
@@ -129,7 +132,7 @@ pub fn seed000_table4(
     runs: u64,
     seed: u64,
     finished: &(dyn Fn() + Sync),
-) -> Result<(String, Vec<(TrackScenario, Vec<PlannerRuns>)>), Fault> {
+) -> Result<(String, Vec<TaskRuns>), Fault> {
     let mut text = format!(
         "Seed 000 Table 4: flight cost F on tasks I-III, {runs} runs, population 500 × 300 iterations\n\
          (150,500 evaluations per run), cylindrical encoding; our weights (decision 0011), so compare ratios.\n"
