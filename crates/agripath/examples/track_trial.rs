@@ -43,7 +43,7 @@ fn main() {
         best.cost.terms, best.verdict.violations
     );
     if std::env::var_os("TRACK_PRINT").is_some() {
-        for p in best.final_points() {
+        for p in &best.points {
             println!("  {:.1} {:.1} {:.1}", p[0], p[1], p[2]);
         }
     }

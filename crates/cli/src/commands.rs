@@ -985,6 +985,7 @@ fn repro_tracks(
     let (planners, scenarios) = match table {
         ReproTable::Seed000Table4 => (5, 3),
         ReproTable::Seed000Table5 => (2, 1),
+        ReproTable::Seed002 => (5, 1),
         _ => (4, 1),
     };
     let bar = progress_bar(runs * planners * scenarios, "runs");

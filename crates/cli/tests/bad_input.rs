@@ -358,7 +358,68 @@ fn corpus() -> Vec<(Vec<String>, String, &'static str)> {
             "--functions".into(),
             "unknown function",
         ),
+        (
+            track_with(&data("seed000_orchard.json"), &["--algorithm", "lattice,nope"]),
+            "--algorithm".into(),
+            "unknown planner 'nope'",
+        ),
+        (
+            track_with(&data("seed000_orchard.json"), &["--task", "IV"]),
+            data("seed000_orchard.json"),
+            "tasks I, II and III",
+        ),
+        (
+            track_with(&data("seed000_orchard.json"), &["--encoding", "polar"]),
+            "--encoding".into(),
+            "cartesian, cylindrical or spherical",
+        ),
+        (
+            track_with(&data("seed000_orchard.json"), &["--runs", "0"]),
+            "--runs".into(),
+            "1..=1000",
+        ),
+        (
+            track_with(&data("seed001_farm.geojson"), &[]),
+            data("seed001_farm.geojson"),
+            "not a track scenario",
+        ),
+        (
+            track_with(&bad("track_negative_radius.json"), &[]),
+            bad("track_negative_radius.json"),
+            "positive radius",
+        ),
+        (
+            track_with(&bad("track_start_outside.json"), &[]),
+            bad("track_start_outside.json"),
+            "outside the planning area",
+        ),
+        (
+            track_with(&bad("track_spso_missing_dem.json"), &[]),
+            bad("missing.tif"),
+            "cannot read",
+        ),
+        (
+            track_with(&bad("empty.geojson"), &[]),
+            bad("empty.geojson"),
+            "empty",
+        ),
     ]
+}
+
+/// `track` with a tiny budget, writing to `out` (which must never appear).
+fn track_with(scenario: &str, extra: &[&str]) -> Vec<String> {
+    let mut arguments: Vec<String> = vec!["track".into(), scenario.into()];
+    if !extra.contains(&"--runs") {
+        arguments.extend(["--runs".to_string(), "1".into()]);
+    }
+    arguments.extend([
+        "--evaluations".to_string(),
+        "200".into(),
+        "--out".into(),
+        "out".into(),
+    ]);
+    arguments.extend(extra.iter().map(|s| s.to_string()));
+    arguments
 }
 
 /// `bench functions` with a tiny budget and extra arguments.

@@ -651,3 +651,76 @@ fn outputs_are_byte_identical_whatever_the_thread_count() {
     assert_eq!(bench("1", "b1"), bench("3", "b3"));
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+#[test]
+fn track_writes_safe_tracks_missions_and_pictures_and_repeats_byte_for_byte() {
+    let scenario = data("seed000_orchard.json");
+    let run = |name: &str| {
+        let out = scratch(name);
+        let output = agripath(
+            &[
+                "track",
+                scenario.to_str().unwrap(),
+                "--task",
+                "II",
+                "--algorithm",
+                "lattice,iba-fcs",
+                "--runs",
+                "2",
+                "--evaluations",
+                "6000",
+                "--out",
+                out.to_str().unwrap(),
+            ],
+            &std::env::temp_dir(),
+        );
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        (out, stdout(&output))
+    };
+    let (first, text) = run("track-a");
+    assert!(text.contains("lattice+refine (ours)") && text.contains("IBA-FCS"), "{text}");
+    for name in [
+        "track.geojson",
+        "report.json",
+        "table.md",
+        "convergence.svg",
+        "top_view.svg",
+        "top_view.png",
+        "lattice.waypoints",
+        "iba-fcs.waypoints",
+        "profile_lattice.svg",
+    ] {
+        assert!(first.join(name).is_file(), "{name} missing");
+    }
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(first.join("report.json")).unwrap()).unwrap();
+    let ours = &report["planners"][0];
+    assert_eq!(ours["planner"], "lattice+refine (ours)");
+    assert_eq!(ours["safe_runs"], 2);
+    assert!(ours["best_run"]["violations"].as_array().unwrap().is_empty());
+    let waypoints = std::fs::read_to_string(first.join("lattice.waypoints")).unwrap();
+    assert!(waypoints.starts_with("QGC WPL 110\n"));
+    // Home, takeoff, 12 waypoints, land.
+    assert_eq!(waypoints.lines().count(), 1 + 1 + 1 + 12 + 1);
+    let geojson: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(first.join("track.geojson")).unwrap()).unwrap();
+    let kinds: Vec<&str> = geojson["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|f| f["properties"]["kind"].as_str().unwrap())
+        .collect();
+    assert_eq!(kinds.iter().filter(|k| **k == "threat").count(), 10);
+    assert_eq!(kinds.iter().filter(|k| **k == "track").count(), 2);
+    // Same seed, same bytes (runtimes excepted).
+    let (second, _) = run("track-b");
+    for name in ["track.geojson", "lattice.waypoints", "top_view.svg"] {
+        assert_eq!(
+            std::fs::read(first.join(name)).unwrap(),
+            std::fs::read(second.join(name)).unwrap(),
+            "{name} differs"
+        );
+    }
+    std::fs::remove_dir_all(first).unwrap();
+    std::fs::remove_dir_all(second).unwrap();
+}

@@ -221,6 +221,7 @@ pub fn seed002(
         (Planner::Swarm(Algorithm::Genetic), None),
         (Planner::Swarm(Algorithm::AntColony), None),
         (Planner::ImprovedGenetic, None),
+        (Planner::Swarm(Algorithm::IbaFcs), None),
         (Planner::Lattice, None),
     ];
     let results = run_planners(&scenario, &planners, runs, seed, finished)?;

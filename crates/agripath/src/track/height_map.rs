@@ -237,42 +237,47 @@ impl HeightMap {
     }
 
     /// Whether the straight segment a → b (z above sea level) stays more than `clearance`
-    /// above the bilinear terrain, sampled at every half cell. The segment is cut into
-    /// pieces about a block long; a piece higher than its blocks' highest point is cleared
-    /// without sampling, so only pieces that come near the ground are walked.
+    /// above the bilinear terrain at the samples of [`HeightMap::lowest_clearance`] (every
+    /// half cell). The samples are taken in runs about a block long; a run whose stretch of
+    /// segment is higher than its blocks' highest point is cleared without sampling, so only
+    /// stretches near the ground are walked, and the answer is the same as walking them all.
     pub fn segment_clears(&self, a: [f64; 3], b: [f64; 3], clearance: f64) -> bool {
         if a[2].min(b[2]) > self.highest + clearance {
             return true;
         }
-        let horizontal = planar_length(b[0] - a[0], b[1] - a[1]);
-        let pieces = ((horizontal / (BLOCK as f64 * self.cell)).ceil() as usize).max(1);
-        let at = |t: f64| -> [f64; 3] {
-            [
-                a[0] + t * (b[0] - a[0]),
-                a[1] + t * (b[1] - a[1]),
-                a[2] + t * (b[2] - a[2]),
-            ]
+        let steps = self.samples(a, b);
+        let per_run = 2 * BLOCK;
+        let at = |step: usize| -> [f64; 3] {
+            let t = step as f64 / steps as f64;
+            [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])]
         };
-        (0..pieces).all(|piece| {
-            let (from, to) = (
-                at(piece as f64 / pieces as f64),
-                at((piece + 1) as f64 / pieces as f64),
-            );
+        (0..=steps).step_by(per_run).all(|first| {
+            let last = (first + per_run).min(steps);
+            let (from, to) = (at(first), at(last));
             let highest = self.highest_under(
                 from[0].min(to[0]),
                 from[1].min(to[1]),
                 from[0].max(to[0]),
                 from[1].max(to[1]),
             );
-            from[2].min(to[2]) > highest + clearance || self.lowest_clearance(from, to) > clearance
+            from[2].min(to[2]) > highest + clearance
+                || (first..=last).all(|step| {
+                    let p = at(step);
+                    p[2] - self.bilinear(p[0], p[1]) > clearance
+                })
         })
+    }
+
+    /// Samples along a → b: one every half cell, at least one interval.
+    fn samples(&self, a: [f64; 3], b: [f64; 3]) -> usize {
+        let horizontal = planar_length(b[0] - a[0], b[1] - a[1]);
+        ((horizontal / (0.5 * self.cell)).ceil() as usize).max(1)
     }
 
     /// The smallest height above the bilinear terrain along a → b, sampled at every half
     /// cell (and at both ends).
     pub fn lowest_clearance(&self, a: [f64; 3], b: [f64; 3]) -> f64 {
-        let horizontal = planar_length(b[0] - a[0], b[1] - a[1]);
-        let steps = ((horizontal / (0.5 * self.cell)).ceil() as usize).max(1);
+        let steps = self.samples(a, b);
         (0..=steps)
             .map(|step| {
                 let t = step as f64 / steps as f64;

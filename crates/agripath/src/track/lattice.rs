@@ -296,7 +296,16 @@ fn resample(scenario: &TrackScenario, polyline: &[[f64; 3]], count: usize) -> Ve
         let (a, b) = (polyline[segment], polyline[segment + 1]);
         let (x, y) = (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
         let ground = scenario.terrain.height(x, y);
-        points.push([x, y, preferred_altitude(scenario, ground)]);
+        let mut z = preferred_altitude(scenario, ground);
+        if scenario.altitude_reference == AltitudeReference::SeaLevel && scenario.height_band.is_none() {
+            // Without a band, the shortest climb is the straight start-goal slope, raised
+            // where the ground is higher.
+            let fraction = index as f64 / (count + 1) as f64;
+            let slope = scenario.start[2] + fraction * (scenario.goal[2] - scenario.start[2]);
+            let (low, high) = scenario.altitude_bounds;
+            z = slope.max(z).clamp(low, high);
+        }
+        points.push([x, y, z]);
     }
     points
 }

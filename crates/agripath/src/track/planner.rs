@@ -283,3 +283,67 @@ pub fn statistics(runs: &[TrackRun]) -> RunStatistics {
             / count,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn scenarios() -> Vec<TrackScenario> {
+        vec![
+            TrackScenario::seed000("I").unwrap(),
+            TrackScenario::seed000("II").unwrap(),
+            TrackScenario::seed000("III").unwrap(),
+            TrackScenario::seed002().unwrap(),
+            TrackScenario::spso().unwrap(),
+        ]
+    }
+
+    fn settings(planner: Planner, evaluations: u64) -> TrackSettings {
+        TrackSettings {
+            planner,
+            encoding: None,
+            runs: 2,
+            seed: 7,
+            evaluations: Some(evaluations),
+        }
+    }
+
+    #[test]
+    fn every_returned_track_carries_its_own_safety_check_and_ours_is_safe_everywhere() {
+        for scenario in scenarios() {
+            for planner in [Planner::Lattice, Planner::Swarm(Algorithm::IbaFcs), Planner::ImprovedGenetic] {
+                let runs = plan(&scenario, &settings(planner, 4000), &|| {}).unwrap();
+                for run in &runs {
+                    assert_eq!(run.verdict, safety::check(&scenario, &run.points));
+                    assert_eq!(run.points.first(), Some(&scenario.sea_level(scenario.start)));
+                    assert_eq!(run.points.last(), Some(&scenario.sea_level(scenario.goal)));
+                    if planner == Planner::Lattice {
+                        assert!(run.is_safe(), "{}: {:?}", scenario.name, run.verdict.violations);
+                    }
+                    if let Some(smoothed) = &run.smoothed {
+                        assert_eq!(smoothed.verdict, safety::check(&scenario, &smoothed.points));
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn runs_repeat_with_their_seed_and_differ_between_runs() {
+        let scenario = TrackScenario::seed000("I").unwrap();
+        let first = plan(&scenario, &settings(Planner::Swarm(Algorithm::Bat), 3000), &|| {}).unwrap();
+        let again = plan(&scenario, &settings(Planner::Swarm(Algorithm::Bat), 3000), &|| {}).unwrap();
+        assert_eq!(first[0].points, again[0].points);
+        assert_eq!(first[1].cost, again[1].cost);
+        assert_ne!(first[0].points, first[1].points);
+    }
+
+    #[test]
+    fn planners_parse_by_key_and_reject_unknown_names() {
+        for planner in Planner::all() {
+            assert_eq!(Planner::parse(planner.key()), Ok(planner));
+        }
+        assert_eq!(Planner::parse("ours"), Ok(Planner::Lattice));
+        assert!(Planner::parse("dijkstra").unwrap_err().contains("unknown planner"));
+    }
+}

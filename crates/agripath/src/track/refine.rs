@@ -7,8 +7,9 @@
 //! (or, every other pass, a pull towards the middle of its neighbours, which straightens the
 //! track), keeps it if the track's cost falls, and its step grows by half on success and
 //! shrinks by a tenth on failure (a per-waypoint one-fifth rule). Once per pass a lane also
-//! tries merging a waypoint into a neighbour: with costs counted per leg, fewer legs along
-//! a threat's danger band cost less (SPSO's best runs do this too). Lanes that trail the best
+//! tries merging a waypoint into a neighbour (with costs counted per leg, fewer legs along
+//! a threat's danger band cost less; SPSO's best runs do this too) and a shortcut: a random
+//! run of waypoints laid evenly on the straight leg between its outer neighbours. Lanes that trail the best
 //! by then are dropped at a third of the budget, so the rest goes to the best corridor.
 //!
 //! It runs on the swarm engine like every planner (the Runner counts its evaluations and
@@ -77,7 +78,7 @@ impl Optimizer for LatticeRefine<'_> {
 
     fn step(&mut self, search: &mut Search) {
         self.pass += 1;
-        if search.progress() > 1.0 / 3.0 && self.lanes.len() > 1 {
+        if search.progress() > 0.15 && self.lanes.len() > 1 {
             let best = self
                 .lanes
                 .iter()
@@ -131,6 +132,35 @@ impl Optimizer for LatticeRefine<'_> {
                 } else {
                     lane.steps[index] = (lane.steps[index] * 0.9).max(1e-5);
                 }
+            }
+            // Shortcut: waypoints first..=last put evenly on the straight leg between their
+            // outer neighbours (what the improved GA gets by deleting waypoints).
+            let first = search.below(waypoints);
+            let last = (first + 1 + search.below(waypoints - first)).min(waypoints) - 1;
+            let corner = |k: isize, x: &[f64]| -> [f64; 3] {
+                if k < 0 {
+                    self.scenario.start
+                } else if k as usize >= waypoints {
+                    self.scenario.goal
+                } else {
+                    let k = k as usize;
+                    [x[3 * k], x[3 * k + 1], x[3 * k + 2]]
+                }
+            };
+            let (before, after) = (corner(first as isize - 1, &lane.x), corner(last as isize + 1, &lane.x));
+            let mut candidate = lane.x.clone();
+            let span = (last - first + 2) as f64;
+            for (offset, k) in (first..=last).enumerate() {
+                let t = (offset + 1) as f64 / span;
+                for axis in 0..3 {
+                    candidate[3 * k + axis] = before[axis] + t * (after[axis] - before[axis]);
+                }
+            }
+            search.clamp(&mut candidate);
+            let cost = search.evaluate(&candidate);
+            if cost < lane.cost {
+                lane.x = candidate;
+                lane.cost = cost;
             }
             // Merge a waypoint into a neighbour: costs counted per leg (the threat terms of
             // seed 000 and SPSO) fall when a track near a threat has fewer legs there.

@@ -114,3 +114,45 @@ mod tests {
         assert!(check(&scenario, &safe).is_safe());
     }
 }
+
+#[cfg(test)]
+mod properties {
+    use proptest::prelude::*;
+
+    use super::*;
+    use crate::terrain::{Composite, Terrain};
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// Against brute force on the formula itself: a leg that dips more than the raster's
+        /// interpolation error under the terrain, or into a cylinder, is always reported, and a
+        /// leg clear of both by a margin never is.
+        #[test]
+        fn the_check_agrees_with_dense_sampling_of_the_exact_terrain(
+            ax in 0.0..1000.0f64, ay in 0.0..1000.0f64, az in 0.0..160.0f64,
+            bx in 0.0..1000.0f64, by in 0.0..1000.0f64, bz in 0.0..160.0f64,
+        ) {
+            let scenario = TrackScenario::seed000("III").unwrap();
+            let exact = Composite::seed000();
+            let (a, b) = ([ax, ay, az], [bx, by, bz]);
+            let mut lowest: f64 = f64::INFINITY;
+            let mut threat_margin: f64 = f64::INFINITY;
+            for step in 0..=4000 {
+                let t = step as f64 / 4000.0;
+                let (x, y, z) = (ax + t * (bx - ax), ay + t * (by - ay), az + t * (bz - az));
+                lowest = lowest.min(z - exact.height_m(x, y).unwrap());
+                for threat in &scenario.threats {
+                    threat_margin = threat_margin.min((x - threat.x).hypot(y - threat.y) - threat.radius);
+                }
+            }
+            let verdict = check(&scenario, &[a, b]);
+            let says_under = verdict.violations.iter().any(|v| v.contains("under the terrain"));
+            let says_threat = verdict.violations.iter().any(|v| v.contains("threat cylinder"));
+            if lowest < -0.3 { prop_assert!(says_under, "lowest {lowest}"); }
+            if lowest > 0.3 { prop_assert!(!says_under, "lowest {lowest}"); }
+            if threat_margin < -0.5 { prop_assert!(says_threat); }
+            if threat_margin > 0.5 { prop_assert!(!says_threat); }
+        }
+    }
+}
