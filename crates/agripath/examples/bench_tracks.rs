@@ -9,13 +9,26 @@ use agripath::track::{plan, Planner, TrackScenario, TrackSettings};
 use swarm::Algorithm;
 
 fn main() {
-    rayon::ThreadPoolBuilder::new().num_threads(1).build_global().unwrap();
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build_global()
+        .unwrap();
     for task in ["I", "II", "III"] {
         let scenario = TrackScenario::seed000(task).unwrap();
-        for planner in [Planner::Swarm(Algorithm::IbaFcs), Planner::Swarm(Algorithm::Bat), Planner::Lattice] {
+        for planner in [
+            Planner::Swarm(Algorithm::IbaFcs),
+            Planner::Swarm(Algorithm::Bat),
+            Planner::Lattice,
+        ] {
             let mut seconds: Vec<f64> = (0..5)
                 .map(|run| {
-                    let settings = TrackSettings { planner, encoding: None, runs: 1, seed: run, evaluations: None };
+                    let settings = TrackSettings {
+                        planner,
+                        encoding: None,
+                        runs: 1,
+                        seed: run,
+                        evaluations: None,
+                    };
                     let started = Instant::now();
                     let runs = plan(&scenario, &settings, &|| {}).unwrap();
                     assert_eq!(runs[0].evaluations, 150_500);

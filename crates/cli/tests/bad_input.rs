@@ -359,7 +359,10 @@ fn corpus() -> Vec<(Vec<String>, String, &'static str)> {
             "unknown function",
         ),
         (
-            track_with(&data("seed000_orchard.json"), &["--algorithm", "lattice,nope"]),
+            track_with(
+                &data("seed000_orchard.json"),
+                &["--algorithm", "lattice,nope"],
+            ),
             "--algorithm".into(),
             "unknown planner 'nope'",
         ),

@@ -674,11 +674,18 @@ fn track_writes_safe_tracks_missions_and_pictures_and_repeats_byte_for_byte() {
             ],
             &std::env::temp_dir(),
         );
-        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+        assert!(
+            output.status.success(),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
         (out, stdout(&output))
     };
     let (first, text) = run("track-a");
-    assert!(text.contains("lattice+refine (ours)") && text.contains("IBA-FCS"), "{text}");
+    assert!(
+        text.contains("lattice+refine (ours)") && text.contains("IBA-FCS"),
+        "{text}"
+    );
     for name in [
         "track.geojson",
         "report.json",
@@ -697,13 +704,17 @@ fn track_writes_safe_tracks_missions_and_pictures_and_repeats_byte_for_byte() {
     let ours = &report["planners"][0];
     assert_eq!(ours["planner"], "lattice+refine (ours)");
     assert_eq!(ours["safe_runs"], 2);
-    assert!(ours["best_run"]["violations"].as_array().unwrap().is_empty());
+    assert!(ours["best_run"]["violations"]
+        .as_array()
+        .unwrap()
+        .is_empty());
     let waypoints = std::fs::read_to_string(first.join("lattice.waypoints")).unwrap();
     assert!(waypoints.starts_with("QGC WPL 110\n"));
     // Home, takeoff, 12 waypoints, land.
     assert_eq!(waypoints.lines().count(), 1 + 1 + 1 + 12 + 1);
     let geojson: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(first.join("track.geojson")).unwrap()).unwrap();
+        serde_json::from_str(&std::fs::read_to_string(first.join("track.geojson")).unwrap())
+            .unwrap();
     let kinds: Vec<&str> = geojson["features"]
         .as_array()
         .unwrap()

@@ -148,7 +148,7 @@ pub fn report(scenario: &TrackScenario, results: &[PlannerRuns], seed: u64) -> S
         "scenario": scenario.name,
         "cost_model": scenario.cost.label(),
         "free_waypoints": scenario.free_waypoints,
-        "evaluation_budget": scenario.evaluation_budget(),
+        "scenario_evaluation_budget": scenario.evaluation_budget(),
         "seed": seed,
         "planners": planners,
     });
@@ -204,7 +204,11 @@ pub fn table(scenario: &TrackScenario, results: &[PlannerRuns]) -> String {
         scenario.name,
         scenario.cost.label(),
         scenario.free_waypoints,
-        scenario.evaluation_budget()
+        results
+            .iter()
+            .flat_map(|result| result.runs.iter().map(|run| run.evaluations))
+            .max()
+            .unwrap_or(0)
     );
     for result in results {
         let s = statistics(&result.runs);

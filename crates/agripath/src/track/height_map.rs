@@ -249,7 +249,11 @@ impl HeightMap {
         let per_run = 2 * BLOCK;
         let at = |step: usize| -> [f64; 3] {
             let t = step as f64 / steps as f64;
-            [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]), a[2] + t * (b[2] - a[2])]
+            [
+                a[0] + t * (b[0] - a[0]),
+                a[1] + t * (b[1] - a[1]),
+                a[2] + t * (b[2] - a[2]),
+            ]
         };
         (0..=steps).step_by(per_run).all(|first| {
             let last = (first + per_run).min(steps);

@@ -297,7 +297,9 @@ fn resample(scenario: &TrackScenario, polyline: &[[f64; 3]], count: usize) -> Ve
         let (x, y) = (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
         let ground = scenario.terrain.height(x, y);
         let mut z = preferred_altitude(scenario, ground);
-        if scenario.altitude_reference == AltitudeReference::SeaLevel && scenario.height_band.is_none() {
+        if scenario.altitude_reference == AltitudeReference::SeaLevel
+            && scenario.height_band.is_none()
+        {
             // Without a band, the shortest climb is the straight start-goal slope, raised
             // where the ground is higher.
             let fraction = index as f64 / (count + 1) as f64;

@@ -147,7 +147,10 @@ impl Optimizer for LatticeRefine<'_> {
                     [x[3 * k], x[3 * k + 1], x[3 * k + 2]]
                 }
             };
-            let (before, after) = (corner(first as isize - 1, &lane.x), corner(last as isize + 1, &lane.x));
+            let (before, after) = (
+                corner(first as isize - 1, &lane.x),
+                corner(last as isize + 1, &lane.x),
+            );
             let mut candidate = lane.x.clone();
             let span = (last - first + 2) as f64;
             for (offset, k) in (first..=last).enumerate() {
