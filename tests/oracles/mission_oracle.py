@@ -4,7 +4,9 @@ Every `.waypoints` file of two plans (the embedded demo; the Christmas Island pl
 lon/lat over the real DEM, with terrain-frame altitudes and a servo sprayer) is loaded with
 pymavlink's `mavwp.MAVWPLoader` (what MAVProxy and Mission Planner-compatible tools use),
 each item packed as an ArduPilot MISSION_ITEM (which refuses out-of-range fields), and the
-matching `.plan` must hold the same commands, frames and parameters.
+matching `.plan` must hold the same commands, frames and parameters. A point-to-point track
+over SPSO's DEM is loaded the same way, and its start and goal must sit where PROJ puts the
+DEM's pixels (EPSG:28348 → GDA94 longitude/latitude).
 
 Run: python tests/oracles/mission_oracle.py target/debug/agripath
 """
@@ -41,7 +43,7 @@ def same(a, b):
     return abs(float(a) - float(b)) <= 1e-6 * max(1.0, abs(float(a)))
 
 
-def check_folder(folder, frames):
+def check_folder(folder, frames, with_plan=True):
     mav = mavlink.MAVLink(None)
     waypoint_files = sorted(glob.glob(os.path.join(folder, "*.waypoints")))
     check(len(waypoint_files) >= 1, f"{folder}: no .waypoints written")
@@ -66,6 +68,8 @@ def check_folder(folder, frames):
                 check(item.frame in frames, f"{name}: item {index} frame {item.frame}")
                 check(-90 <= item.x <= 90 and -180 <= item.y <= 180 and item.x != 0, f"{name}: item {index} position")
         check(loader.wp(1).command == 22 and loader.wp(count - 1).command == 21, f"{name}: takeoff first, land last")
+        if not with_plan:
+            continue
         plan_path = path[: -len(".waypoints")] + ".plan"
         with open(plan_path) as handle:
             plan = json.load(handle)
@@ -88,6 +92,28 @@ with tempfile.TemporaryDirectory() as scratch:
     subprocess.run([AGRIPATH, "plan", os.path.join(ROOT, "data/scenarios/christmas_island.toml"), "--altitude", "terrain",
                     "--sprayer", "servo:9:1900:1100", "--out", island], check=True, stdout=subprocess.DEVNULL)
     check_folder(island, {10})
+
+    # A track over SPSO's real DEM: its pixel frame placed on Earth through the DEM's
+    # georeferencing (GDA94 / MGA zone 48), checked against PROJ.
+    track = os.path.join(scratch, "track")
+    subprocess.run([AGRIPATH, "track", os.path.join(ROOT, "data/spso/scenario.json"), "--algorithm", "lattice,spso",
+                    "--runs", "1", "--evaluations", "5000", "--out", track], check=True, stdout=subprocess.DEVNULL)
+    check_folder(track, {0}, with_plan=False)
+    from pyproj import Transformer
+    to_geographic = Transformer.from_crs("EPSG:28348", "EPSG:4283", always_xy=True)
+    scenario = json.load(open(os.path.join(ROOT, "data/spso/scenario.json")))
+    loader = mavwp.MAVWPLoader()
+    loader.load(os.path.join(track, "lattice.waypoints"))
+    for index, (x, y) in [(0, scenario["start_xyz_agl"][:2]), (loader.count() - 1, scenario["goal_xyz_agl"][:2])]:
+        # Pixel (x, y) from 1 at the top-left pixel; the raster's corner is (566710, 8842640).
+        easting, northing = 566710 + (x - 0.5) * 5, 8842640 - (y - 0.5) * 5
+        lon, lat = to_geographic.transform(easting, northing)
+        item = loader.wp(index)
+        check(abs(item.x - lat) < 1e-7 and abs(item.y - lon) < 1e-7,
+              f"track item {index}: ({item.y}, {item.x}) vs PROJ ({lon}, {lat})")
+    with open(os.path.join(track, "report.json")) as handle:
+        report = json.load(handle)
+    check(all(p["safe_runs"] == p["runs"] for p in report["planners"]), "every track run over the DEM is safe")
 
 print(f"missions: {passed} passed, {failed} failed")
 sys.exit(1 if failed else 0)

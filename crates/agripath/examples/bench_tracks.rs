@@ -10,7 +10,10 @@ use agripath::track::{plan, Planner, TrackScenario, TrackSettings};
 use swarm::Algorithm;
 
 fn main() {
-    rayon::ThreadPoolBuilder::new().num_threads(1).build_global().unwrap();
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build_global()
+        .unwrap();
     let cases = [
         (Planner::Swarm(Algorithm::IbaFcs), 150_500),
         (Planner::Swarm(Algorithm::Bat), 150_500),
@@ -23,7 +26,13 @@ fn main() {
             let mut seconds = Vec::new();
             let mut cost = 0.0;
             for run in 0..5 {
-                let settings = TrackSettings { planner, encoding: None, runs: 1, seed: run, evaluations: Some(evaluations) };
+                let settings = TrackSettings {
+                    planner,
+                    encoding: None,
+                    runs: 1,
+                    seed: run,
+                    evaluations: Some(evaluations),
+                };
                 let started = Instant::now();
                 let runs = plan(&scenario, &settings, &|| {}).unwrap();
                 seconds.push(started.elapsed().as_secs_f64());

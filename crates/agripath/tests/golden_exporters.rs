@@ -100,6 +100,48 @@ fn every_exporter_matches_its_golden_file() {
     }
 }
 
+/// The track exporters: ours on seed 000's task I with a small budget (deterministic by seed).
+#[test]
+fn track_exporters_match_their_golden_files() {
+    use agripath::track::files::{geojson, mission, PlannerRuns};
+    use agripath::track::{plan, Planner, TrackScenario, TrackSettings};
+    let scenario = TrackScenario::seed000("I").unwrap();
+    let settings = TrackSettings {
+        planner: Planner::Lattice,
+        encoding: None,
+        runs: 1,
+        seed: 1,
+        evaluations: Some(3000),
+    };
+    let runs = plan(&scenario, &settings, &|| {}).unwrap();
+    let results = [PlannerRuns {
+        planner: Planner::Lattice,
+        encoding: agripath::track::Encoding::Cartesian,
+        runs,
+    }];
+    let files = [
+        ("track.geojson", geojson(&scenario, &results)),
+        (
+            "track.waypoints",
+            mission(&scenario, results[0].best().final_points()),
+        ),
+    ];
+    for (name, text) in files {
+        let path = golden().join(name);
+        if std::env::var_os("UPDATE_GOLDEN").is_some() {
+            std::fs::write(&path, &text).unwrap();
+            continue;
+        }
+        let expected = std::fs::read_to_string(&path)
+            .unwrap_or_else(|_| panic!("{} missing: run with UPDATE_GOLDEN=1", path.display()));
+        assert!(
+            expected == text,
+            "{name} differs from {} (UPDATE_GOLDEN=1 to accept a deliberate change)",
+            path.display()
+        );
+    }
+}
+
 #[test]
 fn every_plan_file_passes_the_qgroundcontrol_loader_rules() {
     for (name, bytes) in rendered() {
