@@ -402,6 +402,16 @@ fn corpus() -> Vec<(Vec<String>, String, &'static str)> {
             "cannot read",
         ),
         (
+            track_with(&bad("track_outside_dem.toml"), &[]),
+            bad("track_outside_dem.toml"),
+            "does not cover",
+        ),
+        (
+            track_with(&bad("track_bad_band.toml"), &[]),
+            bad("track_bad_band.toml"),
+            "lower < upper",
+        ),
+        (
             track_with(&bad("empty.geojson"), &[]),
             bad("empty.geojson"),
             "empty",

@@ -735,3 +735,42 @@ fn track_writes_safe_tracks_missions_and_pictures_and_repeats_byte_for_byte() {
     std::fs::remove_dir_all(first).unwrap();
     std::fs::remove_dir_all(second).unwrap();
 }
+
+#[test]
+fn track_over_a_real_dem_in_lon_lat_comes_back_in_lon_lat() {
+    let scenario = data("tracks/christmas_island_track.toml");
+    let out = scratch("track-lonlat");
+    let output = agripath(
+        &[
+            "track",
+            scenario.to_str().unwrap(),
+            "--runs",
+            "1",
+            "--evaluations",
+            "3000",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &std::env::temp_dir(),
+    );
+    stdout(&output);
+    let geojson: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("track.geojson")).unwrap()).unwrap();
+    assert!(
+        geojson.get("crs").is_none(),
+        "lon/lat output carries no local crs"
+    );
+    let start = geojson["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|f| f["properties"]["kind"] == "start")
+        .unwrap();
+    let position = start["geometry"]["coordinates"].as_array().unwrap();
+    assert!((position[0].as_f64().unwrap() - 105.6168).abs() < 1e-9);
+    assert!((position[1].as_f64().unwrap() + 10.4768).abs() < 1e-9);
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["planners"][0]["safe_runs"], 1);
+    std::fs::remove_dir_all(out).unwrap();
+}

@@ -71,44 +71,55 @@ fn circle(x: f64, y: f64, radius: f64) -> Vec<[f64; 2]> {
         .collect()
 }
 
-/// The GeoJSON (scenario coordinates, `"crs": "local"`): threats, start, goal, and each
-/// planner's best track with its waypoints.
+/// The GeoJSON, in the scenario's input coordinates (longitude/latitude for a scenario given
+/// in lon/lat, else its local frame with `"crs": "local"`), z above sea level: threats, start,
+/// goal, and each planner's best track with its waypoints.
 pub fn geojson(scenario: &TrackScenario, results: &[PlannerRuns]) -> String {
+    let position = |p: [f64; 3]| {
+        let (a, b) = scenario.to_input(p[0], p[1]);
+        [a, b, p[2]]
+    };
     let mut features: Vec<Value> = scenario
         .threats
         .iter()
         .enumerate()
         .map(|(index, threat)| {
+            let ring: Vec<[f64; 2]> = circle(threat.x, threat.y, threat.radius)
+                .into_iter()
+                .map(|[x, y]| {
+                    let (a, b) = scenario.to_input(x, y);
+                    [a, b]
+                })
+                .collect();
             json!({"type": "Feature", "properties": {"kind": "threat", "index": index, "radius": threat.radius},
-                   "geometry": {"type": "Polygon", "coordinates": [circle(threat.x, threat.y, threat.radius)]}})
+                   "geometry": {"type": "Polygon", "coordinates": [ring]}})
         })
         .collect();
     for (kind, point) in [("start", scenario.start), ("goal", scenario.goal)] {
-        let p = scenario.sea_level(point);
+        let p = position(scenario.sea_level(point));
         features.push(json!({"type": "Feature", "properties": {"kind": kind},
             "geometry": {"type": "Point", "coordinates": p}}));
     }
     for result in results {
         let best = result.best();
-        let points = best.final_points();
+        let points: Vec<[f64; 3]> = best.final_points().iter().map(|&p| position(p)).collect();
         features.push(json!({"type": "Feature",
             "properties": {"kind": "track", "planner": result.planner.label(), "run": best.run,
                            "cost": best.final_cost(), "safe": best.is_safe(),
                            "violations": best.verdict.violations},
             "geometry": {"type": "LineString", "coordinates": points}}));
-        for (seq, p) in best
-            .points
-            .iter()
-            .enumerate()
-            .skip(1)
-            .take(best.points.len().saturating_sub(2))
-        {
+        let inner = best.points.len().saturating_sub(2);
+        for (seq, &p) in best.points.iter().enumerate().skip(1).take(inner) {
             features.push(json!({"type": "Feature",
                 "properties": {"kind": "waypoint", "planner": result.planner.label(), "seq": seq},
-                "geometry": {"type": "Point", "coordinates": p}}));
+                "geometry": {"type": "Point", "coordinates": position(p)}}));
         }
     }
-    let collection = json!({"type": "FeatureCollection", "crs": "local", "name": scenario.name, "features": features});
+    let mut collection =
+        json!({"type": "FeatureCollection", "name": scenario.name, "features": features});
+    if scenario.is_local() {
+        collection["crs"] = json!("local");
+    }
     serde_json::to_string_pretty(&collection).expect("JSON values serialise") + "\n"
 }
 

@@ -13,6 +13,7 @@ pub mod files;
 pub mod height_map;
 pub mod improved_genetic;
 pub mod lattice;
+pub mod operator;
 pub mod planner;
 pub mod problem;
 pub mod refine;

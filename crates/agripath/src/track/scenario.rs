@@ -50,6 +50,9 @@ pub enum AltitudeReference {
 pub enum Georeference {
     /// Metres east and north of a longitude/latitude.
     Local { lon: f64, lat: f64 },
+    /// UTM metres of a zone: the scenario was given in longitude/latitude, and its outputs
+    /// go back to longitude/latitude.
+    Utm { zone: UtmZone },
     /// SPSO's pixel units on a UTM raster: x = column + 1, y = row + 1 from the top-left
     /// pixel, whose corner is at (easting, northing).
     Pixels {
@@ -107,6 +110,7 @@ impl TrackScenario {
                 let (easting, northing) = crate::geometry::to_utm(lon, lat, zone);
                 from_utm(easting + x, northing + y, zone)
             }
+            Georeference::Utm { zone } => from_utm(x, y, zone),
             Georeference::Pixels {
                 zone,
                 easting,
@@ -120,6 +124,20 @@ impl TrackScenario {
         }
     }
 
+    /// A planar point as the scenario's input gave it: longitude/latitude for a scenario in
+    /// lon/lat, the scenario's own x, y otherwise.
+    pub fn to_input(&self, x: f64, y: f64) -> (f64, f64) {
+        match self.georeference {
+            Georeference::Utm { .. } => self.lon_lat(x, y),
+            _ => (x, y),
+        }
+    }
+
+    /// Whether outputs are in the scenario's local frame (not longitude/latitude).
+    pub fn is_local(&self) -> bool {
+        !matches!(self.georeference, Georeference::Utm { .. })
+    }
+
     /// The straight start-goal distance (horizontal), in the scenario's units.
     pub fn start_goal_distance(&self) -> f64 {
         (self.goal[0] - self.start[0]).hypot(self.goal[1] - self.start[1])
@@ -131,6 +149,9 @@ impl TrackScenario {
             .map_err(|error| InputError::new(path, Fault::Unreadable(error.to_string())))?;
         if text.trim().is_empty() {
             return Err(InputError::new(path, Fault::Empty));
+        }
+        if crate::input::extension_of(path) == "toml" {
+            return super::operator::read(path, &text);
         }
         let value: Value = serde_json::from_str(&text)
             .map_err(|error| InputError::new(path, Fault::Json(error.to_string())))?;
@@ -281,7 +302,7 @@ fn threats(rows: &Value, path: &str, width: usize) -> Result<Vec<Threat>, Fault>
 }
 
 /// Checks that start and goal lie in the area and the band makes sense.
-fn validated(scenario: TrackScenario) -> Result<TrackScenario, Fault> {
+pub(super) fn validated(scenario: TrackScenario) -> Result<TrackScenario, Fault> {
     let (min_x, min_y, max_x, max_y) = scenario.area;
     for (what, point) in [("start", scenario.start), ("goal", scenario.goal)] {
         if !(min_x..=max_x).contains(&point[0]) || !(min_y..=max_y).contains(&point[1]) {
