@@ -43,6 +43,7 @@ impl StagedFolder {
             .file_name()
             .map(|name| name.to_string_lossy().into_owned())
             .unwrap_or_else(|| "out".into());
+        remove_abandoned_stagings(parent, &name);
         let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
         if staging.exists() {
             std::fs::remove_dir_all(&staging)?;
@@ -79,6 +80,30 @@ impl StagedFolder {
     }
 }
 
+/// Removes `.NAME.partial-PID` (and `.old`) folders left by a run that was killed while it
+/// wrote (an interrupt ends the program before it can clean up): those whose process is gone.
+/// Where running processes cannot be listed (no `/proc`), nothing is removed.
+fn remove_abandoned_stagings(parent: &Path, name: &str) {
+    let proc = Path::new("/proc");
+    if !proc.join("self").exists() {
+        return;
+    }
+    let prefix = format!(".{name}.partial-");
+    let Ok(entries) = std::fs::read_dir(parent) else {
+        return;
+    };
+    for entry in entries.flatten() {
+        let file_name = entry.file_name().to_string_lossy().into_owned();
+        let Some(rest) = file_name.strip_prefix(&prefix) else {
+            continue;
+        };
+        let pid = rest.strip_suffix(".old").unwrap_or(rest);
+        if pid.parse::<u32>().is_ok() && !proc.join(pid).exists() {
+            let _ = std::fs::remove_dir_all(entry.path());
+        }
+    }
+}
+
 impl Drop for StagedFolder {
     fn drop(&mut self) {
         if !self.committed {
@@ -108,6 +133,23 @@ mod tests {
         staged.commit().unwrap();
         assert!(!target.join("stale.txt").exists());
         assert_eq!(std::fs::read(target.join("a.txt")).unwrap(), b"new");
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn stagings_of_dead_runs_are_removed_and_live_ones_kept() {
+        let root = std::env::temp_dir().join(format!("agripath-abandoned-{}", std::process::id()));
+        // PID 4294967295 cannot exist; this test's own PID is alive.
+        let dead = root.join(".plan.partial-4294967295");
+        let alive = root.join(format!(".plan.partial-{}.old", std::process::id()));
+        std::fs::create_dir_all(&dead).unwrap();
+        std::fs::create_dir_all(&alive).unwrap();
+        let staged = StagedFolder::new(&root.join("plan")).unwrap();
+        if Path::new("/proc/self").exists() {
+            assert!(!dead.exists());
+        }
+        assert!(alive.exists());
+        drop(staged);
         std::fs::remove_dir_all(&root).unwrap();
     }
 }

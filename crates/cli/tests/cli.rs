@@ -774,3 +774,57 @@ fn track_over_a_real_dem_in_lon_lat_comes_back_in_lon_lat() {
     assert_eq!(report["planners"][0]["safe_runs"], 1);
     std::fs::remove_dir_all(out).unwrap();
 }
+
+#[test]
+fn an_interrupted_run_leaves_the_previous_output_whole() {
+    // A complete folder from an earlier run.
+    let root = scratch("interrupt");
+    let out = root.join("track");
+    let scenario = data("seed000_orchard.json");
+    let arguments = |evaluations: &str| {
+        vec![
+            "track".to_string(),
+            scenario.to_str().unwrap().into(),
+            "--algorithm".into(),
+            "lattice".into(),
+            "--runs".into(),
+            "2".into(),
+            "--evaluations".into(),
+            evaluations.into(),
+            "--out".into(),
+            out.to_str().unwrap().into(),
+        ]
+    };
+    let first = Command::new(env!("CARGO_BIN_EXE_agripath"))
+        .args(arguments("2000"))
+        .output()
+        .unwrap();
+    assert!(first.status.success());
+    let before = std::fs::read(out.join("track.geojson")).unwrap();
+    // A long run, interrupted (SIGINT, as Ctrl-C) while it computes.
+    let mut long = Command::new(env!("CARGO_BIN_EXE_agripath"))
+        .args(arguments("50000000"))
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(700));
+    let killed = Command::new("kill")
+        .args(["-INT", &long.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(killed.success());
+    let status = long.wait().unwrap();
+    assert!(!status.success(), "the interrupted run must not succeed");
+    assert_eq!(std::fs::read(out.join("track.geojson")).unwrap(), before);
+    let names: Vec<String> = std::fs::read_dir(&root)
+        .unwrap()
+        .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(
+        names,
+        vec!["track".to_string()],
+        "nothing half-written beside the output"
+    );
+    std::fs::remove_dir_all(root).unwrap();
+}

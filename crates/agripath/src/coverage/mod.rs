@@ -7,7 +7,7 @@ pub mod measure;
 pub mod region;
 pub mod scan_lines;
 
-use geo::{Area, Coord, MultiPolygon};
+use geo::{Area, Coord, MapCoords, MultiPolygon};
 use serde::Serialize;
 
 use crate::error::Fault;
@@ -279,16 +279,20 @@ pub fn cover_field(
         .collect::<Result<Vec<_>, Fault>>()?;
     let edges = edge_passes(index, &pass_regions, terrain, settings.drape_spacing_m)?;
 
+    // Measured in the rotated frame, where swath strips are axis-parallel rectangles whose
+    // shared edges are exactly equal: tilted in the plan frame, their nearly collinear edges
+    // cost the polygon overlay minutes on a 50,000-vertex boundary (docs/limits.md).
+    let rotate = |region: &MultiPolygon<f64>| region.map_coords(|c| frame.to_rotated(c));
     let mut strips: Vec<MultiPolygon<f64>> = segments
         .iter()
-        .map(|segment: &Segment| MultiPolygon::new(vec![swath_strip(segment, frame, width_m)]))
+        .map(|segment: &Segment| MultiPolygon::new(vec![swath_strip(segment, width_m)]))
         .collect();
     strips.extend(
         pass_regions
             .iter()
-            .map(|region| edge_strip(region, width_m)),
+            .map(|region| rotate(&edge_strip(region, width_m))),
     );
-    let measure = measure(sprayable, &strips);
+    let measure = measure(&rotate(sprayable), &strips);
 
     Ok(FieldCoverage {
         name: name.to_string(),

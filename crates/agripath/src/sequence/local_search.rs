@@ -391,6 +391,9 @@ fn nearest_ends(
 
 /// Field-by-field boustrophedon: `groups` lists each field's passes in scan-line order.
 pub fn boustrophedon(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Vec<Step> {
+    if groups.iter().filter(|group| !group.is_empty()).count() > LARGE_FARM_FIELDS {
+        return boustrophedon_by_grid(problem, groups);
+    }
     let mut remaining: Vec<usize> = (0..groups.len())
         .filter(|&g| !groups[g].is_empty())
         .collect();
@@ -418,6 +421,137 @@ pub fn boustrophedon(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Vec<St
         remaining.remove(slot);
         tour.extend(steps);
     }
+    tour
+}
+
+/// Above this many fields, the constructions that compare every field with every other
+/// (O(F²) per step) give way to ones that look only at the nearest fields: a farm of 10,000
+/// fields took hours before (docs/limits.md).
+pub const LARGE_FARM_FIELDS: usize = 1000;
+
+/// Planar nearest candidates weighed by the real transfer cost in the scalable construction.
+const NEAREST_BLOCKS: usize = 16;
+
+/// [`boustrophedon`] for large farms: the next field is the cheapest of the 16 whose entry
+/// ends are nearest (planar) to the current exit, found through a uniform grid, instead of
+/// the cheapest of all. Same blocks, same variants, O(F · 16) transfer costs.
+fn boustrophedon_by_grid(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Vec<Step> {
+    // Every (field, variant) entry, placed on a grid.
+    let mut candidates: Vec<(usize, usize, End, f64, f64)> = Vec::new();
+    let mut first_slot = vec![0; groups.len()];
+    for (group, passes) in groups
+        .iter()
+        .enumerate()
+        .filter(|(_, passes)| !passes.is_empty())
+    {
+        first_slot[group] = candidates.len();
+        for variant in [0, 2, 1, 3] {
+            let first = if variant & 1 == 1 {
+                passes[passes.len() - 1]
+            } else {
+                passes[0]
+            };
+            let entry = Step {
+                pass: first,
+                reversed: variant & 2 == 2,
+            }
+            .entry();
+            let point = problem.point(entry);
+            candidates.push((group, variant, entry, point.x, point.y));
+        }
+    }
+    let (min_x, min_y, max_x, max_y) = candidates.iter().fold(
+        (f64::MAX, f64::MAX, f64::MIN, f64::MIN),
+        |(a, b, c, d), &(_, _, _, x, y)| (a.min(x), b.min(y), c.max(x), d.max(y)),
+    );
+    let side = ((candidates.len() as f64 / 4.0).sqrt().ceil() as usize).max(1);
+    let cell = ((max_x - min_x).max(max_y - min_y) / side as f64).max(1e-9) * (1.0 + 1e-9);
+    let index = |x: f64, y: f64| {
+        (
+            (((x - min_x) / cell).max(0.0) as usize).min(side - 1),
+            (((y - min_y) / cell).max(0.0) as usize).min(side - 1),
+        )
+    };
+    let mut grid: Vec<Vec<usize>> = vec![Vec::new(); side * side];
+    for (slot, &(_, _, _, x, y)) in candidates.iter().enumerate() {
+        let (column, row) = index(x, y);
+        grid[row * side + column].push(slot);
+    }
+    let mut used = vec![false; groups.len()];
+    let mut left = candidates.len() / 4;
+    let mut tour: Vec<Step> = Vec::with_capacity(problem.passes());
+    while left > 0 {
+        let cost_of = |slot: usize, tour: &[Step]| match tour.last() {
+            Some(previous) => problem.cost(previous.exit(), candidates[slot].2),
+            None => problem.cost_from_start(candidates[slot].2),
+        };
+        let chosen = match tour.last() {
+            // The first field: the cheapest of all, as in the exact construction.
+            None => (0..candidates.len())
+                .min_by(|&a, &b| cost_of(a, &tour).total_cmp(&cost_of(b, &tour)))
+                .expect("candidates exist"),
+            Some(previous) => {
+                let here = problem.point(previous.exit());
+                let (column, row) = index(here.x, here.y);
+                let mut found: Vec<(f64, usize)> = Vec::new();
+                let mut ring = 0usize;
+                loop {
+                    let (low_c, high_c) =
+                        (column.saturating_sub(ring), (column + ring).min(side - 1));
+                    let (low_r, high_r) = (row.saturating_sub(ring), (row + ring).min(side - 1));
+                    for r in low_r..=high_r {
+                        for c in low_c..=high_c {
+                            if r.abs_diff(row) != ring && c.abs_diff(column) != ring {
+                                continue;
+                            }
+                            for &slot in &grid[r * side + c] {
+                                let (_, _, _, x, y) = candidates[slot];
+                                found.push(((x - here.x).hypot(y - here.y), slot));
+                            }
+                        }
+                    }
+                    let covered = ring as f64 * cell;
+                    let enough = found.len() >= NEAREST_BLOCKS
+                        && found.iter().filter(|(d, _)| *d <= covered).count() >= NEAREST_BLOCKS;
+                    let everywhere =
+                        low_c == 0 && low_r == 0 && high_c == side - 1 && high_r == side - 1;
+                    if enough || (everywhere && !found.is_empty()) {
+                        break;
+                    }
+                    ring += 1;
+                }
+                found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+                found
+                    .iter()
+                    .take(NEAREST_BLOCKS)
+                    .map(|&(_, slot)| slot)
+                    .min_by(|&a, &b| {
+                        cost_of(a, &tour)
+                            .total_cmp(&cost_of(b, &tour))
+                            .then(a.cmp(&b))
+                    })
+                    .expect("a field is left")
+            }
+        };
+        let (group, variant, ..) = candidates[chosen];
+        tour.extend(block_steps(&groups[group], variant));
+        used[group] = true;
+        left -= 1;
+        // Take the field's four entries off the grid.
+        for (slot, &(_, _, _, x, y)) in candidates
+            .iter()
+            .enumerate()
+            .skip(first_slot[group])
+            .take(4)
+        {
+            let (column, row) = index(x, y);
+            grid[row * side + column].retain(|&s| s != slot);
+        }
+    }
+    debug_assert!(used
+        .iter()
+        .enumerate()
+        .all(|(g, &u)| u || groups[g].is_empty()));
     tour
 }
 
@@ -621,7 +755,9 @@ pub fn block_local_search(
 ) -> Option<Vec<Step>> {
     let fields: Vec<&Vec<usize>> = groups.iter().filter(|group| !group.is_empty()).collect();
     let count = fields.len();
-    if count <= EXACT_FIELD_ORDER_LIMIT {
+    // Small farms: the exact order; very large ones: the block moves cost O(F²) a round and
+    // the pass-level search on neighbour lists takes over.
+    if count <= EXACT_FIELD_ORDER_LIMIT || count > LARGE_FARM_FIELDS {
         return None;
     }
     let blocks = FieldBlocks::new(problem, &fields);
@@ -922,5 +1058,74 @@ mod tests {
                 assert_eq!(order, [0, 0, 0, 2, 2, 2, 1, 1, 1]);
             }
         }
+    }
+
+    /// A farm of more fields than the exact constructions take: the grid construction flies
+    /// each field once as a block, and stays within a few per cent of the all-pairs one.
+    #[test]
+    fn the_grid_construction_on_a_large_farm_is_a_permutation_close_to_the_exact_one() {
+        let farm = crate::demo::scenario().unwrap().farm;
+        let model = TransferModel::new(&farm, 10.0);
+        let mut ends = Vec::new();
+        let mut groups = Vec::new();
+        let side = 34; // 1,156 fields of two passes
+        for row in 0..side {
+            for column in 0..side {
+                let mut group = Vec::new();
+                for line in 0..2 {
+                    let x = 3000.0 + 60.0 * column as f64 + 5.0 * line as f64 + (row % 3) as f64;
+                    let y = 2000.0 + 60.0 * row as f64;
+                    group.push(ends.len());
+                    ends.push([
+                        GroundPoint {
+                            x,
+                            y,
+                            ground_m: 0.0,
+                        },
+                        GroundPoint {
+                            x,
+                            y: y + 40.0,
+                            ground_m: 0.0,
+                        },
+                    ]);
+                }
+                groups.push(group);
+            }
+        }
+        assert!(groups.len() > LARGE_FARM_FIELDS);
+        let problem = OrderingProblem::new(ends, Start::Free, &model);
+        let grid = boustrophedon_by_grid(&problem, &groups);
+        assert!(is_permutation(&grid, 2 * side * side));
+        for pair in grid.chunks(2) {
+            assert_eq!(
+                pair[0].pass / 2,
+                pair[1].pass / 2,
+                "each field flown as one block"
+            );
+        }
+        // The all-pairs construction, called directly.
+        let mut all_pairs = Vec::new();
+        let mut remaining: Vec<usize> = (0..groups.len()).collect();
+        while !remaining.is_empty() {
+            let (slot, steps) = remaining
+                .iter()
+                .enumerate()
+                .flat_map(|(slot, &g)| [0, 2, 1, 3].map(|v| (slot, block_steps(&groups[g], v))))
+                .min_by(|a, b| {
+                    let cost = |steps: &Vec<Step>| match all_pairs.last() {
+                        Some(last) => problem.cost(Step::exit(last), steps[0].entry()),
+                        None => problem.cost_from_start(steps[0].entry()),
+                    };
+                    cost(&a.1).total_cmp(&cost(&b.1))
+                })
+                .unwrap();
+            remaining.remove(slot);
+            all_pairs.extend(steps);
+        }
+        let (ours, exact) = (problem.tour_cost(&grid), problem.tour_cost(&all_pairs));
+        assert!(
+            ours <= 1.05 * exact,
+            "grid {ours} against all pairs {exact}"
+        );
     }
 }

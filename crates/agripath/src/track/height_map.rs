@@ -47,6 +47,9 @@ pub fn planar_length(dx: f64, dy: f64) -> f64 {
 
 const BLOCK: usize = 16;
 
+/// Most samples a sampled height map holds (16 MB of heights).
+pub const MAX_SAMPLES: f64 = 4.0e6;
+
 impl HeightMap {
     /// A raster from row-major heights (row 0 at `origin_y`, rows going with +y).
     pub fn new(
@@ -100,15 +103,21 @@ impl HeightMap {
         }
     }
 
-    /// Samples `terrain` at every `cell` metres over [min_x, max_x] × [min_y, max_y].
+    /// Samples `terrain` at every `cell` metres over [min_x, max_x] × [min_y, max_y] (a
+    /// coarser cell for areas above [`MAX_SAMPLES`] samples; at least 2 × 2 samples).
     /// Points the terrain cannot answer are an error naming the point.
     pub fn sample(
         terrain: &dyn Terrain,
         (min_x, min_y, max_x, max_y): (f64, f64, f64, f64),
         cell: f64,
     ) -> Result<Self, crate::TerrainError> {
-        let columns = ((max_x - min_x) / cell).round() as usize + 1;
-        let rows = ((max_y - min_y) / cell).round() as usize + 1;
+        let (width, height) = ((max_x - min_x).max(0.0), (max_y - min_y).max(0.0));
+        let cell = cell
+            .max((width * height / MAX_SAMPLES).sqrt())
+            .max(width.max(height) / MAX_SAMPLES.sqrt())
+            .max(f64::MIN_POSITIVE);
+        let columns = ((width / cell).round() as usize + 1).max(2);
+        let rows = ((height / cell).round() as usize + 1).max(2);
         let mut heights = Vec::with_capacity(columns * rows);
         for row in 0..rows {
             let y = (min_y + row as f64 * cell).min(max_y);

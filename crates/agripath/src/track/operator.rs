@@ -29,8 +29,6 @@ use crate::geometry::UtmZone;
 use crate::model::CoordinateSystem;
 use crate::terrain::TerrainSpec;
 
-const MAX_SAMPLES: f64 = 4.0e6;
-
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 struct OperatorScenario {
@@ -197,7 +195,7 @@ pub fn read(path: &Path, text: &str) -> Result<TrackScenario, InputError> {
             why: "the terrain model does not cover them".into(),
         }));
     }
-    let cell = (((area.2 - area.0) * (area.3 - area.1) / MAX_SAMPLES).sqrt()).max(2.0);
+    let cell = 2.0; // HeightMap::sample coarsens it for large areas
     let map = HeightMap::sample(terrain.as_ref(), area, cell).map_err(|error| {
         fail(Fault::InvalidValue {
             what: "planning area".into(),

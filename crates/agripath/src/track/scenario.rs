@@ -322,6 +322,28 @@ pub(super) fn validated(scenario: TrackScenario) -> Result<TrackScenario, Fault>
             });
         }
     }
+    if !(max_x - min_x > 0.0
+        && max_y - min_y > 0.0
+        && scenario.altitude_bounds.1 > scenario.altitude_bounds.0)
+    {
+        return Err(Fault::InvalidValue {
+            what: "planning space".into(),
+            value: format!(
+                "[{min_x}, {max_x}] × [{min_y}, {max_y}] × {:?}",
+                scenario.altitude_bounds
+            ),
+            why: "needs a positive width, depth and height".into(),
+        });
+    }
+    if !(2..=100_000).contains(&scenario.population)
+        || !(1..=1_000_000).contains(&scenario.iterations)
+    {
+        return Err(Fault::InvalidValue {
+            what: "population / iterations".into(),
+            value: format!("{} / {}", scenario.population, scenario.iterations),
+            why: "need a population of 2..=100000 and 1..=1000000 iterations".into(),
+        });
+    }
     if scenario.free_waypoints == 0 || scenario.free_waypoints > 100 {
         return Err(Fault::InvalidValue {
             what: "free waypoints".into(),
