@@ -649,6 +649,24 @@ fn outputs_are_byte_identical_whatever_the_thread_count() {
             .collect::<Vec<_>>()
     };
     assert_eq!(bench("1", "b1"), bench("3", "b3"));
+    // Tracks: four runs per planner in parallel or in series, the same tracks.
+    let track = |threads: &str, out: &str| {
+        let output = Command::new(env!("CARGO_BIN_EXE_agripath"))
+            .args([
+                "track",
+                data("seed000_orchard.json").to_str().unwrap(),
+                "--algorithm",
+                "ba,lattice",
+            ])
+            .args(["--runs", "4", "--evaluations", "3000", "--out", out])
+            .env("RAYON_NUM_THREADS", threads)
+            .current_dir(&folder)
+            .output()
+            .unwrap();
+        stdout(&output);
+        std::fs::read(folder.join(out).join("track.geojson")).unwrap()
+    };
+    assert_eq!(track("1", "t1"), track("3", "t3"));
     std::fs::remove_dir_all(&folder).unwrap();
 }
 
