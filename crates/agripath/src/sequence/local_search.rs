@@ -49,8 +49,18 @@ impl Default for LocalSearchSettings {
 /// Kicks actually made: the budget, scaled down on big instances so that a kick's local
 /// search (O(n·K) per sweep) keeps the whole run near linear.
 fn kick_budget(settings: &LocalSearchSettings, passes: usize) -> usize {
+    if passes > LOCAL_KICKS_ABOVE {
+        // Local kicks cost O(KICK_MOVES) each whatever the size: the full budget, twice.
+        return 2 * settings.kicks.max(1);
+    }
     settings.kicks.min(100_000 / passes.max(1)).max(1)
 }
+
+/// Above this many passes the kicks are local double bridges (three cuts within
+/// `LOCAL_KICK_SPAN` positions): a random double bridge on a long tour joins far-apart
+/// stretches, which the local search then mostly undoes.
+const LOCAL_KICKS_ABOVE: usize = 1000;
+const LOCAL_KICK_SPAN: usize = 60;
 
 /// Marker for the start point in edge costs.
 const START: End = usize::MAX;
@@ -641,7 +651,20 @@ fn double_bridge<T: Copy>(
     stream: &mut swarm::RunStream,
 ) -> Option<(Vec<T>, [usize; 3])> {
     let n = items.len();
-    let mut cuts: Vec<usize> = (0..3).map(|_| 1 + swarm::below(stream, n - 1)).collect();
+    let mut cuts: Vec<usize> = if n > LOCAL_KICKS_ABOVE {
+        let first = 1 + swarm::below(stream, n - 1 - LOCAL_KICK_SPAN);
+        (0..3)
+            .map(|k| {
+                if k == 0 {
+                    first
+                } else {
+                    first + 1 + swarm::below(stream, LOCAL_KICK_SPAN)
+                }
+            })
+            .collect()
+    } else {
+        (0..3).map(|_| 1 + swarm::below(stream, n - 1)).collect()
+    };
     cuts.sort_unstable();
     cuts.dedup();
     if cuts.len() < 3 {
