@@ -101,11 +101,7 @@ fn header(text: &mut String) {
 
 fn row(text: &mut String, label: &str, result: &PlannerRuns, paper: Option<PaperRow>) {
     let s = statistics(&result.runs);
-    let _ = write!(
-        text,
-        "| {label} | {:.1} | {:.1} | {:.1} | {:.1} | {}/{} | {:.2} |",
-        s.best, s.worst, s.mean, s.standard_deviation, s.safe_runs, s.runs, s.mean_seconds
-    );
+    let _ = write!(text, "| {label} | {} |", s.cells(1));
     match paper {
         Some(p) => {
             let _ = writeln!(
@@ -239,15 +235,9 @@ pub fn seed002(
         let paper = SEED002_TABLE2.get(index).copied();
         let _ = writeln!(
             text,
-            "| {} | {:.1} | {:.1} | {:.1} | {:.1} | {}/{} | {:.2} | {} | {:.2} | {} |",
+            "| {} | {} | {} | {:.2} | {} |",
             result.planner.label(),
-            s.best,
-            s.worst,
-            s.mean,
-            s.standard_deviation,
-            s.safe_runs,
-            s.runs,
-            s.mean_seconds,
+            s.cells(1),
             paper.map_or("–".into(), |p| format!("{p:.0}")),
             s.mean / ga_mean,
             paper.map_or("–".into(), |p| format!("{:.2}", p / SEED002_TABLE2[0])),
@@ -311,16 +301,10 @@ pub fn spso(
         let s = statistics(&result.runs);
         let _ = writeln!(
             text,
-            "| {} | {} | {:.1} | {:.1} | {:.1} | {:.1} | {}/{} | {:.2} | {} |",
+            "| {} | {} | {} | {} |",
             result.planner.label(),
             result.encoding.key(),
-            s.best,
-            s.worst,
-            s.mean,
-            s.standard_deviation,
-            s.safe_runs,
-            s.runs,
-            s.mean_seconds,
+            s.cells(1),
             percent(s.mean, reference_mean)
         );
     }

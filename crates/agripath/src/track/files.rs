@@ -225,16 +225,10 @@ pub fn table(scenario: &TrackScenario, results: &[PlannerRuns]) -> String {
         let s = statistics(&result.runs);
         let _ = writeln!(
             text,
-            "| {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {}/{} | {:.2} |",
+            "| {} | {} | {} |",
             result.planner.label(),
             result.encoding.key(),
-            s.best,
-            s.worst,
-            s.mean,
-            s.standard_deviation,
-            s.safe_runs,
-            s.runs,
-            s.mean_seconds
+            s.cells(2)
         );
     }
     text

@@ -299,6 +299,22 @@ pub struct RunStatistics {
     pub mean_seconds: f64,
 }
 
+impl RunStatistics {
+    /// "best | worst | mean | std | safe/runs | s/run" for Markdown tables.
+    pub fn cells(&self, decimals: usize) -> String {
+        format!(
+            "{:.decimals$} | {:.decimals$} | {:.decimals$} | {:.decimals$} | {}/{} | {:.2}",
+            self.best,
+            self.worst,
+            self.mean,
+            self.standard_deviation,
+            self.safe_runs,
+            self.runs,
+            self.mean_seconds
+        )
+    }
+}
+
 pub fn statistics(runs: &[TrackRun]) -> RunStatistics {
     let costs: Vec<f64> = runs.iter().map(TrackRun::final_cost).collect();
     let count = costs.len().max(1) as f64;

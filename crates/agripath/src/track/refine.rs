@@ -20,6 +20,19 @@ use swarm::{Optimizer, Search};
 use super::lattice;
 use super::scenario::TrackScenario;
 
+/// Waypoint `k` of the Cartesian vector `x`; −1 is the start and one past the last the goal.
+fn waypoint(scenario: &TrackScenario, x: &[f64], k: isize) -> [f64; 3] {
+    let count = (x.len() / 3) as isize;
+    if k < 0 {
+        scenario.start
+    } else if k >= count {
+        scenario.goal
+    } else {
+        let k = 3 * k as usize;
+        [x[k], x[k + 1], x[k + 2]]
+    }
+}
+
 /// Corridors searched.
 const LANES: usize = 4;
 
@@ -97,18 +110,10 @@ impl Optimizer for LatticeRefine<'_> {
                 let mut candidate = lane.x.clone();
                 if straighten {
                     // Towards the middle of the neighbours (start and goal at the ends).
-                    let neighbour = |k: isize| -> [f64; 3] {
-                        if k < 0 {
-                            self.scenario.start
-                        } else if k as usize >= waypoints {
-                            self.scenario.goal
-                        } else {
-                            let k = k as usize;
-                            [lane.x[3 * k], lane.x[3 * k + 1], lane.x[3 * k + 2]]
-                        }
-                    };
-                    let (before, after) =
-                        (neighbour(index as isize - 1), neighbour(index as isize + 1));
+                    let (before, after) = (
+                        waypoint(self.scenario, &lane.x, index as isize - 1),
+                        waypoint(self.scenario, &lane.x, index as isize + 1),
+                    );
                     let pull = search.uniform_in(0.1, 0.6);
                     for axis in 0..2 {
                         let middle = 0.5 * (before[axis] + after[axis]);
@@ -137,19 +142,9 @@ impl Optimizer for LatticeRefine<'_> {
             // outer neighbours (what the improved GA gets by deleting waypoints).
             let first = search.below(waypoints);
             let last = (first + 1 + search.below(waypoints - first)).min(waypoints) - 1;
-            let corner = |k: isize, x: &[f64]| -> [f64; 3] {
-                if k < 0 {
-                    self.scenario.start
-                } else if k as usize >= waypoints {
-                    self.scenario.goal
-                } else {
-                    let k = k as usize;
-                    [x[3 * k], x[3 * k + 1], x[3 * k + 2]]
-                }
-            };
             let (before, after) = (
-                corner(first as isize - 1, &lane.x),
-                corner(last as isize + 1, &lane.x),
+                waypoint(self.scenario, &lane.x, first as isize - 1),
+                waypoint(self.scenario, &lane.x, last as isize + 1),
             );
             let mut candidate = lane.x.clone();
             let span = (last - first + 2) as f64;
