@@ -1,6 +1,6 @@
 //! Quick look: one planner on one scenario, statistics of a few runs.
 //! `cargo run --release -p agripath --example track_trial -- SCENARIO PLANNER RUNS [ENCODING]`
-//! SCENARIO: I, II, III, spso, seed002.
+//! SCENARIO: I, II, III, spso, seed002. With TRACK_PRINT set, the best run's waypoints are printed.
 use agripath::track::{plan, statistics, Encoding, Planner, TrackScenario, TrackSettings};
 
 fn main() {
@@ -48,6 +48,3 @@ fn main() {
         }
     }
 }
-// (debug) print the best track when TRACK_PRINT is set.
-#[allow(dead_code)]
-fn unused() {}
