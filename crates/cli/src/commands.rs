@@ -982,13 +982,13 @@ fn repro_tracks(
         ));
     }
     let label = "embedded track scenario";
-    let (planners, scenarios) = match table {
-        ReproTable::Seed000Table4 => (5, 3),
-        ReproTable::Seed000Table5 => (2, 1),
-        ReproTable::Seed002 => (5, 1),
-        _ => (4, 1),
+    let key = match table {
+        ReproTable::Seed000Table4 => "seed000-table4",
+        ReproTable::Seed000Table5 => "seed000-table5",
+        ReproTable::Seed002 => "seed002",
+        _ => "spso",
     };
-    let bar = progress_bar(runs * planners * scenarios, "runs");
+    let bar = progress_bar(tracks::total_runs(key, runs), "runs");
     let tick = || bar.inc(1);
     let (text, cases) = match table {
         ReproTable::Seed000Table4 => tracks::seed000_table4(runs, seed, &tick)

@@ -8,6 +8,7 @@ use std::fmt::Write;
 
 use geo::{Centroid, Polygon};
 
+use super::line_chart::escape;
 use crate::coverage::drape::GroundPoint;
 use crate::coverage::CoveragePlan;
 use crate::model::Farm;
@@ -307,10 +308,4 @@ pub fn plan_svg(
     );
     svg.push_str("</svg>\n");
     svg
-}
-
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
 }

@@ -4,43 +4,9 @@
 
 use std::fmt::Write;
 
-use super::line_chart::{self, Chart, Series};
-use crate::terrain::{hillshade::hillshade, Extent, Terrain};
-use crate::track::cost::CostModel;
-use crate::track::height_map::HeightMap;
+use super::line_chart::{self, escape, Chart, Series, COLOURS};
+use crate::terrain::{hillshade::hillshade, Extent};
 use crate::track::scenario::TrackScenario;
-use crate::TerrainError;
-
-/// Okabe-Ito colours, one per planner.
-const COLOURS: [&str; 8] = [
-    "#0072B2", "#E69F00", "#009E73", "#CC79A7", "#D55E00", "#56B4E9", "#000000", "#F0E442",
-];
-
-impl Terrain for HeightMap {
-    fn height_m(&self, x: f64, y: f64) -> Result<f64, TerrainError> {
-        Ok(self.bilinear(x, y))
-    }
-
-    fn extent(&self) -> Option<Extent> {
-        let (min_x, min_y, max_x, max_y) = self.bounds();
-        Some(Extent {
-            min_x,
-            min_y,
-            max_x,
-            max_y,
-        })
-    }
-
-    fn describe(&self) -> String {
-        format!("height map of {} m cells", self.cell())
-    }
-}
-
-fn escape(text: &str) -> String {
-    text.replace('&', "&amp;")
-        .replace('<', "&lt;")
-        .replace('>', "&gt;")
-}
 
 /// The top view: `tracks` are (label, points) pairs, points with any z.
 pub fn top_view(
@@ -84,11 +50,7 @@ pub fn top_view(
         svg,
         r##"<rect x="{x0:.1}" y="{y0:.1}" width="{map_w:.1}" height="{map_h:.1}" fill="none" stroke="#444"/>"##
     );
-    let danger = match scenario.cost {
-        CostModel::Seed000(model) => model.danger_m,
-        CostModel::Spso(model) => model.drone_size + model.danger,
-        CostModel::Seed002(_) => 0.0,
-    };
+    let (danger, _) = scenario.cost.danger_band();
     for threat in &scenario.threats {
         let (cx, cy) = to_px(threat.x, threat.y);
         let _ = write!(

@@ -123,6 +123,43 @@ pub const TABLE4_PLANNERS: [Planner; 5] = [
     Planner::Lattice,
 ];
 
+/// Table 5: IBA-FCS with each encoding.
+pub const TABLE5_PLANNERS: [(Planner, Option<Encoding>); 2] = [
+    (
+        Planner::Swarm(Algorithm::IbaFcs),
+        Some(Encoding::Cylindrical),
+    ),
+    (Planner::Swarm(Algorithm::IbaFcs), Some(Encoding::Cartesian)),
+];
+
+/// Seed 002's table: its three planners in the paper's order, IBA-FCS and ours.
+pub const SEED002_PLANNERS: [(Planner, Option<Encoding>); 5] = [
+    (Planner::Swarm(Algorithm::Genetic), None),
+    (Planner::Swarm(Algorithm::AntColony), None),
+    (Planner::ImprovedGenetic, None),
+    (Planner::Swarm(Algorithm::IbaFcs), None),
+    (Planner::Lattice, None),
+];
+
+/// SPSO's scenario: SPSO, IBA-FCS on both encodings, ours.
+pub const SPSO_PLANNERS: [(Planner, Option<Encoding>); 4] = [
+    (Planner::Spso, None),
+    (Planner::Swarm(Algorithm::IbaFcs), None),
+    (Planner::Swarm(Algorithm::IbaFcs), Some(Encoding::Cartesian)),
+    (Planner::Lattice, None),
+];
+
+/// Independent runs a track table makes with `runs` runs per planner and scenario.
+pub fn total_runs(table: &str, runs: u64) -> u64 {
+    let (planners, scenarios) = match table {
+        "seed000-table4" => (TABLE4_PLANNERS.len(), SEED000_TABLE4.len()),
+        "seed000-table5" => (TABLE5_PLANNERS.len(), 1),
+        "seed002" => (SEED002_PLANNERS.len(), 1),
+        _ => (SPSO_PLANNERS.len(), 1),
+    };
+    runs * (planners * scenarios) as u64
+}
+
 /// Seed 000 Table 4: the text and, per task, the runs.
 pub fn seed000_table4(
     runs: u64,
@@ -173,17 +210,7 @@ pub fn seed000_table5(
     finished: &(dyn Fn() + Sync),
 ) -> Result<(String, TrackScenario, Vec<PlannerRuns>), Fault> {
     let scenario = TrackScenario::seed000("II")?;
-    let iba = Planner::Swarm(Algorithm::IbaFcs);
-    let results = run_planners(
-        &scenario,
-        &[
-            (iba, Some(Encoding::Cylindrical)),
-            (iba, Some(Encoding::Cartesian)),
-        ],
-        runs,
-        seed,
-        finished,
-    )?;
+    let results = run_planners(&scenario, &TABLE5_PLANNERS, runs, seed, finished)?;
     let mut text = format!(
         "Seed 000 Table 5: IBA-FCS, cylindrical against Cartesian encoding, task II (start (100, 900, 100),\n\
          goal (900, 100, 200)), {runs} runs, 150,500 evaluations per run\n\n"
@@ -213,14 +240,7 @@ pub fn seed002(
     finished: &(dyn Fn() + Sync),
 ) -> Result<(String, TrackScenario, Vec<PlannerRuns>), Fault> {
     let scenario = TrackScenario::seed002()?;
-    let planners = [
-        (Planner::Swarm(Algorithm::Genetic), None),
-        (Planner::Swarm(Algorithm::AntColony), None),
-        (Planner::ImprovedGenetic, None),
-        (Planner::Swarm(Algorithm::IbaFcs), None),
-        (Planner::Lattice, None),
-    ];
-    let results = run_planners(&scenario, &planners, runs, seed, finished)?;
+    let results = run_planners(&scenario, &SEED002_PLANNERS, runs, seed, finished)?;
     let mut text = format!(
         "Seed 002 Table 2: survey track cost W (length + penalties), {runs} runs, {} evaluations per run\n\
          (population 50; the improved GA's 30 generations with 3 mutation tries per child). The paper's\n\
@@ -279,13 +299,7 @@ pub fn spso(
     finished: &(dyn Fn() + Sync),
 ) -> Result<(String, TrackScenario, Vec<PlannerRuns>), Fault> {
     let scenario = TrackScenario::spso()?;
-    let planners = [
-        (Planner::Spso, None),
-        (Planner::Swarm(Algorithm::IbaFcs), None),
-        (Planner::Swarm(Algorithm::IbaFcs), Some(Encoding::Cartesian)),
-        (Planner::Lattice, None),
-    ];
-    let results = run_planners(&scenario, &planners, runs, seed, finished)?;
+    let results = run_planners(&scenario, &SPSO_PLANNERS, runs, seed, finished)?;
     let reference_mean = 0.5 * (SPSO_REFERENCE[0] + SPSO_REFERENCE[1]);
     let mut text = format!(
         "SPSO's public scenario (Christmas Island DEM, 6 threats, 10 free nodes), its cost (MyCost.m),\n\

@@ -98,7 +98,7 @@ pub fn point_segment_distance(px: f64, py: f64, a: [f64; 3], b: [f64; 3]) -> f64
     planar_length(px - (a[0] + t * dx), py - (a[1] + t * dy))
 }
 
-fn length_3d(a: [f64; 3], b: [f64; 3]) -> f64 {
+pub(crate) fn length_3d(a: [f64; 3], b: [f64; 3]) -> f64 {
     ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt()
 }
 
@@ -109,6 +109,23 @@ impl CostModel {
             CostModel::Seed000(_) => ["length", "threat", "height", "turn_pitch"],
             CostModel::Spso(_) => ["length", "threat", "altitude", "smoothness"],
             CostModel::Seed002(_) => ["length", "terrain", "boundary", "unused"],
+        }
+    }
+
+    /// Width of the danger band around each cylinder (beyond its radius, and SPSO's drone
+    /// size) and its cost per unit of intrusion relative to a unit of length: what the lattice
+    /// surrogate and the top view need of the model.
+    pub fn danger_band(&self) -> (f64, f64) {
+        match self {
+            CostModel::Seed000(model) => (
+                model.danger_m,
+                model.threat_factor * model.weights[1] / model.weights[0],
+            ),
+            CostModel::Spso(model) => (
+                model.drone_size + model.danger,
+                model.weights[1] / model.weights[0],
+            ),
+            CostModel::Seed002(_) => (0.0, 0.0),
         }
     }
 

@@ -20,6 +20,7 @@ use std::f64::consts::{FRAC_PI_4, PI};
 
 use swarm::Bounds;
 
+use super::cost::length_3d;
 use super::scenario::TrackScenario;
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -63,7 +64,7 @@ impl Encoding {
                 ([0.0, -PI, -climb], [reach, PI, climb])
             }
             Encoding::Spherical => {
-                let reach = 2.0 * distance_3d(scenario.start, scenario.goal) / waypoints as f64;
+                let reach = 2.0 * length_3d(scenario.start, scenario.goal) / waypoints as f64;
                 let azimuth = start_goal_azimuth(scenario);
                 (
                     [0.0, -FRAC_PI_4, azimuth - FRAC_PI_4],
@@ -139,10 +140,6 @@ impl Encoding {
         self.bounds(scenario, waypoints.len()).clamp(&mut x);
         x
     }
-}
-
-fn distance_3d(a: [f64; 3], b: [f64; 3]) -> f64 {
-    ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2) + (b[2] - a[2]).powi(2)).sqrt()
 }
 
 fn start_goal_azimuth(scenario: &TrackScenario) -> f64 {

@@ -10,7 +10,8 @@
 //! Queries outside the raster take the nearest edge value: the planners clamp their
 //! waypoints to the map, and the edge is where a segment sampled at its ends can touch.
 
-use crate::terrain::{Grid, Terrain};
+use crate::terrain::{Extent, Grid, Terrain};
+use crate::TerrainError;
 
 /// How heights between cell centres are read.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -300,6 +301,27 @@ impl HeightMap {
                 z - self.bilinear(x, y)
             })
             .fold(f64::INFINITY, f64::min)
+    }
+}
+
+/// A height map is a terrain too (bilinear between its centres), for the pictures.
+impl Terrain for HeightMap {
+    fn height_m(&self, x: f64, y: f64) -> Result<f64, TerrainError> {
+        Ok(self.bilinear(x, y))
+    }
+
+    fn extent(&self) -> Option<Extent> {
+        let (min_x, min_y, max_x, max_y) = self.bounds();
+        Some(Extent {
+            min_x,
+            min_y,
+            max_x,
+            max_y,
+        })
+    }
+
+    fn describe(&self) -> String {
+        format!("height map of {} m cells", self.cell())
     }
 }
 

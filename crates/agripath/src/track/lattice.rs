@@ -77,7 +77,7 @@ impl<'a> Lattice<'a> {
         let rows = ((max_y - min_y) / step).floor() as usize + 1;
         let leg = scenario.start_goal_distance() / (scenario.free_waypoints + 1) as f64;
         let (_, high) = scenario.altitude_bounds;
-        let (danger_width, danger_weight) = danger_band(scenario);
+        let (danger_width, danger_weight) = scenario.cost.danger_band();
         let mut open = vec![true; columns * rows];
         let mut altitude = vec![0.0; columns * rows];
         let mut danger = vec![0.0; columns * rows];
@@ -217,22 +217,6 @@ impl<'a> Lattice<'a> {
                 }
             }
         }
-    }
-}
-
-/// Width and weight of the danger band the cost model uses, for the lattice's surrogate.
-fn danger_band(scenario: &TrackScenario) -> (f64, f64) {
-    use super::cost::CostModel;
-    match scenario.cost {
-        CostModel::Seed000(model) => (
-            model.danger_m,
-            model.threat_factor * model.weights[1] / model.weights[0],
-        ),
-        CostModel::Spso(model) => (
-            model.drone_size + model.danger,
-            model.weights[1] / model.weights[0],
-        ),
-        CostModel::Seed002(_) => (0.0, 0.0),
     }
 }
 
