@@ -15,6 +15,7 @@ pub mod model;
 pub mod output;
 pub mod pipeline;
 pub mod plot;
+pub mod preflight;
 pub mod report;
 pub mod repro;
 pub mod sequence;

@@ -73,18 +73,30 @@ impl PlannedSorties {
     }
 }
 
-/// The start point of the flight: the given one, else the field file's `launch`/`supply`
-/// marker, else none (free start).
+/// The start point of the flight: the given one, else the field file's launch marker (a
+/// point named or typed launch, home, takeoff, supply, base or start), else none (free
+/// start). Two launch markers and no `--start` are an error naming both.
 pub fn start_point(
     scenario: &Scenario,
     settings: &PlanSettings,
 ) -> Result<Option<GroundPoint>, Fault> {
+    let launches: Vec<&crate::model::Marker> = scenario
+        .farm
+        .markers
+        .iter()
+        .filter(|marker| marker.is_launch())
+        .collect();
+    if settings.start.is_none() && launches.len() > 1 {
+        return Err(Fault::Structure(format!(
+            "{} launch points ('{}' and '{}'): keep one, or choose with --start X,Y",
+            launches.len(),
+            launches[0].name,
+            launches[1].name
+        )));
+    }
     let position = settings.start.or_else(|| {
-        scenario
-            .farm
-            .markers
-            .iter()
-            .find(|marker| matches!(marker.kind.as_str(), "launch" | "supply" | "start"))
+        launches
+            .first()
             .map(|marker| [marker.position.x, marker.position.y])
     });
     position
@@ -133,7 +145,15 @@ fn split_into_sorties(
         ground_m: point.ground_m,
     });
     // Returns fly at the safe height, as transfers that leave the field do (decision 0008).
-    let model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
+    let mut model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
+    // The mission climbs and descends at climb speed (takeoff to the cruise height, down to
+    // spray height, up again, landing), which seed 003's eq. 2 charges at transit speed: keep
+    // that time out of the battery the split may use, so that the files fly within it
+    // (the preflight recomputes it from the files; decision 0012).
+    let cruise_m = vehicle.spray_height_m + vehicle.safe_height_m.max(5.0);
+    let vertical_m = 4.0 * cruise_m - 2.0 * vehicle.spray_height_m;
+    let reserve_s = vertical_m / vehicle.climb_speed_mps - vertical_m / vehicle.transit_speed_mps;
+    model.battery_reserve_s = reserve_s.clamp(0.0, 0.5 * model.endurance_s);
     let plan = plan_sorties(&work_route, &model, planner, settings.seed)?;
     let visit_offsets = route
         .visits
@@ -204,14 +224,118 @@ pub fn terrain_overlay(scenario: &Scenario) -> (Extent, Vec<u8>) {
     (extent, shaded.to_png())
 }
 
-/// The files of a plan folder, by name: the contract files (`plan.geojson`, `report.json`),
-/// the maps (`plan.svg`, `plan.html`, `terrain.png`) and the mission files (per sortie
-/// `sortie_NN.plan` and `sortie_NN.waypoints`, `mission.kml`, `waypoints.csv`).
-pub fn render(
-    scenario: &Scenario,
-    mission: &PlannedMission,
-) -> Result<Vec<(String, Vec<u8>)>, Fault> {
+/// Whether a file of a plan folder is one a ground station or autopilot flies (left out when
+/// the preflight fails, unless the operator insists).
+pub fn is_mission_file(name: &str) -> bool {
+    name.ends_with(".plan")
+        || name.ends_with(".waypoints")
+        || name == "mission.kml"
+        || name == "waypoints.csv"
+}
+
+/// A plan folder's files with the preflight verdict on its mission files.
+pub struct Rendered {
+    pub files: Vec<(String, Vec<u8>)>,
+    pub verdict: crate::preflight::Verdict,
+}
+
+impl Rendered {
+    /// The files to write: all of them when the flight is safe or `allow_unsafe`, else all
+    /// but the mission files.
+    pub fn files_to_write(&self, allow_unsafe: bool) -> Vec<&(String, Vec<u8>)> {
+        self.files
+            .iter()
+            .filter(|(name, _)| self.verdict.safe || allow_unsafe || !is_mission_file(name))
+            .collect()
+    }
+}
+
+/// What the preflight holds a plan to: its altitude reference, sprayer, margins, and per
+/// field the coverage promised (99 % with edge passes; the plan's own less ½ point for the
+/// seed's layout without them, which leaves 2-4 % by design), and the spray outside.
+pub fn preflight_settings(mission: &PlannedMission) -> crate::preflight::PreflightSettings {
+    let settings = &mission.settings;
+    // The seed's layout runs swaths to the boundary, so half a swath hangs over oblique
+    // edges: it is held to its own planned overhang (+ 0.1 point), the default to 0.5 %.
+    let outside_planned: f64 = mission
+        .coverage
+        .fields
+        .iter()
+        .map(|f| f.measure.outside_m2)
+        .sum();
+    let sprayed_planned = (mission.report.spray_length_m + mission.report.edge_length_m)
+        * mission.coverage.swath_width_m;
+    let max_outside_fraction = if settings.coverage.headland_passes > 0 || sprayed_planned <= 0.0 {
+        crate::preflight::MAX_OUTSIDE_FRACTION
+    } else {
+        crate::preflight::MAX_OUTSIDE_FRACTION.max(outside_planned / sprayed_planned + 0.001)
+    };
+    crate::preflight::PreflightSettings {
+        max_outside_fraction,
+        altitude: settings.mission.altitude,
+        sprayer: settings.mission.sprayer,
+        terrain_tolerance_m: settings.mission.terrain_tolerance_m,
+        local_origin: settings.mission.local_origin,
+        boundary_margin_m: settings.coverage.boundary_margin_m,
+        obstacle_margin_m: settings.coverage.obstacle_margin_m,
+        required_coverage: mission
+            .coverage
+            .fields
+            .iter()
+            .map(|field| {
+                if settings.coverage.headland_passes > 0 {
+                    0.99
+                } else {
+                    (field.measure.covered_fraction - 0.005).max(0.0)
+                }
+            })
+            .collect(),
+    }
+}
+
+/// The files of a plan folder, by name: the mission files (per sortie `sortie_NN.plan` and
+/// `sortie_NN.waypoints`, `mission.kml`, `waypoints.csv`), checked by the preflight as written,
+/// then the contract files (`plan.geojson`, `report.json` with the verdict) and the maps
+/// (`plan.svg`, `plan.png`, `plan.html`, `terrain.png`).
+pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered, Fault> {
     let vehicle = &scenario.vehicle;
+    let settings = &mission.settings.mission;
+    let missions = build_missions(scenario, mission, settings)?;
+    let mut mission_files = Vec::new();
+    for sortie in &missions {
+        let name = format!("sortie_{:02}", sortie.sortie + 1);
+        mission_files.push((
+            format!("{name}.plan"),
+            qgc_plan::plan_file(
+                sortie,
+                &scenario.farm,
+                settings,
+                vehicle.transit_speed_mps,
+                vehicle.spray_speed_mps,
+            )
+            .into_bytes(),
+        ));
+        mission_files.push((
+            format!("{name}.waypoints"),
+            wpl::waypoints_file(sortie, settings).into_bytes(),
+        ));
+    }
+    mission_files.push((
+        "mission.kml".to_string(),
+        mission_kml(&scenario.name, &scenario.farm, &missions, settings).into_bytes(),
+    ));
+    mission_files.push((
+        "waypoints.csv".to_string(),
+        waypoints_csv(&missions).into_bytes(),
+    ));
+    let world = crate::preflight::World {
+        farm: &scenario.farm,
+        terrain: scenario.terrain.as_ref(),
+        vehicle,
+    };
+    let verdict = crate::preflight::check(&world, &preflight_settings(mission), &mission_files);
+    let mut report = mission.report.clone();
+    report.preflight = Some(verdict.clone());
     let geojson = plan_geojson(
         &scenario.farm,
         &mission.coverage,
@@ -221,7 +345,8 @@ pub fn render(
         vehicle.safe_height_m,
     );
     let title = format!(
-        "{} — {} fields, swath {} m, {:.0} m sprayed, {:.1}% covered",
+        "{}{} — {} fields, swath {} m, {:.0} m sprayed, {:.2}% covered",
+        if verdict.safe { "" } else { "UNSAFE: " },
         scenario.name,
         scenario.farm.fields.len(),
         vehicle.swath_width_m,
@@ -235,8 +360,7 @@ pub fn render(
         ("plan.geojson".to_string(), json(&geojson)),
         (
             "report.json".to_string(),
-            (serde_json::to_string_pretty(&mission.report).expect("report serialises") + "\n")
-                .into_bytes(),
+            (serde_json::to_string_pretty(&report).expect("report serialises") + "\n").into_bytes(),
         ),
     ];
     // The viewer draws in plan metres: the same features in the local frame.
@@ -282,34 +406,7 @@ pub fn render(
         "plan.html".to_string(),
         plan_html(&title, &local, Some(&overlay)).into_bytes(),
     ));
-    let settings = &mission.settings.mission;
-    let missions = build_missions(scenario, mission, settings)?;
-    for sortie in &missions {
-        let name = format!("sortie_{:02}", sortie.sortie + 1);
-        files.push((
-            format!("{name}.plan"),
-            qgc_plan::plan_file(
-                sortie,
-                &scenario.farm,
-                settings,
-                vehicle.transit_speed_mps,
-                vehicle.spray_speed_mps,
-            )
-            .into_bytes(),
-        ));
-        files.push((
-            format!("{name}.waypoints"),
-            wpl::waypoints_file(sortie, settings).into_bytes(),
-        ));
-    }
-    files.push((
-        "mission.kml".to_string(),
-        mission_kml(&scenario.name, &scenario.farm, &missions, settings).into_bytes(),
-    ));
-    files.push((
-        "waypoints.csv".to_string(),
-        waypoints_csv(&missions).into_bytes(),
-    ));
+    files.extend(mission_files);
     files.push(("terrain.png".to_string(), png));
-    Ok(files)
+    Ok(Rendered { files, verdict })
 }

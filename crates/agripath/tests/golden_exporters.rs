@@ -64,7 +64,13 @@ fn rendered() -> Vec<(String, Vec<u8>)> {
     .unwrap();
     let mission = plan_mission(&scenario, &PlanSettings::default()).unwrap();
     assert!(mission.report.sorties >= 2, "the tank must force a return");
-    render(&scenario, &mission).unwrap()
+    let rendered = render(&scenario, &mission).unwrap();
+    assert!(
+        rendered.verdict.safe,
+        "the golden plan flies safely as written: {:?}",
+        rendered.verdict.failures
+    );
+    rendered.files
 }
 
 #[test]

@@ -10,7 +10,7 @@ use clap::{Args, Parser, Subcommand};
     name = "agripath",
     version,
     about = "Mission planning for agricultural UAVs over real terrain",
-    long_about = "Mission planning for agricultural UAVs over real terrain.\n\nExit status: 0 done, 2 bad input (nothing written), 1 could not write outputs."
+    long_about = "Mission planning for agricultural UAVs over real terrain.\n\nExit status: 0 done, 2 bad input (nothing written), 3 not safe to fly (no mission file written), 1 could not write outputs."
 )]
 pub struct Arguments {
     #[command(subcommand)]
@@ -41,6 +41,16 @@ pub enum Command {
         /// Output folder (replaced as a whole when planning succeeds).
         #[arg(long)]
         out: PathBuf,
+    },
+    /// Fly the mission files of a plan folder (perhaps edited in a ground station) against
+    /// the inputs again: the preflight check of `plan`, on the files as they are now. Exit 3
+    /// when they are not safe to fly.
+    Check {
+        /// The plan folder (written by `agripath plan` or `demo`).
+        folder: PathBuf,
+        /// The inputs it was planned from (the demo's embedded farm when none are given).
+        #[command(flatten)]
+        inputs: Inputs,
     },
     /// Recompute a table of the papers beside the paper's figures.
     Repro {
@@ -224,10 +234,16 @@ pub struct OrderArgs {
 /// How mission files are written.
 #[derive(Debug, Args)]
 pub struct MissionArgs {
-    /// Altitudes in mission files: `sea-level` (from our terrain model, MAV_FRAME_GLOBAL) or
-    /// `terrain` (above ground, MAV_FRAME_GLOBAL_TERRAIN_ALT, for ArduPilot).
-    #[arg(long, default_value = "sea-level", value_parser = ["sea-level", "terrain"])]
-    pub altitude: String,
+    /// Altitudes in mission files: `relative` (above the launch point's ground,
+    /// MAV_FRAME_GLOBAL_RELATIVE_ALT; the default without a DEM), `sea-level` (from the DEM,
+    /// MAV_FRAME_GLOBAL; the default with one; needs a DEM or `--terrain flat:H`) or `terrain`
+    /// (above ground, MAV_FRAME_GLOBAL_TERRAIN_ALT, for ArduPilot).
+    #[arg(long, value_parser = ["relative", "sea-level", "terrain"])]
+    pub altitude: Option<String>,
+    /// Write the mission files even when the preflight check of the files as flown fails
+    /// (the verdict stays in report.json; exit status 0).
+    #[arg(long)]
+    pub allow_unsafe: bool,
     /// Sprayer switching: `do-sprayer` (MAV_CMD_DO_SPRAYER) or `servo:CHANNEL:ON_PWM:OFF_PWM`
     /// (MAV_CMD_DO_SET_SERVO).
     #[arg(long, default_value = "do-sprayer")]

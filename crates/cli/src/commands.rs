@@ -61,6 +61,7 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
             mission,
             out,
         } => plan(&inputs, &coverage, &order, &mission, &out),
+        Command::Check { folder, inputs } => check(&folder, &inputs),
         Command::Repro {
             table,
             runs,
@@ -117,18 +118,86 @@ fn output_failure(path: &Path, error: std::io::Error) -> Failure {
 fn demo(out: &Path) -> Result<(), Failure> {
     let scenario = agripath::demo::scenario()?;
     // The seed's Table 8 start C1 (0, 0): a corner of S1.
-    let settings = PlanSettings {
+    let mut settings = PlanSettings {
         start: Some([0.0, 0.0]),
         ..PlanSettings::default()
     };
+    settings.mission.altitude =
+        AltitudeReference::resolve(None, &scenario.terrain_spec, scenario.terrain_stated)
+            .map_err(|fault| InputError::new(agripath::demo::FARM_LABEL, fault))?;
     let mission = plan_mission(&scenario, &settings)
         .map_err(|fault| InputError::new(agripath::demo::FARM_LABEL, fault))?;
-    let files = render(&scenario, &mission)
-        .map_err(|fault| InputError::new(agripath::demo::FARM_LABEL, fault))?;
+    write_plan(
+        out,
+        &scenario,
+        &mission,
+        false,
+        Path::new(agripath::demo::FARM_LABEL),
+    )
+}
+
+/// Renders a plan, flies its mission files in the preflight check, and writes the folder:
+/// every file when safe (or `allow_unsafe`), else all but the mission files, and exit 3.
+fn write_plan(
+    out: &Path,
+    scenario: &Scenario,
+    mission: &agripath::pipeline::PlannedMission,
+    allow_unsafe: bool,
+    source: &Path,
+) -> Result<(), Failure> {
+    let rendered = render(scenario, mission).map_err(|fault| InputError::new(source, fault))?;
+    let files: Vec<(String, Vec<u8>)> = rendered
+        .files_to_write(allow_unsafe)
+        .into_iter()
+        .cloned()
+        .collect();
     let written = write_folder(out, &files)?;
-    emit!("{}", mission.report.to_text());
+    let mut report = mission.report.clone();
+    report.preflight = Some(rendered.verdict.clone());
+    emit!("{}", report.to_text());
     emitln!("wrote {}/: {}", written.display(), files_summary(&files));
-    Ok(())
+    if rendered.verdict.safe {
+        return Ok(());
+    }
+    if allow_unsafe {
+        emitln!("warning: the mission files were written although the preflight failed (--allow-unsafe)");
+        return Ok(());
+    }
+    Err(Failure::Unsafe(rendered.verdict.failures.clone()))
+}
+
+/// `agripath check DIR`: the preflight on a plan folder as it is now.
+fn check(folder: &Path, inputs: &Inputs) -> Result<(), Failure> {
+    let given = inputs.scenario.is_some() || inputs.fields.is_some();
+    let scenario = if given {
+        load_scenario(inputs)?
+    } else {
+        agripath::demo::scenario()?
+    };
+    let world = agripath::preflight::World {
+        farm: &scenario.farm,
+        terrain: scenario.terrain.as_ref(),
+        vehicle: &scenario.vehicle,
+    };
+    let verdict = agripath::preflight::check_folder(&world, folder)
+        .map_err(|fault| InputError::new(folder, fault))?;
+    emitln!("{}", verdict.summary());
+    for check in &verdict.checks {
+        emitln!(
+            "  {:<20} {:>5}  {} {} (limit {} {})",
+            check.name,
+            if check.passed { "ok" } else { "FAIL" },
+            check.figure,
+            check.unit,
+            check.rule,
+            check.limit
+        );
+    }
+    if verdict.safe {
+        Ok(())
+    } else {
+        Err(Failure::Unsafe(verdict.failures))
+    }
 }
 
 /// The files written, in one short line: mission files per sortie are counted, not listed.
@@ -242,8 +311,24 @@ fn plan(
     mission_args: &MissionArgs,
     out: &Path,
 ) -> Result<(), Failure> {
-    let mission_settings = mission_settings(mission_args)?;
+    let mut mission_settings = mission_settings(mission_args)?;
     let scenario = load_scenario(inputs)?;
+    let requested = match mission_args.altitude.as_deref() {
+        Some(key) => Some(key.parse::<AltitudeReference>().map_err(|why| {
+            InputError::new(
+                "--altitude",
+                Fault::InvalidValue {
+                    what: "--altitude".into(),
+                    value: key.into(),
+                    why,
+                },
+            )
+        })?),
+        None => None,
+    };
+    mission_settings.altitude =
+        AltitudeReference::resolve(requested, &scenario.terrain_spec, scenario.terrain_stated)
+            .map_err(|fault| InputError::new("--altitude", fault))?;
     let start = match &order.start {
         Some(values) if values.len() == 2 && values.iter().all(|value| value.is_finite()) => {
             let (x, y) = scenario
@@ -284,14 +369,16 @@ fn plan(
     spinner.enable_steady_tick(std::time::Duration::from_millis(120));
     let mission = plan_mission(&scenario, &settings)
         .map_err(|fault| InputError::new(&scenario.farm.source, fault))?;
-    spinner.set_message("writing mission files and maps");
-    let files = render(&scenario, &mission)
-        .map_err(|fault| InputError::new(&scenario.farm.source, fault))?;
+    spinner.set_message("writing mission files, checking them as flown, maps");
+    let result = write_plan(
+        out,
+        &scenario,
+        &mission,
+        mission_args.allow_unsafe,
+        &scenario.farm.source,
+    );
     spinner.finish_and_clear();
-    let written = write_folder(out, &files)?;
-    emit!("{}", mission.report.to_text());
-    emitln!("wrote {}/: {}", written.display(), files_summary(&files));
-    Ok(())
+    result
 }
 
 fn bad_argument(flag: &str, value: &str, why: impl Into<String>) -> Failure {
@@ -492,13 +579,7 @@ fn mission_settings(arguments: &MissionArgs) -> Result<MissionSettings, InputErr
             },
         )
     };
-    let mut settings = MissionSettings {
-        altitude: match arguments.altitude.as_str() {
-            "terrain" => AltitudeReference::Terrain,
-            _ => AltitudeReference::SeaLevel,
-        },
-        ..MissionSettings::default()
-    };
+    let mut settings = MissionSettings::default();
     if arguments.sprayer != "do-sprayer" {
         let parts: Vec<&str> = arguments.sprayer.split(':').collect();
         let numbers: Option<Vec<u16>> = parts

@@ -1,7 +1,8 @@
 //! The `agripath` program: arguments → validated request → library calls → exit code.
 //!
 //! Exit status: 0 done; 2 bad input (one line naming the file and the fault, nothing
-//! written); 1 a failure writing outputs.
+//! written); 3 the plan is not safe to fly (one line per failed preflight check, no mission
+//! file written); 1 a failure writing outputs.
 
 mod args;
 mod commands;
@@ -17,6 +18,8 @@ pub enum Failure {
     Input(agripath::InputError),
     /// Something outside the input failed (a disk full, a folder not writable): exit 1.
     Output(String),
+    /// The mission as written does not fly safely: exit 3, one line per failure.
+    Unsafe(Vec<String>),
 }
 
 impl From<agripath::InputError> for Failure {
@@ -44,6 +47,13 @@ fn main() -> ExitCode {
         Err(Failure::Output(message)) => {
             eprintln!("agripath: error: {message}");
             ExitCode::from(1)
+        }
+        Err(Failure::Unsafe(lines)) => {
+            for line in lines {
+                eprintln!("agripath: unsafe: {line}");
+            }
+            eprintln!("agripath: error: the mission is not safe to fly as written (no mission file was written by plan; --allow-unsafe writes them)");
+            ExitCode::from(3)
         }
     }
 }

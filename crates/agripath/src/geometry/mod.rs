@@ -1,5 +1,6 @@
 //! Planar geometry in a local metric frame: projection to and from UTM, polygon validity.
 
+pub mod detour;
 pub mod projection;
 pub mod validate;
 

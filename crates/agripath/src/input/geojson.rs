@@ -135,7 +135,12 @@ fn read_feature(value: &Value, place: &str) -> Result<Option<RawFeature>, Fault>
         }
     };
     let name = text_property("name")?;
-    let kind = text_property("kind")?.map(|kind| kind.to_ascii_lowercase());
+    // `kind` is ours; `type` is what other tools write for the same (a launch point's "type": "home").
+    let kind = match text_property("kind")? {
+        Some(kind) => Some(kind),
+        None => text_property("type")?,
+    }
+    .map(|kind| kind.to_ascii_lowercase());
     let geometry = match object.get("geometry") {
         None => return Err(Fault::Structure("has no 'geometry' member".into())),
         Some(Value::Null) => return Ok(None),

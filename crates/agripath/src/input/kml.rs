@@ -214,7 +214,9 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
                             *last = true;
                         }
                     }
-                    "value" | "SimpleData" if data_name.as_deref() == Some("kind") => {
+                    "value" | "SimpleData"
+                        if matches!(data_name.as_deref(), Some("kind") | Some("type")) =>
+                    {
                         if let Some(state) = placemark.as_mut() {
                             state.kind = Some(content.trim().to_ascii_lowercase());
                         }

@@ -23,14 +23,84 @@ use crate::pipeline::PlannedMission;
 use crate::sortie::route::{RoutePoint, Segment};
 use crate::terrain::Terrain;
 
-/// How altitudes are written.
+/// How altitudes are written (decision 0012).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum AltitudeReference {
-    /// Above sea level from our terrain model (MAV_FRAME_GLOBAL, QGC "calculated above terrain").
+    /// Above the launch point's ground (MAV_FRAME_GLOBAL_RELATIVE_ALT, QGC "relative"): the
+    /// ground station's default, and the only honest one without a terrain model.
+    Relative,
+    /// Above sea level from our terrain model (MAV_FRAME_GLOBAL, QGC "absolute"): needs a DEM
+    /// or a stated ground height (`--terrain flat:H`).
     SeaLevel,
     /// Above the terrain, as the autopilot measures it (MAV_FRAME_GLOBAL_TERRAIN_ALT, ArduPilot).
     Terrain,
+}
+
+impl AltitudeReference {
+    pub const KEYS: [&'static str; 3] = ["relative", "sea-level", "terrain"];
+
+    pub fn key(self) -> &'static str {
+        match self {
+            Self::Relative => "relative",
+            Self::SeaLevel => "sea-level",
+            Self::Terrain => "terrain",
+        }
+    }
+
+    /// The reference a plan uses: the one asked for, else `sea-level` over a DEM and
+    /// `relative` without one. `sea-level` needs heights above sea level: a DEM or a stated
+    /// flat ground.
+    pub fn resolve(
+        requested: Option<Self>,
+        terrain: &crate::terrain::TerrainSpec,
+        stated: bool,
+    ) -> Result<Self, Fault> {
+        let dem = matches!(terrain, crate::terrain::TerrainSpec::File { .. });
+        let sea_level_known =
+            dem || (stated && matches!(terrain, crate::terrain::TerrainSpec::Flat { .. }));
+        match requested {
+            None if dem => Ok(Self::SeaLevel),
+            None => Ok(Self::Relative),
+            Some(Self::SeaLevel) if !sea_level_known => Err(Fault::InvalidValue {
+                what: "--altitude".into(),
+                value: "sea-level".into(),
+                why: "sea-level altitudes need a terrain model (--terrain DEM) or a stated ground height (--terrain flat:H); without them use relative".into(),
+            }),
+            Some(reference) => Ok(reference),
+        }
+    }
+
+    /// What the altitudes of this reference assume, for the report and the summary.
+    pub fn assumption(self, terrain: &crate::terrain::TerrainSpec) -> String {
+        let ground = match terrain {
+            crate::terrain::TerrainSpec::File { path, .. } => format!("the DEM {}", path.display()),
+            crate::terrain::TerrainSpec::Flat { height_m } => {
+                format!("flat ground at {height_m} m")
+            }
+            _ => "the analytic terrain model (heights relative to its own datum)".into(),
+        };
+        match self {
+            Self::Relative => format!("altitudes relative to the launch point's ground; terrain under the flight from {ground}"),
+            Self::SeaLevel => format!("altitudes above sea level from {ground}"),
+            Self::Terrain => format!("altitudes above the terrain as the autopilot measures it; planned over {ground}"),
+        }
+    }
+}
+
+impl std::str::FromStr for AltitudeReference {
+    type Err = String;
+
+    fn from_str(text: &str) -> Result<Self, Self::Err> {
+        match text {
+            "relative" => Ok(Self::Relative),
+            "sea-level" => Ok(Self::SeaLevel),
+            "terrain" => Ok(Self::Terrain),
+            other => Err(format!(
+                "unknown altitude reference '{other}' (known: relative, sea-level, terrain)"
+            )),
+        }
+    }
 }
 
 /// How the sprayer is switched.
@@ -58,17 +128,20 @@ pub struct MissionSettings {
     pub sample_spacing_m: f64,
     /// Where a plan in local metres lies on Earth (lon, lat of its origin), for mission files.
     pub local_origin: (f64, f64),
+    /// How far the geofence's inclusion polygon reaches beyond the flight, metres.
+    pub fence_margin_m: f64,
 }
 
 impl Default for MissionSettings {
     fn default() -> Self {
         Self {
-            altitude: AltitudeReference::SeaLevel,
+            altitude: AltitudeReference::Relative,
             sprayer: SprayerCommand::DoSprayer,
             terrain_tolerance_m: 1.0,
-            sample_spacing_m: 2.0,
+            sample_spacing_m: 1.0,
             // Harbin, Heilongjiang: the Northeast Agricultural University fields of seed 003.
             local_origin: (126.63, 45.75),
+            fence_margin_m: 10.0,
         }
     }
 }
@@ -103,6 +176,16 @@ pub struct Item {
 impl Item {
     pub fn sea_level_m(&self) -> f64 {
         self.ground_m + self.above_ground_m
+    }
+
+    /// The altitude written for this item in `reference`, with the launch point's ground at
+    /// `home_ground_m`.
+    pub fn altitude_m(&self, reference: AltitudeReference, home_ground_m: f64) -> f64 {
+        match reference {
+            AltitudeReference::Relative => self.sea_level_m() - home_ground_m,
+            AltitudeReference::SeaLevel => self.sea_level_m(),
+            AltitudeReference::Terrain => self.above_ground_m,
+        }
     }
 
     /// Whether the command flies somewhere (the others act where the drone is).
@@ -145,6 +228,29 @@ impl GeoFrame {
         match self.local {
             Some((zone, easting, northing)) => from_utm(easting + x, northing + y, zone),
             None => self.system.to_input(x, y),
+        }
+    }
+
+    /// Longitude, latitude → plan metres: the inverse of [`GeoFrame::lon_lat`], for reading
+    /// mission files back.
+    pub fn plan_xy(&self, lon: f64, lat: f64) -> (f64, f64) {
+        match self.local {
+            Some((zone, easting, northing)) => {
+                let (x, y) = to_utm(lon, lat, zone);
+                (x - easting, y - northing)
+            }
+            None => self.system.to_plan(lon, lat),
+        }
+    }
+
+    /// A place as the user's input gives it: lon/lat for lon/lat input, metres for local.
+    pub fn describe(&self, x: f64, y: f64) -> String {
+        match self.system {
+            CoordinateSystem::Local => format!("({x:.1}, {y:.1})"),
+            CoordinateSystem::Utm(_) => {
+                let (lon, lat) = self.lon_lat(x, y);
+                format!("({lon:.6}, {lat:.6})")
+            }
         }
     }
 }
@@ -218,16 +324,13 @@ fn follow_terrain(
         })
         .collect();
     let mut keep = vec![false; samples.len()];
+    // The terrain between two samples may stray a little beyond what the samples show: keep
+    // a tenth of the tolerance (at least 5 cm) for it, so the flight as sampled finer stays within.
+    let tolerance = (settings.terrain_tolerance_m * 0.9).min(settings.terrain_tolerance_m - 0.05);
     for pair in anchors.windows(2) {
         keep[pair[0]] = true;
         keep[pair[1]] = true;
-        simplify(
-            &profile,
-            settings.terrain_tolerance_m,
-            &mut keep,
-            pair[0],
-            pair[1],
-        );
+        simplify(&profile, tolerance.max(0.01), &mut keep, pair[0], pair[1]);
     }
     Ok(samples
         .into_iter()
@@ -236,7 +339,88 @@ fn follow_terrain(
         .collect())
 }
 
+/// Terrain samples along a transit, metres: at most this far apart (the preflight samples
+/// legs at the same spacing).
+pub const TRANSIT_SAMPLE_M: f64 = 1.0;
+
+/// The highest ground under the straight leg a → b, sampled every [`TRANSIT_SAMPLE_M`].
+pub fn highest_ground(terrain: &dyn Terrain, a: (f64, f64), b: (f64, f64)) -> Result<f64, Fault> {
+    let length = (b.0 - a.0).hypot(b.1 - a.1);
+    let steps = (length / TRANSIT_SAMPLE_M).ceil().max(1.0) as usize;
+    let mut highest = f64::NEG_INFINITY;
+    for step in 0..=steps {
+        let t = step as f64 / steps as f64;
+        highest = highest.max(terrain.height_m(a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))?);
+    }
+    Ok(highest)
+}
+
+/// A transit between two places at a level altitude: the corners it turns at to keep out of
+/// the obstacles (the geofence's exclusion zones) and the altitude above sea level that
+/// clears the highest ground under every leg by `clearance_m`.
+struct Transit {
+    corners: Vec<RoutePoint>,
+    altitude_m: f64,
+}
+
+/// How far transits keep from obstacles, metres.
+pub const OBSTACLE_CLEARANCE_M: f64 = 2.0;
+
+fn transit(
+    from: &RoutePoint,
+    to: &RoutePoint,
+    scenario: &Scenario,
+    clearance_m: f64,
+) -> Result<Transit, Fault> {
+    let obstacles: Vec<geo::Polygon<f64>> = scenario
+        .farm
+        .obstacles
+        .iter()
+        .map(|obstacle| obstacle.polygon.clone())
+        .collect();
+    let corners = crate::geometry::detour::detour(
+        geo::Coord {
+            x: from.x,
+            y: from.y,
+        },
+        geo::Coord { x: to.x, y: to.y },
+        &obstacles,
+        OBSTACLE_CLEARANCE_M,
+    )
+    .ok_or_else(|| {
+        Fault::Structure(format!(
+            "no transit from ({:.1}, {:.1}) to ({:.1}, {:.1}) keeps out of the obstacles",
+            from.x, from.y, to.x, to.y
+        ))
+    })?;
+    let corners: Vec<RoutePoint> = corners
+        .into_iter()
+        .map(|corner| {
+            Ok(RoutePoint {
+                x: corner.x,
+                y: corner.y,
+                ground_m: scenario.terrain.height_m(corner.x, corner.y)?,
+            })
+        })
+        .collect::<Result<_, Fault>>()?;
+    let mut path = vec![(from.x, from.y)];
+    path.extend(corners.iter().map(|corner| (corner.x, corner.y)));
+    path.push((to.x, to.y));
+    let mut highest = f64::NEG_INFINITY;
+    for pair in path.windows(2) {
+        highest = highest.max(highest_ground(scenario.terrain.as_ref(), pair[0], pair[1])?);
+    }
+    Ok(Transit {
+        corners,
+        altitude_m: highest + clearance_m,
+    })
+}
+
 /// The missions of a plan, one per sortie (one in all when the route is not split).
+///
+/// Every transit (out from the supply point, transfers that leave a field, back home) flies
+/// level at the cruise height (spray height + h, h ≥ 5 m) above the highest ground under it,
+/// and round the obstacles, which the geofence excludes at every altitude.
 pub fn build_missions(
     scenario: &Scenario,
     mission: &PlannedMission,
@@ -279,6 +463,7 @@ pub fn build_missions(
     }
     let spray_height = vehicle.spray_height_m;
     let cruise = spray_height + vehicle.safe_height_m.max(5.0);
+    // An item at `point`, `above` metres over its ground.
     let item = |action: Action, point: &RoutePoint, above: f64| {
         let (lon, lat) = frame.lon_lat(point.x, point.y);
         Item {
@@ -289,22 +474,32 @@ pub fn build_missions(
             above_ground_m: above,
         }
     };
+    // An item at `point` at `altitude_m` above sea level.
+    let level = |action: Action, point: &RoutePoint, altitude_m: f64| {
+        item(action, point, altitude_m - point.ground_m)
+    };
     let home = item(Action::Waypoint, &supply, 0.0);
     let points = work_route.points();
     let segments = work_route.segments();
     let mut missions = Vec::new();
     for (sortie, pair) in bounds.windows(2).enumerate() {
         let (first, last) = (pair[0], pair[1]);
+        let out = transit(&supply, &points[first], scenario, cruise)?;
         let mut items = vec![
-            item(Action::Takeoff, &supply, cruise),
-            item(
+            level(Action::Takeoff, &supply, out.altitude_m),
+            level(
                 Action::Speed {
                     mps: vehicle.transit_speed_mps,
                 },
                 &supply,
-                cruise,
+                out.altitude_m,
             ),
-            item(Action::Waypoint, &points[first], cruise),
+        ];
+        for corner in &out.corners {
+            items.push(level(Action::Waypoint, corner, out.altitude_m));
+        }
+        items.extend([
+            level(Action::Waypoint, &points[first], out.altitude_m),
             item(Action::Waypoint, &points[first], spray_height),
             item(
                 Action::Speed {
@@ -313,7 +508,7 @@ pub fn build_missions(
                 &points[first],
                 spray_height,
             ),
-        ];
+        ]);
         let mut index = first;
         while index < last {
             match segments[index] {
@@ -341,11 +536,20 @@ pub fn build_missions(
                     index = end;
                 }
                 Segment::Turn => {
-                    items.push(item(Action::Waypoint, &points[index + 1], spray_height));
+                    // Turns stay low inside the field, so they follow the terrain as swaths do.
+                    let run = follow_terrain(
+                        &points[index..=index + 1],
+                        scenario.terrain.as_ref(),
+                        settings,
+                    )?;
+                    for point in &run[1..] {
+                        items.push(item(Action::Waypoint, point, spray_height));
+                    }
                     index += 1;
                 }
                 Segment::Transfer => {
                     let (from, to) = (&points[index], &points[index + 1]);
+                    let hop = transit(from, to, scenario, cruise)?;
                     items.push(item(
                         Action::Speed {
                             mps: vehicle.transit_speed_mps,
@@ -353,8 +557,11 @@ pub fn build_missions(
                         from,
                         spray_height,
                     ));
-                    items.push(item(Action::Waypoint, from, cruise));
-                    items.push(item(Action::Waypoint, to, cruise));
+                    items.push(level(Action::Waypoint, from, hop.altitude_m));
+                    for corner in &hop.corners {
+                        items.push(level(Action::Waypoint, corner, hop.altitude_m));
+                    }
+                    items.push(level(Action::Waypoint, to, hop.altitude_m));
                     items.push(item(Action::Waypoint, to, spray_height));
                     items.push(item(
                         Action::Speed {
@@ -367,6 +574,7 @@ pub fn build_missions(
                 }
             }
         }
+        let back = transit(&points[last], &supply, scenario, cruise)?;
         items.push(item(
             Action::Speed {
                 mps: vehicle.transit_speed_mps,
@@ -374,8 +582,11 @@ pub fn build_missions(
             &points[last],
             spray_height,
         ));
-        items.push(item(Action::Waypoint, &points[last], cruise));
-        items.push(item(Action::Waypoint, &supply, cruise));
+        items.push(level(Action::Waypoint, &points[last], back.altitude_m));
+        for corner in &back.corners {
+            items.push(level(Action::Waypoint, corner, back.altitude_m));
+        }
+        items.push(level(Action::Waypoint, &supply, back.altitude_m));
         items.push(item(Action::Land, &supply, 0.0));
         missions.push(SortieMission {
             sortie,

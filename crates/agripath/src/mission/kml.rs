@@ -1,6 +1,8 @@
 //! KML for Google Earth: the fields and obstacles on the ground, and per sortie a folder with
 //! its sprayed stretches, its transit legs (climbs and returns) and its waypoints, at their
-//! altitudes above sea level (`altitudeMode` absolute).
+//! altitudes: above sea level (`altitudeMode` absolute) when the mission's altitudes are
+//! above sea level, else above the ground under each point (`relativeToGround`, which Google
+//! Earth draws over its own terrain).
 
 use std::fmt::Write;
 
@@ -50,6 +52,19 @@ pub fn mission_kml(
     settings: &MissionSettings,
 ) -> String {
     let frame = GeoFrame::new(farm.coordinate_system, settings.local_origin);
+    let absolute = settings.altitude == super::flight::AltitudeReference::SeaLevel;
+    let mode = if absolute {
+        "absolute"
+    } else {
+        "relativeToGround"
+    };
+    let height = |item: &Item| {
+        if absolute {
+            item.sea_level_m()
+        } else {
+            item.above_ground_m
+        }
+    };
     let mut kml = String::new();
     let _ = writeln!(kml, r#"<?xml version="1.0" encoding="UTF-8"?>"#);
     let _ = writeln!(
@@ -113,10 +128,10 @@ pub fn mission_kml(
             match item.action {
                 Action::Spray { on } => spraying = on,
                 _ if item.moves() => {
-                    let point = (item.lon, item.lat, item.sea_level_m());
+                    let point = (item.lon, item.lat, height(item));
                     if pieces.last().is_none_or(|(kind, _)| *kind != spraying) {
                         let start = last
-                            .map(|l| vec![(l.lon, l.lat, l.sea_level_m())])
+                            .map(|l| vec![(l.lon, l.lat, height(l))])
                             .unwrap_or_default();
                         pieces.push((spraying, start));
                     }
@@ -129,7 +144,7 @@ pub fn mission_kml(
         for (sprayed, points) in pieces.iter().filter(|(_, points)| points.len() >= 2) {
             let _ = writeln!(
                 kml,
-                "<Placemark><name>{}</name><styleUrl>#{}</styleUrl><LineString><altitudeMode>absolute</altitudeMode><coordinates>{}</coordinates></LineString></Placemark>",
+                "<Placemark><name>{}</name><styleUrl>#{}</styleUrl><LineString><altitudeMode>{mode}</altitudeMode><coordinates>{}</coordinates></LineString></Placemark>",
                 if *sprayed { "spray" } else { "transit" },
                 if *sprayed { style.as_str() } else { "transit" },
                 coordinates(points)
@@ -144,9 +159,9 @@ pub fn mission_kml(
         {
             let _ = writeln!(
                 kml,
-                "<Placemark><name>{}</name><styleUrl>#{style}</styleUrl><Point><altitudeMode>absolute</altitudeMode><coordinates>{}</coordinates></Point></Placemark>",
+                "<Placemark><name>{}</name><styleUrl>#{style}</styleUrl><Point><altitudeMode>{mode}</altitudeMode><coordinates>{}</coordinates></Point></Placemark>",
                 index + 1,
-                coordinates(&[(item.lon, item.lat, item.sea_level_m())])
+                coordinates(&[(item.lon, item.lat, height(item))])
             );
         }
         let _ = writeln!(kml, "</Folder></Folder>");

@@ -5,6 +5,7 @@
 use super::flight::{Action, AltitudeReference, Item, SprayerCommand};
 
 pub const FRAME_GLOBAL: u8 = 0;
+pub const FRAME_GLOBAL_RELATIVE_ALT: u8 = 3;
 pub const FRAME_GLOBAL_TERRAIN_ALT: u8 = 10;
 pub const CMD_NAV_WAYPOINT: u16 = 16;
 pub const CMD_NAV_LAND: u16 = 21;
@@ -22,19 +23,24 @@ pub struct Command {
 }
 
 impl Command {
-    /// The altitude written for `item` in `reference`.
-    pub fn altitude(item: &Item, reference: AltitudeReference) -> f64 {
+    /// The MAVLink frame of position items in `reference`.
+    pub fn frame_of(reference: AltitudeReference) -> u8 {
         match reference {
-            AltitudeReference::SeaLevel => item.sea_level_m(),
-            AltitudeReference::Terrain => item.above_ground_m,
+            AltitudeReference::Relative => FRAME_GLOBAL_RELATIVE_ALT,
+            AltitudeReference::SeaLevel => FRAME_GLOBAL,
+            AltitudeReference::Terrain => FRAME_GLOBAL_TERRAIN_ALT,
         }
     }
 
-    pub fn of(item: &Item, reference: AltitudeReference, sprayer: SprayerCommand) -> Self {
-        let frame = match reference {
-            AltitudeReference::SeaLevel => FRAME_GLOBAL,
-            AltitudeReference::Terrain => FRAME_GLOBAL_TERRAIN_ALT,
-        };
+    /// The command of `item`, its altitude in `reference` with the launch ground at
+    /// `home_ground_m`.
+    pub fn of(
+        item: &Item,
+        reference: AltitudeReference,
+        home_ground_m: f64,
+        sprayer: SprayerCommand,
+    ) -> Self {
+        let frame = Self::frame_of(reference);
         let place = |command: u16, first: [Option<f64>; 4]| Command {
             command,
             frame,
@@ -45,7 +51,7 @@ impl Command {
                 first[3],
                 Some(item.lat),
                 Some(item.lon),
-                Some(Self::altitude(item, reference)),
+                Some(item.altitude_m(reference, home_ground_m)),
             ],
         };
         let act = |command: u16, first: [f64; 3]| Command {

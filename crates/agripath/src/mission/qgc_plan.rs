@@ -3,7 +3,10 @@
 //! with `plannedHomePosition` [lat, lon, AMSL], `firmwareType` 3 (ArduPilot), `vehicleType` 2;
 //! every item a `SimpleItem` with exactly seven params (`null` for NaN), `autoContinue`,
 //! `doJumpId` from 1, and `AltitudeMode`, `Altitude`, `AMSLAltAboveTerrain` together.
-//! Obstacles become exclusion polygons of the geofence.
+//! The geofence (decision 0012): one inclusion polygon, the convex hull of every place the
+//! sortie flies grown by `fence_margin_m` (one, because firmware that meets several inclusion
+//! polygons asks to be inside all of them), and the obstacles as exclusion polygons; the
+//! supply point is the rally point.
 
 use serde_json::{json, Value};
 
@@ -11,12 +14,43 @@ use super::flight::{AltitudeReference, GeoFrame, MissionSettings, SortieMission}
 use super::mavlink::Command;
 use crate::model::Farm;
 
-/// QGC's altitude modes: 3 = calculated above terrain (frame 0, AMSL), 4 = terrain frame.
+/// QGC's altitude modes (`QGroundControlQmlGlobal::AltMode`): 1 relative to home (frame 3),
+/// 2 absolute (frame 0, AMSL), 4 terrain frame (frame 10).
 fn altitude_mode(reference: AltitudeReference) -> u8 {
     match reference {
-        AltitudeReference::SeaLevel => 3,
+        AltitudeReference::Relative => 1,
+        AltitudeReference::SeaLevel => 2,
         AltitudeReference::Terrain => 4,
     }
+}
+
+/// The geofence of a sortie in plan metres: the inclusion ring (closed) and the exclusion
+/// rings (the obstacles). The preflight checks flights against what the file says, which is
+/// this.
+pub fn fence_rings(
+    mission: &SortieMission,
+    farm: &Farm,
+    settings: &MissionSettings,
+) -> (Vec<geo::Coord<f64>>, Vec<Vec<geo::Coord<f64>>>) {
+    let frame = GeoFrame::new(farm.coordinate_system, settings.local_origin);
+    let mut places: Vec<geo::Coord<f64>> = mission
+        .items
+        .iter()
+        .chain(std::iter::once(&mission.home))
+        .filter(|item| item.moves() || std::ptr::eq(*item, &mission.home))
+        .map(|item| {
+            let (x, y) = frame.plan_xy(item.lon, item.lat);
+            geo::Coord { x, y }
+        })
+        .collect();
+    places.dedup();
+    let inclusion = crate::geometry::detour::grown_convex_hull(&places, settings.fence_margin_m);
+    let exclusions = farm
+        .obstacles
+        .iter()
+        .map(|obstacle| obstacle.polygon.exterior().0.clone())
+        .collect();
+    (inclusion, exclusions)
 }
 
 fn rounded(value: f64, decimals: i32) -> Value {
@@ -38,7 +72,12 @@ pub fn plan_file(
         .iter()
         .enumerate()
         .map(|(index, item)| {
-            let command = Command::of(item, settings.altitude, settings.sprayer);
+            let command = Command::of(
+                item,
+                settings.altitude,
+                mission.home.ground_m,
+                settings.sprayer,
+            );
             let params: Vec<Value> = command
                 .params
                 .iter()
@@ -59,28 +98,34 @@ pub fn plan_file(
             });
             if item.moves() {
                 object["AltitudeMode"] = json!(altitude_mode(settings.altitude));
-                object["Altitude"] = rounded(item.above_ground_m, 3);
+                object["Altitude"] =
+                    rounded(item.altitude_m(settings.altitude, mission.home.ground_m), 3);
                 object["AMSLAltAboveTerrain"] = rounded(item.sea_level_m(), 3);
             }
             object
         })
         .collect();
-    let polygons: Vec<Value> = farm
-        .obstacles
-        .iter()
-        .map(|obstacle| {
-            let ring: Vec<Value> = obstacle.polygon.exterior().0
-                [..obstacle.polygon.exterior().0.len() - 1]
-                .iter()
-                .map(|point| {
-                    let (lon, lat) = frame.lon_lat(point.x, point.y);
-                    json!([rounded(lat, 9), rounded(lon, 9)])
-                })
-                .collect();
-            json!({"inclusion": false, "polygon": ring, "version": 1})
-        })
-        .collect();
+    let (inclusion, exclusions) = fence_rings(mission, farm, settings);
+    let ring_json = |ring: &[geo::Coord<f64>]| -> Vec<Value> {
+        ring[..ring.len().saturating_sub(1)]
+            .iter()
+            .map(|point| {
+                let (lon, lat) = frame.lon_lat(point.x, point.y);
+                json!([rounded(lat, 9), rounded(lon, 9)])
+            })
+            .collect()
+    };
+    let mut polygons =
+        vec![json!({"inclusion": true, "polygon": ring_json(&inclusion), "version": 1})];
+    for ring in &exclusions {
+        polygons.push(json!({"inclusion": false, "polygon": ring_json(ring), "version": 1}));
+    }
     let home = &mission.home;
+    // The rally point: the supply point, at the altitude the sortie leaves it (relative to home).
+    let rally_altitude = mission
+        .items
+        .first()
+        .map_or(0.0, |item| item.sea_level_m() - home.ground_m);
     let plan = json!({
         "fileType": "Plan",
         "version": 1,
@@ -96,7 +141,7 @@ pub fn plan_file(
             "plannedHomePosition": [rounded(home.lat, 9), rounded(home.lon, 9), rounded(home.sea_level_m(), 3)],
             "items": items,
         },
-        "rallyPoints": {"points": [], "version": 2},
+        "rallyPoints": {"points": [[rounded(home.lat, 9), rounded(home.lon, 9), rounded(rally_altitude, 3)]], "version": 2},
     });
     serde_json::to_string_pretty(&plan).expect("JSON value") + "\n"
 }

@@ -1,6 +1,7 @@
 //! Mission Planner's `QGC WPL 110` text, one file per sortie: a header line, then one item
 //! per line in 12 tab-separated columns (index, current, frame, command, p1-p4, lat, lon, alt,
-//! autocontinue). Row 0 is home (the supply point, AMSL), as ArduPilot expects.
+//! autocontinue). Row 0 is home (the supply point, AMSL), as ArduPilot expects; position
+//! items are in the frame of the altitude reference (3 relative, 0 sea level, 10 terrain).
 
 use std::fmt::Write;
 
@@ -26,7 +27,7 @@ pub fn waypoints_file(mission: &SortieMission, settings: &MissionSettings) -> St
         home.sea_level_m()
     );
     for (index, item) in mission.items.iter().enumerate() {
-        let command = Command::of(item, settings.altitude, settings.sprayer);
+        let command = Command::of(item, settings.altitude, home.ground_m, settings.sprayer);
         let p = command.params;
         let _ = writeln!(
             text,

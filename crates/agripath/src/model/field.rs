@@ -88,6 +88,23 @@ pub struct Marker {
     pub position: Coord<f64>,
 }
 
+/// Words that mark where the drone takes off, refills and swaps batteries, as operators name
+/// or type a point in Google Earth or a GeoJSON editor (case-insensitive).
+pub const LAUNCH_WORDS: [&str; 6] = ["launch", "home", "takeoff", "supply", "base", "start"];
+
+impl Marker {
+    /// Whether the point is a launch/supply point: by its `kind`/`type` or by its name.
+    pub fn is_launch(&self) -> bool {
+        let word = |text: &str| {
+            let text = text.trim().to_ascii_lowercase();
+            LAUNCH_WORDS
+                .iter()
+                .any(|w| text == *w || text.replace(['-', '_', ' '], "") == *w)
+        };
+        word(&self.kind) || word(&self.name)
+    }
+}
+
 /// Everything read from one field file, validated.
 #[derive(Debug, Clone)]
 pub struct Farm {

@@ -41,6 +41,9 @@ pub struct Scenario {
     pub name: String,
     pub farm: Farm,
     pub terrain_spec: TerrainSpec,
+    /// Whether the terrain was given (a scenario's `[terrain]` or `--terrain`), not taken
+    /// from the field file or assumed flat: a stated `flat:H` gives sea-level heights.
+    pub terrain_stated: bool,
     pub terrain: Box<dyn Terrain>,
     pub vehicle: Vehicle,
 }
@@ -136,6 +139,7 @@ impl Scenario {
         Ok(Self {
             name,
             farm,
+            terrain_stated: parts.terrain.is_some(),
             terrain_spec,
             terrain,
             vehicle,

@@ -78,6 +78,15 @@ pub struct Report {
     pub total_time_s: f64,
     /// Wall time of planning; the one figure that differs between identical runs.
     pub runtime_s: f64,
+    /// How the mission files give altitudes (`relative`, `sea-level`, `terrain`)…
+    pub altitude_reference: crate::mission::flight::AltitudeReference,
+    /// …and what that assumes about the ground.
+    pub altitude_assumption: String,
+    /// What the mission files were asked for (altitude reference, sprayer, terrain tolerance,
+    /// origin of a local frame, fence margin): what `agripath check` holds them to.
+    pub mission: crate::mission::flight::MissionSettings,
+    /// The preflight check of the mission files as written (`null` before it has run).
+    pub preflight: Option<crate::preflight::Verdict>,
 }
 
 /// One sortie in `report.json`.
@@ -181,6 +190,10 @@ impl Report {
                 .collect()
         });
         Self {
+            altitude_reference: settings.mission.altitude,
+            altitude_assumption: settings.mission.altitude.assumption(&scenario.terrain_spec),
+            preflight: None,
+            mission: settings.mission,
             scenario: scenario.name.clone(),
             coordinate_system: scenario.farm.coordinate_system.describe(),
             vehicle: vehicle.name.clone(),
@@ -320,6 +333,11 @@ impl Report {
             self.non_spray_time_s / 60.0,
             self.runtime_s
         ));
+        text.push_str(&format!("altitudes: {}\n", self.altitude_assumption));
+        if let Some(verdict) = &self.preflight {
+            text.push_str(&verdict.summary());
+            text.push('\n');
+        }
         text
     }
 }

@@ -23,7 +23,7 @@ pub fn breaks(route: &WorkRoute, model: &SortieModel) -> Result<Vec<usize>, Faul
     let spray = route.spray_prefix();
     let flight = route.flight_prefix();
     let tank = model.spray_per_tank_m.unwrap_or(f64::INFINITY) + TOLERANCE;
-    let endurance = model.endurance_s + TOLERANCE;
+    let endurance = model.usable_s() + TOLERANCE;
     // Per point: the one-way return in seconds.
     let leg_s: Vec<f64> = route
         .points()

@@ -100,7 +100,7 @@ pub fn fitness(route: &WorkRoute, model: &SortieModel, breaks: &[usize]) -> f64 
         let spray_excess = model.spray_per_tank_m.map_or(0.0, |tank| {
             (route.spray_between(first, end) - tank).max(0.0)
         });
-        let time_excess = (model.flight_s(route, first, end) - model.endurance_s).max(0.0);
+        let time_excess = (model.flight_s(route, first, end) - model.usable_s()).max(0.0);
         if spray_excess > 1e-6 || time_excess > 1e-6 {
             total += 1e6 + 1e3 * (spray_excess + time_excess);
         }
@@ -114,7 +114,7 @@ fn fewest_returns(route: &WorkRoute, model: &SortieModel) -> usize {
     let by_tank = model
         .spray_per_tank_m
         .map_or(1.0, |tank| (route.total_spray_m() / tank).ceil());
-    let by_battery = (route.flight_between(0, route.len() - 1) / model.endurance_s).ceil();
+    let by_battery = (route.flight_between(0, route.len() - 1) / model.usable_s()).ceil();
     (by_tank.max(by_battery).max(1.0) as usize) - 1
 }
 

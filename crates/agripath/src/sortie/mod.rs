@@ -93,6 +93,9 @@ pub struct SortieModel {
     /// D_max: spray metres per tank; `None` when the tank does not limit a sortie.
     pub spray_per_tank_m: Option<f64>,
     pub endurance_s: f64,
+    /// Battery seconds a sortie spends beyond what eq. 2 charges (its climbs and descents at
+    /// climb speed): a sortie may fly at most `endurance_s − battery_reserve_s` of eq. 2's time.
+    pub battery_reserve_s: f64,
     pub battery_swap_s: f64,
     pub refill_base_s: f64,
     pub refill_max_s: f64,
@@ -111,6 +114,7 @@ impl SortieModel {
             supply,
             spray_per_tank_m: vehicle.spray_length_per_tank_m(),
             endurance_s: vehicle.battery_endurance_s,
+            battery_reserve_s: 0.0,
             battery_swap_s: vehicle.battery_swap_s,
             refill_base_s: vehicle.refill_base_s,
             refill_max_s: vehicle.refill_max_s,
@@ -152,11 +156,16 @@ impl SortieModel {
             + route.flight_between(first, last)
     }
 
+    /// Seconds of eq. 2's sortie time one battery allows.
+    pub fn usable_s(&self) -> f64 {
+        self.endurance_s - self.battery_reserve_s
+    }
+
     /// Whether one tank and one battery fly the sortie `first..=last`.
     pub fn feasible(&self, route: &WorkRoute, first: usize, last: usize) -> bool {
         self.spray_per_tank_m
             .is_none_or(|tank| route.spray_between(first, last) <= tank + TOLERANCE)
-            && self.flight_s(route, first, last) <= self.endurance_s + TOLERANCE
+            && self.flight_s(route, first, last) <= self.usable_s() + TOLERANCE
     }
 
     /// E's summand for a return at `at` followed by the sortie `at..=next_last`.
@@ -325,6 +334,7 @@ mod tests {
             },
             spray_per_tank_m: Some(tank_m),
             endurance_s,
+            battery_reserve_s: 0.0,
             battery_swap_s: 60.0,
             refill_base_s: 20.0,
             refill_max_s: 120.0,

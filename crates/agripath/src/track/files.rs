@@ -59,7 +59,11 @@ pub fn mission(scenario: &TrackScenario, points: &[[f64; 3]]) -> String {
         home: items[0],
         items,
     };
-    wpl::waypoints_file(&mission, &MissionSettings::default())
+    let settings = MissionSettings {
+        altitude: crate::mission::flight::AltitudeReference::SeaLevel,
+        ..MissionSettings::default()
+    };
+    wpl::waypoints_file(&mission, &settings)
 }
 
 fn circle(x: f64, y: f64, radius: f64) -> Vec<[f64; 2]> {

@@ -1,0 +1,252 @@
+//! A mission file's items flown as an autopilot flies them: legs in plan metres with their
+//! altitudes above sea level, spray state and speed.
+//!
+//! ArduPilot's reading of the items: NAV_TAKEOFF climbs where the vehicle stands (from the
+//! ground at home) to its altitude; NAV_WAYPOINT flies straight to its place; NAV_LAND flies
+//! to its place at the current altitude and descends to the ground; DO_CHANGE_SPEED sets the
+//! ground speed (p2); DO_SPRAYER (p1 = 1 on) or DO_SET_SERVO on the sprayer's channel switch
+//! the spray. Altitudes: frame 0 above sea level, frame 3 above home's ground, frame 10 above
+//! the terrain under the vehicle (interpolated along the leg, as terrain following does).
+
+use super::read_back::FileItem;
+use crate::mission::flight::SprayerCommand;
+use crate::mission::mavlink::{
+    CMD_DO_CHANGE_SPEED, CMD_DO_SET_SERVO, CMD_DO_SPRAYER, CMD_NAV_LAND, CMD_NAV_TAKEOFF,
+    CMD_NAV_WAYPOINT, FRAME_GLOBAL, FRAME_GLOBAL_RELATIVE_ALT, FRAME_GLOBAL_TERRAIN_ALT,
+};
+use crate::terrain::Terrain;
+
+/// An altitude as an item gives it: above sea level, or above the terrain (frame 10).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Height {
+    SeaLevel(f64),
+    AboveTerrain(f64),
+}
+
+/// A place of the flight: plan metres and a height.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Place {
+    pub x: f64,
+    pub y: f64,
+    pub height: Height,
+}
+
+/// What kind of motion a leg is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Motion {
+    /// Straight climb from the ground at takeoff.
+    Takeoff,
+    /// Straight descent to the ground at the end.
+    Landing,
+    /// Any other leg.
+    Flight,
+}
+
+/// One leg of the flight.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Leg {
+    /// The item (1-based, as ground stations number them) that ends the leg.
+    pub item: usize,
+    pub from: Place,
+    pub to: Place,
+    pub spraying: bool,
+    pub speed_mps: f64,
+    pub motion: Motion,
+}
+
+impl Leg {
+    pub fn horizontal_m(&self) -> f64 {
+        (self.to.x - self.from.x).hypot(self.to.y - self.from.y)
+    }
+
+    /// Position and altitude above sea level at fraction `t` of the leg.
+    pub fn at(
+        &self,
+        t: f64,
+        terrain: &dyn Terrain,
+    ) -> Result<(f64, f64, f64), crate::TerrainError> {
+        let x = self.from.x + t * (self.to.x - self.from.x);
+        let y = self.from.y + t * (self.to.y - self.from.y);
+        let altitude = match (self.from.height, self.to.height) {
+            (Height::AboveTerrain(a), Height::AboveTerrain(b)) => {
+                terrain.height_m(x, y)? + a + t * (b - a)
+            }
+            (a, b) => {
+                let a = self.sea_level(a, self.from.x, self.from.y, terrain)?;
+                let b = self.sea_level(b, self.to.x, self.to.y, terrain)?;
+                a + t * (b - a)
+            }
+        };
+        Ok((x, y, altitude))
+    }
+
+    fn sea_level(
+        &self,
+        height: Height,
+        x: f64,
+        y: f64,
+        terrain: &dyn Terrain,
+    ) -> Result<f64, crate::TerrainError> {
+        Ok(match height {
+            Height::SeaLevel(h) => h,
+            Height::AboveTerrain(h) => terrain.height_m(x, y)? + h,
+        })
+    }
+
+    /// Altitude change, metres (for timing climbs).
+    pub fn vertical_m(&self, terrain: &dyn Terrain) -> Result<f64, crate::TerrainError> {
+        let (_, _, a) = self.at(0.0, terrain)?;
+        let (_, _, b) = self.at(1.0, terrain)?;
+        Ok((b - a).abs())
+    }
+}
+
+/// Where flying the items went wrong before any check: an item the autopilot would not fly.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Unflyable {
+    pub item: usize,
+    pub why: String,
+}
+
+/// The legs of `items`, starting on the ground at home (`home_xy`, ground `home_ground_m`);
+/// `to_plan` turns (lon, lat) into plan metres.
+pub fn fly(
+    items: &[FileItem],
+    home_xy: (f64, f64),
+    home_ground_m: f64,
+    sprayer: SprayerCommand,
+    first_speed_mps: f64,
+    to_plan: &dyn Fn(f64, f64) -> (f64, f64),
+) -> Result<Vec<Leg>, Unflyable> {
+    let mut legs = Vec::new();
+    let mut here = Place {
+        x: home_xy.0,
+        y: home_xy.1,
+        height: Height::SeaLevel(home_ground_m),
+    };
+    let mut spraying = false;
+    let mut speed = first_speed_mps;
+    let mut landed = false;
+    for (index, item) in items.iter().enumerate() {
+        let number = index + 1;
+        let fail = |why: String| Unflyable { item: number, why };
+        let place = |item: &FileItem| -> Result<Place, Unflyable> {
+            let values = [item.lat(), item.lon(), item.altitude()];
+            if values.iter().any(|v| !v.is_finite()) {
+                return Err(fail(
+                    "a position item without a finite place and altitude".into(),
+                ));
+            }
+            if !(-90.0..=90.0).contains(&item.lat()) || !(-180.0..=180.0).contains(&item.lon()) {
+                return Err(fail("latitude or longitude out of range".into()));
+            }
+            let (x, y) = to_plan(item.lon(), item.lat());
+            let height = match item.frame {
+                FRAME_GLOBAL => Height::SeaLevel(item.altitude()),
+                FRAME_GLOBAL_RELATIVE_ALT => Height::SeaLevel(home_ground_m + item.altitude()),
+                FRAME_GLOBAL_TERRAIN_ALT => Height::AboveTerrain(item.altitude()),
+                other => return Err(fail(format!("frame {other} is not a global frame"))),
+            };
+            Ok(Place { x, y, height })
+        };
+        if landed {
+            return Err(fail("an item after the landing".into()));
+        }
+        match item.command {
+            CMD_NAV_TAKEOFF => {
+                let target = place(item)?;
+                let to = Place {
+                    x: here.x,
+                    y: here.y,
+                    height: target.height,
+                };
+                legs.push(Leg {
+                    item: number,
+                    from: here,
+                    to,
+                    spraying,
+                    speed_mps: speed,
+                    motion: Motion::Takeoff,
+                });
+                here = to;
+            }
+            CMD_NAV_WAYPOINT => {
+                let to = place(item)?;
+                legs.push(Leg {
+                    item: number,
+                    from: here,
+                    to,
+                    spraying,
+                    speed_mps: speed,
+                    motion: Motion::Flight,
+                });
+                here = to;
+            }
+            CMD_NAV_LAND => {
+                let target = place(item)?;
+                let above = Place {
+                    x: target.x,
+                    y: target.y,
+                    height: here.height,
+                };
+                legs.push(Leg {
+                    item: number,
+                    from: here,
+                    to: above,
+                    spraying,
+                    speed_mps: speed,
+                    motion: Motion::Flight,
+                });
+                let ground = Place {
+                    height: Height::AboveTerrain(0.0),
+                    ..above
+                };
+                legs.push(Leg {
+                    item: number,
+                    from: above,
+                    to: ground,
+                    spraying,
+                    speed_mps: speed,
+                    motion: Motion::Landing,
+                });
+                here = ground;
+                landed = true;
+            }
+            CMD_DO_CHANGE_SPEED => {
+                let value = item.params[1];
+                if !(value.is_finite() && value > 0.0) {
+                    return Err(fail(format!("speed {value} m/s")));
+                }
+                speed = value;
+            }
+            CMD_DO_SPRAYER => {
+                spraying = item.params[0] == 1.0;
+            }
+            CMD_DO_SET_SERVO => match sprayer {
+                SprayerCommand::Servo {
+                    channel,
+                    on_pwm,
+                    off_pwm,
+                } if item.params[0] == f64::from(channel) => {
+                    let pwm = item.params[1];
+                    if pwm == f64::from(on_pwm) {
+                        spraying = true;
+                    } else if pwm == f64::from(off_pwm) {
+                        spraying = false;
+                    } else {
+                        return Err(fail(format!(
+                            "servo {channel} set to {pwm}, neither the sprayer's on ({on_pwm}) nor off ({off_pwm})"
+                        )));
+                    }
+                }
+                _ => {}
+            },
+            other => {
+                return Err(fail(format!(
+                    "command {other} is not one the preflight knows how to fly"
+                )))
+            }
+        }
+    }
+    Ok(legs)
+}

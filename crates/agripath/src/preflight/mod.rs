@@ -1,0 +1,888 @@
+//! The preflight check: the mission files just written, read back and flown against the
+//! inputs (decision 0012). It does not look at the plan in memory. For every sortie it reads
+//! `sortie_NN.plan` and `sortie_NN.waypoints` (which must agree item by item), flies the
+//! items as the autopilot would ([`flown`]), samples every leg at most
+//! [`SAMPLE_M`] apart, and checks:
+//!
+//! - **frame**: every position item is in the frame of the altitude reference asked for;
+//! - **spray height**: on spray legs the height above the ground stays within the terrain
+//!   tolerance of the spray height;
+//! - **transit clearance**: a leg off spray that leaves the fields (or crosses a hole or an
+//!   obstacle) stays ≥ h above the highest ground under it; one inside a field (a headland
+//!   turn) stays within the tolerance of spray height or above;
+//! - **holes and obstacles**: no leg at spray height enters a hole or an obstacle (grown by
+//!   the obstacle margin);
+//! - **fence**: every sample inside the file's inclusion polygon and outside its exclusions;
+//! - **coverage** as flown (strips one swath wide along the spray legs, [`sprayed`]) of each
+//!   field's sprayable area, and the **spray outside** the fields, holes and obstacles
+//!   excluded, as a share of all that is sprayed;
+//! - **tank** and **battery** per sortie, recomputed from the files and the vehicle.
+
+pub mod flown;
+pub mod read_back;
+pub mod sprayed;
+
+use geo::Coord;
+use serde::Serialize;
+
+use crate::coverage::region::sprayable_region;
+use crate::mission::flight::{AltitudeReference, GeoFrame, SprayerCommand};
+use crate::mission::mavlink::Command;
+use crate::model::{Farm, Vehicle};
+use crate::terrain::Terrain;
+use flown::{Leg, Motion};
+use sprayed::{Rings, Strip};
+
+/// Largest distance between two samples of a leg, metres.
+pub const SAMPLE_M: f64 = 1.0;
+/// Rows of the sprayed-area measure, metres apart.
+const ROW_M: f64 = 0.1;
+/// What rounding in the files (1e-9° ≈ 0.1 mm, altitudes to 1 mm) and the lon/lat round trip
+/// may move a place or a height, metres.
+const SLACK_M: f64 = 0.02;
+/// Most sprayed area outside the fields, as a share of the sprayed area (the default layout).
+pub const MAX_OUTSIDE_FRACTION: f64 = 0.005;
+/// Lines reported per failed check (the count of the rest follows).
+const LINES_PER_CHECK: usize = 3;
+
+/// What the flight is flown against.
+pub struct World<'a> {
+    pub farm: &'a Farm,
+    pub terrain: &'a dyn Terrain,
+    pub vehicle: &'a Vehicle,
+}
+
+/// What the plan promised.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreflightSettings {
+    pub altitude: AltitudeReference,
+    pub sprayer: SprayerCommand,
+    pub terrain_tolerance_m: f64,
+    pub local_origin: (f64, f64),
+    pub boundary_margin_m: f64,
+    pub obstacle_margin_m: f64,
+    /// Least share of each field's sprayable area to cover, 0..1, by field.
+    pub required_coverage: Vec<f64>,
+    /// Most sprayed area outside the fields, as a share of the sprayed area.
+    pub max_outside_fraction: f64,
+}
+
+/// One check and its figure.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct CheckResult {
+    pub name: &'static str,
+    pub passed: bool,
+    /// The worst figure found, in `unit`.
+    pub figure: f64,
+    /// The bound it is held to (≥ or ≤ as `rule` says).
+    pub limit: f64,
+    pub rule: &'static str,
+    pub unit: &'static str,
+}
+
+/// A field's coverage as flown.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct FieldFlown {
+    pub name: String,
+    pub sprayable_area_m2: f64,
+    pub covered_fraction: f64,
+    pub required_fraction: f64,
+    pub missed_m2: f64,
+    pub double_sprayed_m2: f64,
+}
+
+/// A sortie as flown.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct SortieFlown {
+    pub sortie: usize,
+    pub file: String,
+    pub items: usize,
+    pub spray_m: f64,
+    pub tank_fraction: Option<f64>,
+    pub flight_time_s: f64,
+    pub battery_fraction: f64,
+    /// Largest gap between the height above ground on spray legs and the spray height, m.
+    pub worst_spray_height_error_m: f64,
+    /// Least margin above h over the highest ground under a transit leg, m (none: no transit).
+    pub least_transit_margin_m: Option<f64>,
+}
+
+/// The verdict of the preflight, as `report.json` carries it.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Verdict {
+    pub safe: bool,
+    pub altitude_reference: AltitudeReference,
+    pub checks: Vec<CheckResult>,
+    /// One line per failure: sortie, item, place and what is wrong.
+    pub failures: Vec<String>,
+    pub fields: Vec<FieldFlown>,
+    pub sprayed_area_m2: f64,
+    pub sprayed_outside_m2: f64,
+    pub sprayed_outside_fraction: f64,
+    pub sorties: Vec<SortieFlown>,
+    /// Least height above the ground of any airborne sample (takeoff and landing aside), m.
+    pub lowest_clearance_m: f64,
+}
+
+impl Verdict {
+    /// The one line of the printed summary.
+    pub fn summary(&self) -> String {
+        let coverage = self
+            .fields
+            .iter()
+            .map(|field| field.covered_fraction)
+            .fold(f64::INFINITY, f64::min);
+        format!(
+            "preflight ({} altitudes, read back from {} mission file(s)): {}; least coverage {:.2}%, sprayed outside {:.3}%, lowest clearance {:.2} m",
+            self.altitude_reference.key(),
+            self.sorties.len(),
+            if self.safe {
+                "SAFE".to_string()
+            } else {
+                format!(
+                    "UNSAFE ({} failed)",
+                    self.checks.iter().filter(|c| !c.passed).count()
+                )
+            },
+            100.0 * if coverage.is_finite() { coverage } else { 0.0 },
+            100.0 * self.sprayed_outside_fraction,
+            self.lowest_clearance_m
+        )
+    }
+}
+
+/// Collects the figures and failure lines of one check.
+struct Tally {
+    name: &'static str,
+    rule: &'static str,
+    unit: &'static str,
+    limit: f64,
+    worst: Option<f64>,
+    lines: Vec<String>,
+    failed: usize,
+}
+
+impl Tally {
+    fn new(name: &'static str, rule: &'static str, limit: f64, unit: &'static str) -> Self {
+        Self {
+            name,
+            rule,
+            unit,
+            limit,
+            worst: None,
+            lines: Vec::new(),
+            failed: 0,
+        }
+    }
+
+    /// Records a figure; `bad` says whether it breaks the rule, `line` what to print then.
+    fn record(&mut self, figure: f64, bad: bool, line: impl FnOnce() -> String) {
+        let better = |old: f64| match self.rule {
+            "≥" => figure < old,
+            _ => figure > old,
+        };
+        if self.worst.is_none_or(better) {
+            self.worst = Some(figure);
+        }
+        if bad {
+            self.failed += 1;
+            if self.lines.len() < LINES_PER_CHECK {
+                self.lines.push(line());
+            }
+        }
+    }
+
+    fn fail(&mut self, line: String) {
+        self.failed += 1;
+        if self.lines.len() < LINES_PER_CHECK {
+            self.lines.push(line);
+        }
+    }
+
+    fn finish(self, checks: &mut Vec<CheckResult>, failures: &mut Vec<String>) {
+        checks.push(CheckResult {
+            name: self.name,
+            passed: self.failed == 0,
+            figure: self.worst.unwrap_or(self.limit),
+            limit: self.limit,
+            rule: self.rule,
+            unit: self.unit,
+        });
+        failures.extend(self.lines);
+        if self.failed > LINES_PER_CHECK {
+            failures.push(format!(
+                "{}: {} more failure(s) like these",
+                self.name,
+                self.failed - LINES_PER_CHECK
+            ));
+        }
+    }
+}
+
+/// Even-odd point in ring.
+fn ring_contains(ring: &[Coord<f64>], p: Coord<f64>) -> bool {
+    let mut inside = false;
+    for pair in ring.windows(2) {
+        let (a, b) = (pair[0], pair[1]);
+        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
+            inside = !inside;
+        }
+    }
+    inside
+}
+
+/// Distance from `p` to the ring's edges.
+fn ring_distance(ring: &[Coord<f64>], p: Coord<f64>) -> f64 {
+    ring.windows(2)
+        .map(|pair| {
+            let (a, b) = (pair[0], pair[1]);
+            let (dx, dy) = (b.x - a.x, b.y - a.y);
+            let length2 = dx * dx + dy * dy;
+            let t = if length2 > 0.0 {
+                (((p.x - a.x) * dx + (p.y - a.y) * dy) / length2).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (p.x - a.x - t * dx).hypot(p.y - a.y - t * dy)
+        })
+        .fold(f64::INFINITY, f64::min)
+}
+
+/// Whether `p` is inside `ring` by more than `depth_m` (depth 0: strictly inside, beyond the
+/// slack of the files' rounding); with `depth_m` < 0 also within −depth outside it.
+fn enters(ring: &[Coord<f64>], p: Coord<f64>, margin_m: f64) -> bool {
+    let inside = ring_contains(ring, p);
+    let distance = ring_distance(ring, p);
+    if inside {
+        distance > SLACK_M || margin_m > 0.0
+    } else {
+        distance < margin_m - SLACK_M
+    }
+}
+
+/// The places a horizontal leg is sampled at: both ends and every [`SAMPLE_M`].
+fn samples(leg: &Leg) -> impl Iterator<Item = f64> {
+    let steps = (leg.horizontal_m() / SAMPLE_M).ceil().max(1.0) as usize;
+    (0..=steps).map(move |k| k as f64 / steps as f64)
+}
+
+/// Runs the check on the mission files among `files` (name, bytes).
+pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<u8>)]) -> Verdict {
+    let frame = GeoFrame::new(world.farm.coordinate_system, settings.local_origin);
+    let to_plan = |lon: f64, lat: f64| frame.plan_xy(lon, lat);
+    let vehicle = world.vehicle;
+    let terrain = world.terrain;
+    let expected_frame = Command::frame_of(settings.altitude);
+    let mut checks = Vec::new();
+    let mut failures = Vec::new();
+    let mut read = Tally::new("files read back", "≤", 0.0, "faults");
+    let mut frames = Tally::new("altitude frame", "≤", 0.0, "items");
+    let mut spray_height = Tally::new(
+        "spray height",
+        "≤",
+        settings.terrain_tolerance_m,
+        "m from spray height",
+    );
+    let mut transit = Tally::new(
+        "transit clearance",
+        "≥",
+        vehicle.safe_height_m,
+        "m above the highest ground under the leg",
+    );
+    let mut low_legs = Tally::new(
+        "ground clearance",
+        "≥",
+        vehicle.spray_height_m - settings.terrain_tolerance_m,
+        "m above the ground",
+    );
+    let mut no_go = Tally::new("holes and obstacles", "≤", 0.0, "samples inside");
+    let mut fence = Tally::new("fence", "≤", 0.0, "samples outside");
+    let mut tank = Tally::new("tank", "≤", 1.0, "tanks");
+    let mut battery = Tally::new("battery", "≤", 1.0, "batteries");
+    let place = |x: f64, y: f64| frame.describe(x, y);
+    let low_limit = low_legs.limit;
+
+    // Field, hole and obstacle rings in plan metres.
+    let fields: Vec<&geo::Polygon<f64>> = world.farm.fields.iter().map(|f| &f.polygon).collect();
+    let obstacles: Vec<&[Coord<f64>]> = world
+        .farm
+        .obstacles
+        .iter()
+        .map(|o| o.polygon.exterior().0.as_slice())
+        .collect();
+    let in_no_go = |p: Coord<f64>| -> bool {
+        fields.iter().any(|field| {
+            ring_contains(&field.exterior().0, p)
+                && field
+                    .interiors()
+                    .iter()
+                    .any(|hole| enters(&hole.0, p, settings.obstacle_margin_m.min(0.0)))
+        }) || obstacles
+            .iter()
+            .any(|ring| enters(ring, p, settings.obstacle_margin_m))
+    };
+    let over_field = |p: Coord<f64>| -> bool {
+        fields.iter().any(|field| {
+            (ring_contains(&field.exterior().0, p)
+                || ring_distance(&field.exterior().0, p) <= SLACK_M)
+                && !field.interiors().iter().any(|hole| enters(&hole.0, p, 0.0))
+        }) && !obstacles.iter().any(|ring| enters(ring, p, 0.0))
+    };
+
+    let mut strips = Vec::new();
+    let mut sorties = Vec::new();
+    let mut lowest_clearance = f64::INFINITY;
+    let mut names: Vec<&String> = files
+        .iter()
+        .map(|(name, _)| name)
+        .filter(|name| name.starts_with("sortie_") && name.ends_with(".plan"))
+        .collect();
+    names.sort();
+    if names.is_empty() {
+        read.fail("no mission file (sortie_NN.plan) to fly".into());
+    }
+    for (number, name) in names.iter().enumerate() {
+        let sortie = number + 1;
+        let bytes = |file: &str| {
+            files
+                .iter()
+                .find(|(n, _)| n == file)
+                .map(|(_, bytes)| String::from_utf8_lossy(bytes).into_owned())
+        };
+        let plan = match bytes(name).map(|text| read_back::read_plan(&text)) {
+            Some(Ok(plan)) => plan,
+            Some(Err(why)) => {
+                read.fail(format!("sortie {sortie}: {name}: {why}"));
+                continue;
+            }
+            None => continue,
+        };
+        let twin = name.replace(".plan", ".waypoints");
+        match bytes(&twin).map(|text| read_back::read_waypoints(&text)) {
+            Some(Ok(waypoints)) => {
+                for difference in read_back::differences(&plan, &waypoints) {
+                    read.fail(format!("sortie {sortie}: {twin}: {difference}"));
+                }
+            }
+            Some(Err(why)) => read.fail(format!("sortie {sortie}: {twin}: {why}")),
+            None => read.fail(format!("sortie {sortie}: {twin} is missing")),
+        }
+        let home_xy = to_plan(plan.home.1, plan.home.0);
+        let home_ground = match terrain.height_m(home_xy.0, home_xy.1) {
+            Ok(height) => height,
+            Err(error) => {
+                read.fail(format!(
+                    "sortie {sortie}: home {}: {error}",
+                    place(home_xy.0, home_xy.1)
+                ));
+                continue;
+            }
+        };
+        for (index, item) in plan.items.iter().enumerate() {
+            let positional = matches!(item.command, 16 | 21 | 22);
+            if positional && item.frame != expected_frame {
+                frames.fail(format!(
+                    "sortie {sortie}, item {}: frame {} where {} altitudes need frame {expected_frame}",
+                    index + 1,
+                    item.frame,
+                    settings.altitude.key()
+                ));
+            } else if positional {
+                frames.record(0.0, false, String::new);
+            }
+        }
+        let legs = match flown::fly(
+            &plan.items,
+            home_xy,
+            home_ground,
+            settings.sprayer,
+            vehicle.transit_speed_mps,
+            &to_plan,
+        ) {
+            Ok(legs) => legs,
+            Err(unflyable) => {
+                read.fail(format!(
+                    "sortie {sortie}, item {}: {}",
+                    unflyable.item, unflyable.why
+                ));
+                continue;
+            }
+        };
+        // The fence as the file gives it.
+        let fence_rings: Vec<(bool, Vec<Coord<f64>>)> = plan
+            .fence
+            .iter()
+            .map(|polygon| {
+                let mut ring: Vec<Coord<f64>> = polygon
+                    .corners
+                    .iter()
+                    .map(|&(lat, lon)| {
+                        let (x, y) = to_plan(lon, lat);
+                        Coord { x, y }
+                    })
+                    .collect();
+                if let Some(&first) = ring.first() {
+                    ring.push(first);
+                }
+                (polygon.inclusion, ring)
+            })
+            .collect();
+        if !fence_rings.iter().any(|(inclusion, _)| *inclusion) {
+            fence.fail(format!("sortie {sortie}: {name} has no inclusion geofence"));
+        }
+        let mut figures = SortieFlown {
+            sortie,
+            file: name.to_string(),
+            items: plan.items.len(),
+            spray_m: 0.0,
+            tank_fraction: None,
+            flight_time_s: 0.0,
+            battery_fraction: 0.0,
+            worst_spray_height_error_m: 0.0,
+            least_transit_margin_m: None,
+        };
+        for (leg_index, leg) in legs.iter().enumerate() {
+            let horizontal = leg.horizontal_m();
+            let vertical = leg.vertical_m(terrain).unwrap_or(0.0);
+            figures.flight_time_s +=
+                (horizontal / leg.speed_mps).max(vertical / vehicle.climb_speed_mps);
+            let mut points = Vec::new();
+            for t in samples(leg) {
+                match leg.at(t, terrain) {
+                    Ok((x, y, altitude)) => match terrain.height_m(x, y) {
+                        Ok(ground) => points.push((x, y, altitude, ground)),
+                        Err(error) => {
+                            read.fail(format!("sortie {sortie}, item {}: {error}", leg.item));
+                            break;
+                        }
+                    },
+                    Err(error) => {
+                        read.fail(format!("sortie {sortie}, item {}: {error}", leg.item));
+                        break;
+                    }
+                }
+            }
+            for &(x, y, _, _) in &points {
+                let p = Coord { x, y };
+                let outside = fence_rings.iter().any(|(inclusion, ring)| {
+                    if *inclusion {
+                        !ring_contains(ring, p) && ring_distance(ring, p) > SLACK_M
+                    } else {
+                        ring_contains(ring, p) && ring_distance(ring, p) > SLACK_M
+                    }
+                });
+                fence.record(f64::from(u8::from(outside)), outside, || {
+                    format!(
+                        "sortie {sortie}, item {} at {}: outside the geofence",
+                        leg.item,
+                        place(x, y)
+                    )
+                });
+            }
+            if leg.motion != Motion::Flight {
+                continue;
+            }
+            for &(_, _, altitude, ground) in &points {
+                lowest_clearance = lowest_clearance.min(altitude - ground);
+            }
+            if leg.spraying && horizontal > 0.0 {
+                figures.spray_m += horizontal;
+                let (a, b) = (points[0], points[points.len() - 1]);
+                let half = vehicle.swath_width_m / 2.0;
+                let strip = Strip::new(Coord { x: a.0, y: a.1 }, Coord { x: b.0, y: b.1 }, half);
+                // The run goes on spraying through the next leg: the footprint turns here.
+                let turns_on = legs
+                    .get(leg_index + 1)
+                    .is_some_and(|next| next.spraying && next.horizontal_m() > 0.0);
+                strips.extend(strip.map(|strip| {
+                    if turns_on {
+                        strip.turning_at_end(Coord { x: b.0, y: b.1 }, half)
+                    } else {
+                        strip
+                    }
+                }));
+                for &(x, y, altitude, ground) in &points {
+                    let error = (altitude - ground - vehicle.spray_height_m).abs();
+                    figures.worst_spray_height_error_m =
+                        figures.worst_spray_height_error_m.max(error);
+                    spray_height.record(
+                        error,
+                        error > settings.terrain_tolerance_m + SLACK_M,
+                        || {
+                            format!(
+                                "sortie {sortie}, item {} at {}: spraying {:.2} m above the ground (spray height {} m ± {} m)",
+                                leg.item,
+                                place(x, y),
+                                altitude - ground,
+                                vehicle.spray_height_m,
+                                settings.terrain_tolerance_m
+                            )
+                        },
+                    );
+                    let inside = in_no_go(Coord { x, y });
+                    no_go.record(f64::from(u8::from(inside)), inside, || {
+                        format!(
+                            "sortie {sortie}, item {} at {}: spraying inside a hole or an obstacle",
+                            leg.item,
+                            place(x, y)
+                        )
+                    });
+                }
+                continue;
+            }
+            if horizontal < SLACK_M {
+                // A climb or descent in place: its lower end keeps the low-leg clearance.
+                let lowest = points
+                    .iter()
+                    .map(|&(_, _, altitude, ground)| altitude - ground)
+                    .fold(f64::INFINITY, f64::min);
+                let (x, y, _, _) = points[0];
+                low_legs.record(lowest, lowest < low_limit - SLACK_M, || {
+                    format!(
+                        "sortie {sortie}, item {} at {}: {:.2} m above the ground (needs ≥ {:.2} m)",
+                        leg.item,
+                        place(x, y),
+                        lowest,
+                        low_limit
+                    )
+                });
+                continue;
+            }
+            let within_field = points
+                .iter()
+                .all(|&(x, y, _, _)| over_field(Coord { x, y }));
+            if within_field {
+                for &(x, y, altitude, ground) in &points {
+                    let clearance = altitude - ground;
+                    low_legs.record(clearance, clearance < low_limit - SLACK_M, || {
+                        format!(
+                            "sortie {sortie}, item {} at {}: turn {:.2} m above the ground (needs ≥ {:.2} m)",
+                            leg.item,
+                            place(x, y),
+                            clearance,
+                            low_limit
+                        )
+                    });
+                }
+            } else {
+                let highest = points
+                    .iter()
+                    .map(|&(_, _, _, ground)| ground)
+                    .fold(f64::NEG_INFINITY, f64::max);
+                let (x, y, lowest_altitude) = points
+                    .iter()
+                    .map(|&(x, y, altitude, _)| (x, y, altitude))
+                    .fold(
+                        (0.0, 0.0, f64::INFINITY),
+                        |low, p| if p.2 < low.2 { p } else { low },
+                    );
+                // Terrain following (frame 10) holds the height above the ground under the
+                // vehicle: there the least clearance above the local ground counts.
+                let follows_terrain = matches!(
+                    (leg.from.height, leg.to.height),
+                    (
+                        flown::Height::AboveTerrain(_),
+                        flown::Height::AboveTerrain(_)
+                    )
+                );
+                let margin = if follows_terrain {
+                    points
+                        .iter()
+                        .map(|&(_, _, altitude, ground)| altitude - ground)
+                        .fold(f64::INFINITY, f64::min)
+                } else {
+                    lowest_altitude - highest
+                };
+                figures.least_transit_margin_m = Some(
+                    figures
+                        .least_transit_margin_m
+                        .map_or(margin - vehicle.safe_height_m, |m: f64| {
+                            m.min(margin - vehicle.safe_height_m)
+                        }),
+                );
+                transit.record(margin, margin < vehicle.safe_height_m - SLACK_M, || {
+                    format!(
+                        "sortie {sortie}, item {} at {}: transit {:.2} m above the highest ground under the leg (needs ≥ h = {} m)",
+                        leg.item,
+                        place(x, y),
+                        margin,
+                        vehicle.safe_height_m
+                    )
+                });
+            }
+        }
+        if let Some(per_tank) = vehicle.spray_length_per_tank_m() {
+            let fraction = figures.spray_m / per_tank;
+            figures.tank_fraction = Some(fraction);
+            tank.record(fraction, figures.spray_m > per_tank * 1.001 + 1.0, || {
+                format!(
+                    "sortie {sortie}: sprays {:.0} m, {:.1}% of a tank ({per_tank:.0} m)",
+                    figures.spray_m,
+                    100.0 * fraction
+                )
+            });
+        }
+        figures.battery_fraction = figures.flight_time_s / vehicle.battery_endurance_s;
+        battery.record(
+            figures.battery_fraction,
+            figures.flight_time_s > vehicle.battery_endurance_s * 1.001,
+            || {
+                format!(
+                    "sortie {sortie}: flies {:.0} s as written, {:.1}% of the battery ({} s)",
+                    figures.flight_time_s,
+                    100.0 * figures.battery_fraction,
+                    vehicle.battery_endurance_s
+                )
+            },
+        );
+        sorties.push(figures);
+    }
+
+    // Coverage and spray outside, as flown.
+    let regions: Vec<Rings> = world
+        .farm
+        .fields
+        .iter()
+        .map(|field| {
+            Rings::of_multi_polygon(&sprayable_region(
+                field,
+                &world.farm.obstacles,
+                settings.boundary_margin_m,
+                settings.obstacle_margin_m,
+            ))
+        })
+        .collect();
+    let ground = Rings::new(world.farm.fields.iter().flat_map(|field| {
+        std::iter::once(field.polygon.exterior())
+            .chain(field.polygon.interiors())
+            .map(|ring| ring.0.as_slice())
+    }));
+    let excluded: Vec<Rings> = world
+        .farm
+        .obstacles
+        .iter()
+        .map(|obstacle| Rings::of_polygon(&obstacle.polygon))
+        .collect();
+    let measured = sprayed::measure(&strips, &regions, &ground, &excluded, ROW_M);
+    let mut coverage = Tally::new("coverage", "≥", 0.0, "share of the sprayable area");
+    let mut field_figures = Vec::new();
+    for (index, (field, figures)) in world.farm.fields.iter().zip(&measured.regions).enumerate() {
+        let required = settings
+            .required_coverage
+            .get(index)
+            .copied()
+            .unwrap_or(0.99);
+        let covered = if figures.area_m2 > 0.0 {
+            figures.covered_m2 / figures.area_m2
+        } else {
+            1.0
+        };
+        coverage.limit = coverage.limit.max(required);
+        coverage.record(covered, covered + 1e-9 < required, || {
+            format!(
+                "field '{}': {:.2}% of its sprayable area covered as flown (needs ≥ {:.2}%)",
+                field.name,
+                100.0 * covered,
+                100.0 * required
+            )
+        });
+        field_figures.push(FieldFlown {
+            name: field.name.clone(),
+            sprayable_area_m2: figures.area_m2,
+            covered_fraction: covered,
+            required_fraction: required,
+            missed_m2: (figures.area_m2 - figures.covered_m2).max(0.0),
+            double_sprayed_m2: figures.doubled_m2,
+        });
+    }
+    let outside_fraction = if measured.sprayed_m2 > 0.0 {
+        measured.outside_m2 / measured.sprayed_m2
+    } else {
+        0.0
+    };
+    let limit = settings.max_outside_fraction;
+    let mut outside = Tally::new("spray outside", "≤", limit, "share of the sprayed area");
+    outside.record(outside_fraction, outside_fraction > limit, || {
+        format!(
+            "{:.0} m² sprayed outside the fields (or over holes and obstacles): {:.2}% of the {:.0} m² sprayed (at most {:.1}%)",
+            measured.outside_m2,
+            100.0 * outside_fraction,
+            measured.sprayed_m2,
+            100.0 * limit
+        )
+    });
+    for tally in [
+        read,
+        frames,
+        spray_height,
+        transit,
+        low_legs,
+        no_go,
+        fence,
+        coverage,
+        outside,
+        tank,
+        battery,
+    ] {
+        tally.finish(&mut checks, &mut failures);
+    }
+    let round = |value: f64| crate::report::round(value, 1e-4);
+    for check in &mut checks {
+        check.figure = round(check.figure);
+    }
+    Verdict {
+        safe: checks.iter().all(|check| check.passed),
+        altitude_reference: settings.altitude,
+        checks,
+        failures,
+        fields: field_figures
+            .into_iter()
+            .map(|field| FieldFlown {
+                sprayable_area_m2: round(field.sprayable_area_m2),
+                covered_fraction: crate::report::round(field.covered_fraction, 1e-6),
+                missed_m2: round(field.missed_m2),
+                double_sprayed_m2: round(field.double_sprayed_m2),
+                ..field
+            })
+            .collect(),
+        sprayed_area_m2: round(measured.sprayed_m2),
+        sprayed_outside_m2: round(measured.outside_m2),
+        sprayed_outside_fraction: crate::report::round(outside_fraction, 1e-6),
+        sorties: sorties
+            .into_iter()
+            .map(|sortie| SortieFlown {
+                spray_m: round(sortie.spray_m),
+                tank_fraction: sortie.tank_fraction.map(|f| crate::report::round(f, 1e-6)),
+                flight_time_s: round(sortie.flight_time_s),
+                battery_fraction: crate::report::round(sortie.battery_fraction, 1e-6),
+                worst_spray_height_error_m: round(sortie.worst_spray_height_error_m),
+                least_transit_margin_m: sortie.least_transit_margin_m.map(round),
+                ..sortie
+            })
+            .collect(),
+        lowest_clearance_m: round(if lowest_clearance.is_finite() {
+            lowest_clearance
+        } else {
+            0.0
+        }),
+    }
+}
+
+/// Checks a plan folder written earlier (and perhaps edited by hand in a ground station)
+/// against `world`: its mission files as they are now, held to the settings its
+/// `report.json` records.
+pub fn check_folder(world: &World, folder: &std::path::Path) -> Result<Verdict, crate::Fault> {
+    use crate::Fault;
+    let report_path = folder.join("report.json");
+    let text = std::fs::read_to_string(&report_path).map_err(|error| {
+        Fault::Structure(format!("{}: cannot read: {error}", report_path.display()))
+    })?;
+    let report: serde_json::Value = serde_json::from_str(&text).map_err(|error| {
+        Fault::Structure(format!("{}: not JSON: {error}", report_path.display()))
+    })?;
+    let missing = |what: &str| {
+        Fault::Structure(format!(
+            "{}: no {what} (written by agripath plan?)",
+            report_path.display()
+        ))
+    };
+    let mission = &report["mission"];
+    let altitude: AltitudeReference = match mission["altitude"].as_str() {
+        Some("relative") => AltitudeReference::Relative,
+        Some("sea_level") => AltitudeReference::SeaLevel,
+        Some("terrain") => AltitudeReference::Terrain,
+        _ => return Err(missing("mission.altitude")),
+    };
+    let sprayer = match mission["sprayer"]["kind"].as_str() {
+        Some("do_sprayer") => SprayerCommand::DoSprayer,
+        Some("servo") => {
+            let field = |key: &str| {
+                mission["sprayer"][key]
+                    .as_u64()
+                    .and_then(|v| u16::try_from(v).ok())
+                    .ok_or_else(|| missing("mission.sprayer"))
+            };
+            SprayerCommand::Servo {
+                channel: field("channel")?,
+                on_pwm: field("on_pwm")?,
+                off_pwm: field("off_pwm")?,
+            }
+        }
+        _ => return Err(missing("mission.sprayer")),
+    };
+    let number =
+        |value: &serde_json::Value, what: &str| value.as_f64().ok_or_else(|| missing(what));
+    let origin = &mission["local_origin"];
+    let headland = report["settings"]["headland_passes"].as_u64().unwrap_or(1);
+    let planned: Vec<f64> = report["fields"]
+        .as_array()
+        .map(|fields| {
+            fields
+                .iter()
+                .map(|f| f["covered_fraction"].as_f64().unwrap_or(1.0))
+                .collect()
+        })
+        .unwrap_or_default();
+    let outside_planned = report["fields"]
+        .as_array()
+        .map(|fields| {
+            fields
+                .iter()
+                .map(|f| f["outside_m2"].as_f64().unwrap_or(0.0))
+                .sum::<f64>()
+        })
+        .unwrap_or(0.0);
+    let sprayed_planned =
+        report["spray_length_m"].as_f64().unwrap_or(0.0) * world.vehicle.swath_width_m;
+    let settings = PreflightSettings {
+        max_outside_fraction: if headland > 0 || sprayed_planned <= 0.0 {
+            MAX_OUTSIDE_FRACTION
+        } else {
+            MAX_OUTSIDE_FRACTION.max(outside_planned / sprayed_planned + 0.001)
+        },
+        altitude,
+        sprayer,
+        terrain_tolerance_m: number(
+            &mission["terrain_tolerance_m"],
+            "mission.terrain_tolerance_m",
+        )?,
+        local_origin: (
+            number(&origin[0], "mission.local_origin")?,
+            number(&origin[1], "mission.local_origin")?,
+        ),
+        boundary_margin_m: number(
+            &report["settings"]["boundary_margin_m"],
+            "settings.boundary_margin_m",
+        )?,
+        obstacle_margin_m: number(
+            &report["settings"]["obstacle_margin_m"],
+            "settings.obstacle_margin_m",
+        )?,
+        required_coverage: world
+            .farm
+            .fields
+            .iter()
+            .enumerate()
+            .map(|(index, _)| {
+                if headland > 0 {
+                    0.99
+                } else {
+                    (planned.get(index).copied().unwrap_or(1.0) - 0.005).max(0.0)
+                }
+            })
+            .collect(),
+    };
+    let mut files = Vec::new();
+    let entries = std::fs::read_dir(folder)
+        .map_err(|error| Fault::Structure(format!("{}: cannot read: {error}", folder.display())))?;
+    for entry in entries.flatten() {
+        let name = entry.file_name().to_string_lossy().into_owned();
+        if name.starts_with("sortie_") && (name.ends_with(".plan") || name.ends_with(".waypoints"))
+        {
+            let bytes = crate::input::read_bytes(&entry.path())
+                .map_err(|error| Fault::Structure(error.to_string()))?;
+            files.push((name, bytes));
+        }
+    }
+    Ok(check(world, &settings, &files))
+}
