@@ -87,7 +87,12 @@ def check_folder(folder, frames, with_plan=True):
 with tempfile.TemporaryDirectory() as scratch:
     demo = os.path.join(scratch, "demo")
     subprocess.run([AGRIPATH, "demo", "--out", demo], check=True, stdout=subprocess.DEVNULL)
-    check_folder(demo, {0})
+    # No DEM: altitudes relative to the launch point (frame 3), never sea level over 0 m.
+    check_folder(demo, {3})
+    island_sea_level = os.path.join(scratch, "island-sea-level")
+    subprocess.run([AGRIPATH, "plan", os.path.join(ROOT, "data/scenarios/christmas_island.toml"),
+                    "--out", island_sea_level], check=True, stdout=subprocess.DEVNULL)
+    check_folder(island_sea_level, {0})
     island = os.path.join(scratch, "island")
     subprocess.run([AGRIPATH, "plan", os.path.join(ROOT, "data/scenarios/christmas_island.toml"), "--altitude", "terrain",
                     "--sprayer", "servo:9:1900:1100", "--out", island], check=True, stdout=subprocess.DEVNULL)

@@ -525,6 +525,13 @@ fn grid(
         _ => fewest_turns::plan(&grid),
     };
     let runtime_s = started.elapsed().as_secs_f64();
+    // The grid route's preflight: a move that crosses an obstacle is not flown.
+    let crossings = route.measure(&grid).crossings;
+    if crossings > 0 {
+        return Err(Failure::Unsafe(vec![format!(
+            "{crossings} move(s) of the {method} route cross an obstacle and no clear way round was found"
+        )]));
+    }
     let (files, title) =
         agripath::grid_cover::render(&farm, index, &grid, &route, method, runtime_s);
     let written = write_folder(out, &files)?;

@@ -844,3 +844,220 @@ fn an_interrupted_run_leaves_the_previous_output_whole() {
     );
     std::fs::remove_dir_all(root).unwrap();
 }
+
+fn mission_files(folder: &Path) -> Vec<String> {
+    std::fs::read_dir(folder)
+        .unwrap()
+        .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|name| {
+            name.ends_with(".plan")
+                || name.ends_with(".waypoints")
+                || name == "mission.kml"
+                || name == "waypoints.csv"
+        })
+        .collect()
+}
+
+/// Issue 15: lon/lat fields without a DEM fly relative altitudes (frame 3, the spray height
+/// over the launch ground); over the Christmas Island DEM, sea-level altitudes (frame 0);
+/// the preflight's figures are in report.json.
+#[test]
+fn altitudes_are_relative_without_a_dem_and_sea_level_over_one() {
+    let folder = scratch("altitudes");
+    let fields = data("christmas_island_fields.geojson");
+    let fields = fields.to_str().unwrap();
+    stdout(&agripath(
+        &["plan", "--fields", fields, "--out", "flat"],
+        &folder,
+    ));
+    let scenario = data("scenarios/christmas_island.toml");
+    stdout(&agripath(
+        &["plan", scenario.to_str().unwrap(), "--out", "dem"],
+        &folder,
+    ));
+    for (name, frame) in [("flat", 3), ("dem", 0)] {
+        let out = folder.join(name);
+        let report: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap()).unwrap();
+        let preflight = &report["preflight"];
+        assert_eq!(preflight["safe"], true, "{name}: {preflight}");
+        for field in preflight["fields"].as_array().unwrap() {
+            assert!(
+                field["covered_fraction"].as_f64().unwrap() >= 0.99,
+                "{field}"
+            );
+        }
+        assert!(preflight["sprayed_outside_fraction"].as_f64().unwrap() <= 0.005);
+        let plan: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("sortie_01.plan")).unwrap()).unwrap();
+        let items = plan["mission"]["items"].as_array().unwrap();
+        let positions: Vec<&serde_json::Value> = items
+            .iter()
+            .filter(|item| [16, 21, 22].contains(&item["command"].as_u64().unwrap()))
+            .collect();
+        assert!(
+            positions.iter().all(|item| item["frame"] == frame),
+            "{name}"
+        );
+        // One inclusion fence and the supply point as the rally point.
+        let fence = plan["geoFence"]["polygons"].as_array().unwrap();
+        assert_eq!(fence.iter().filter(|p| p["inclusion"] == true).count(), 1);
+        assert_eq!(plan["rallyPoints"]["points"].as_array().unwrap().len(), 1);
+        if name == "flat" {
+            assert_eq!(report["altitude_reference"], "relative");
+            // A spray waypoint sits at the spray height over the launch ground.
+            let spray_height = report["spray_height_m"].as_f64().unwrap();
+            assert!(positions
+                .iter()
+                .any(|item| (item["params"][6].as_f64().unwrap() - spray_height).abs() < 1e-9));
+        } else {
+            assert_eq!(report["altitude_reference"], "sea_level");
+        }
+    }
+    // Sea-level altitudes need a DEM or a stated ground.
+    let refused = agripath(
+        &[
+            "plan",
+            "--fields",
+            fields,
+            "--altitude",
+            "sea-level",
+            "--out",
+            "x",
+        ],
+        &folder,
+    );
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(!folder.join("x").exists());
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+/// Issue 15: a flight the battery cannot fly (one sortie for the whole farm) exits 3 with a
+/// line per failed check and writes no mission file; `--allow-unsafe` writes them with the
+/// verdict; `agripath check` flies a folder again and finds a hand edit.
+#[test]
+fn an_unsafe_plan_exits_3_and_writes_no_mission_file() {
+    let folder = scratch("unsafe");
+    let fields = data("seed001_farm.geojson");
+    let fields = fields.to_str().unwrap();
+    let output = agripath(
+        &[
+            "plan",
+            "--fields",
+            fields,
+            "--sorties",
+            "none",
+            "--out",
+            "one",
+        ],
+        &folder,
+    );
+    assert_eq!(output.status.code(), Some(3));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("sortie 1") && stderr.contains("battery"),
+        "{stderr}"
+    );
+    let out = folder.join("one");
+    assert!(mission_files(&out).is_empty(), "{:?}", mission_files(&out));
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["preflight"]["safe"], false);
+    let forced = agripath(
+        &[
+            "plan",
+            "--fields",
+            fields,
+            "--sorties",
+            "none",
+            "--allow-unsafe",
+            "--out",
+            "one",
+        ],
+        &folder,
+    );
+    assert_eq!(forced.status.code(), Some(0));
+    assert!(out.join("sortie_01.plan").exists());
+
+    // A safe plan, then a hand edit in a ground station: a waypoint 50 m under the ground.
+    stdout(&agripath(
+        &["plan", "--fields", fields, "--out", "safe"],
+        &folder,
+    ));
+    let safe = folder.join("safe");
+    stdout(&agripath(
+        &["check", safe.to_str().unwrap(), "--fields", fields],
+        &folder,
+    ));
+    let path = safe.join("sortie_02.plan");
+    let mut plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&path).unwrap()).unwrap();
+    plan["mission"]["items"][2]["params"][6] = serde_json::json!(-50.0);
+    std::fs::write(&path, serde_json::to_vec_pretty(&plan).unwrap()).unwrap();
+    let checked = agripath(
+        &["check", safe.to_str().unwrap(), "--fields", fields],
+        &folder,
+    );
+    assert_eq!(checked.status.code(), Some(3));
+    let stderr = String::from_utf8_lossy(&checked.stderr);
+    assert!(stderr.contains("sortie 2"), "{stderr}");
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+/// Issue 15: a Point named "Launch" (as drawn in Google Earth) is the supply point; two
+/// such points are refused unless --start chooses.
+#[test]
+fn a_launch_placemark_is_the_supply_point_and_two_are_refused() {
+    let folder = scratch("launch");
+    let field = r#"{"type":"Feature","properties":{"name":"F"},"geometry":{"type":"Polygon","coordinates":[[[126.6300,45.7500],[126.6312,45.7500],[126.6312,45.7504],[126.6300,45.7504],[126.6300,45.7500]]]}}"#;
+    let point = |name: &str, lon: f64| {
+        format!(
+            r#"{{"type":"Feature","properties":{{"name":"{name}"}},"geometry":{{"type":"Point","coordinates":[{lon},45.7499]}}}}"#
+        )
+    };
+    let one = format!(
+        r#"{{"type":"FeatureCollection","features":[{field},{}]}}"#,
+        point("Launch", 126.6296)
+    );
+    std::fs::write(folder.join("one.geojson"), one).unwrap();
+    stdout(&agripath(
+        &["plan", "--fields", "one.geojson", "--out", "out"],
+        &folder,
+    ));
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("out/report.json")).unwrap()).unwrap();
+    let start = report["start"].as_array().unwrap();
+    assert!(
+        (start[0].as_f64().unwrap() - 126.6296).abs() < 1e-7,
+        "{start:?}"
+    );
+    let two = format!(
+        r#"{{"type":"FeatureCollection","features":[{field},{},{}]}}"#,
+        point("Launch", 126.6296),
+        point("Home", 126.6314)
+    );
+    std::fs::write(folder.join("two.geojson"), two).unwrap();
+    let refused = agripath(
+        &["plan", "--fields", "two.geojson", "--out", "two"],
+        &folder,
+    );
+    assert_eq!(refused.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&refused.stderr);
+    assert!(
+        stderr.contains("Launch") && stderr.contains("Home"),
+        "{stderr}"
+    );
+    stdout(&agripath(
+        &[
+            "plan",
+            "--fields",
+            "two.geojson",
+            "--start",
+            "126.6314,45.7499",
+            "--out",
+            "two",
+        ],
+        &folder,
+    ));
+    std::fs::remove_dir_all(&folder).unwrap();
+}

@@ -516,12 +516,18 @@ pub fn plan(grid: &PointGrid) -> GridRoute {
             best = Some((cost, route));
         }
     }
-    best.expect("at least one decomposition").1
+    best.expect("at least one decomposition")
+        .1
+        .around_obstacles(grid)
 }
 
 /// The route through `runs` in the given order, each entered at its end nearer the previous
 /// exit (the first from its first point): how a fixed-order plan is flown.
 pub fn fly_in_order(grid: &PointGrid, runs: Vec<Vec<usize>>) -> GridRoute {
+    fly_in_order_unchecked(grid, runs).around_obstacles(grid)
+}
+
+fn fly_in_order_unchecked(grid: &PointGrid, runs: Vec<Vec<usize>>) -> GridRoute {
     let mut search = Search {
         grid,
         runs,

@@ -177,5 +177,8 @@ pub fn plan(grid: &PointGrid, settings: &HpsoSettings) -> (GridRoute, usize) {
         }
     }
     let visits = global.iter().map(|&p| grid.points[p]).collect();
-    (GridRoute::direct(visits), global_cost)
+    (
+        GridRoute::direct(visits).around_obstacles(grid),
+        global_cost,
+    )
 }

@@ -209,7 +209,8 @@ impl PointGrid {
         for a in 0..n {
             for b in (a + 1)..n {
                 let (pa, pb) = (self.points[a], self.points[b]);
-                let ok = self.adjacent(pa, pb) || self.clear(self.centre(pa), self.centre(pb));
+                // Neighbours too: an obstacle can cut the corner between two cell centres.
+                let ok = self.clear(self.centre(pa), self.centre(pb));
                 table[a * n + b] = ok;
                 table[b * n + a] = ok;
             }
@@ -222,7 +223,7 @@ impl PointGrid {
     /// direct move when it is clear.
     pub fn transit(&self, a: usize, b: usize) -> Option<Vec<Coord<f64>>> {
         let (start, goal) = (self.centre(a), self.centre(b));
-        if self.adjacent(a, b) || self.clear(start, goal) {
+        if self.clear(start, goal) {
             return Some(vec![]);
         }
         let total = self.columns * self.rows;
@@ -302,6 +303,20 @@ impl GridRoute {
         Self { visits, via }
     }
 
+    /// The route with every direct move that crosses an obstacle (neighbours included)
+    /// replaced by the shortest clear way round it (counted as non-spray distance). A move
+    /// with no clear way stays, and [`GridRoute::measure`] counts it as a crossing.
+    pub fn around_obstacles(mut self, grid: &PointGrid) -> Self {
+        for (k, pair) in self.visits.windows(2).enumerate() {
+            if self.via[k].is_empty() && !grid.clear(grid.centre(pair[0]), grid.centre(pair[1])) {
+                if let Some(vertices) = grid.transit(pair[0], pair[1]) {
+                    self.via[k] = vertices.iter().map(|c| [c.x, c.y]).collect();
+                }
+            }
+        }
+        self
+    }
+
     /// The flown polyline.
     pub fn polyline(&self, grid: &PointGrid) -> Vec<Coord<f64>> {
         let mut line = Vec::new();
@@ -358,7 +373,7 @@ impl GridRoute {
             let end = grid.centre(pair[1]);
             leg += (end.x - previous.x).hypot(end.y - previous.y);
             let adjacent = self.via[k].is_empty() && grid.adjacent(pair[0], pair[1]);
-            clear &= adjacent || grid.clear(previous, end);
+            clear &= grid.clear(previous, end);
             if !adjacent {
                 measure.non_spray_m += leg;
             }
@@ -601,6 +616,49 @@ mod tests {
         )
         .unwrap();
         PointGrid::new(&farm, 0, 5.0).unwrap()
+    }
+
+    /// Issue 15: an obstacle that cuts the corner between two neighbouring cell centres (and
+    /// holds neither) blocks the move between them; every method goes round it.
+    #[test]
+    fn an_obstacle_between_two_neighbours_blocks_their_move() {
+        let grid = grid_of(
+            r#"{"type":"FeatureCollection","features":[
+            {"type":"Feature","properties":{"name":"f"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[30,0],[30,20],[0,20],[0,0]]]}},
+            {"type":"Feature","properties":{"kind":"obstacle"},"geometry":{"type":"Polygon","coordinates":[[[4.5,1],[5.5,1],[5.5,4],[4.5,4],[4.5,1]]]}}]}"#,
+        );
+        let (a, b) = (grid.points[0], grid.points[1]);
+        assert!(grid.adjacent(a, b), "the first two points are neighbours");
+        assert!(
+            !grid.clear(grid.centre(a), grid.centre(b)),
+            "the obstacle lies between them"
+        );
+        let routes = [
+            ("ours", fewest_turns::plan(&grid)),
+            ("baseline", boustrophedon::plan(&grid)),
+            (
+                "hpso",
+                hybrid_pso::plan(
+                    &grid,
+                    &hybrid_pso::HpsoSettings {
+                        iterations: 20,
+                        ..Default::default()
+                    },
+                )
+                .0,
+            ),
+        ];
+        for (name, route) in routes {
+            assert_valid(&grid, &route, name);
+            for (k, pair) in route.visits.windows(2).enumerate() {
+                if route.via[k].is_empty() {
+                    assert!(
+                        grid.clear(grid.centre(pair[0]), grid.centre(pair[1])),
+                        "{name}: direct move {k} crosses the obstacle"
+                    );
+                }
+            }
+        }
     }
 
     fn assert_valid(grid: &PointGrid, route: &GridRoute, what: &str) -> RouteMeasure {

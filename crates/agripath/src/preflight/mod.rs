@@ -886,3 +886,199 @@ pub fn check_folder(world: &World, folder: &std::path::Path) -> Result<Verdict, 
     }
     Ok(check(world, &settings, &files))
 }
+
+#[cfg(test)]
+mod tests {
+    use std::path::Path;
+
+    use serde_json::Value;
+
+    use super::*;
+    use crate::input::{geojson, CoordinateChoice};
+    use crate::model::scenario::ScenarioParts;
+    use crate::model::Scenario;
+    use crate::pipeline::{plan_mission, preflight_settings, render, PlanSettings};
+
+    /// A 120 m × 60 m field with a 20 m square hole, lon/lat near Harbin, flat ground.
+    const FARM: &str = r#"{"type":"FeatureCollection","features":[
+        {"type":"Feature","properties":{"name":"holed"},"geometry":{"type":"Polygon","coordinates":[
+          [[126.6300,45.7500],[126.6315,45.7500],[126.6315,45.75054],[126.6300,45.75054],[126.6300,45.7500]],
+          [[126.6307,45.75018],[126.63096,45.75018],[126.63096,45.75036],[126.6307,45.75036],[126.6307,45.75018]]]}},
+        {"type":"Feature","properties":{"name":"Launch"},"geometry":{"type":"Point","coordinates":[126.6298,45.7499]}}]}"#;
+
+    fn planned() -> (Scenario, PreflightSettings, Vec<(String, Vec<u8>)>) {
+        let farm =
+            geojson::parse(Path::new("holed.geojson"), FARM, CoordinateChoice::FromFile).unwrap();
+        let scenario = Scenario::with_farm(farm, ScenarioParts::default()).unwrap();
+        let mission = plan_mission(&scenario, &PlanSettings::default()).unwrap();
+        let rendered = render(&scenario, &mission).unwrap();
+        assert!(rendered.verdict.safe, "{:?}", rendered.verdict.failures);
+        let settings = preflight_settings(&mission);
+        (scenario, settings, rendered.files)
+    }
+
+    fn verdict(
+        scenario: &Scenario,
+        settings: &PreflightSettings,
+        files: &[(String, Vec<u8>)],
+    ) -> Verdict {
+        let world = World {
+            farm: &scenario.farm,
+            terrain: scenario.terrain.as_ref(),
+            vehicle: &scenario.vehicle,
+        };
+        check(&world, settings, files)
+    }
+
+    /// Edits item `index` (0-based) of `sortie_01.plan` and writes its `.waypoints` twin
+    /// from the edited plan, so that only the edit differs.
+    fn edit(files: &mut [(String, Vec<u8>)], change: impl FnOnce(&mut Vec<Value>)) {
+        let plan_at = files
+            .iter()
+            .position(|(n, _)| n == "sortie_01.plan")
+            .unwrap();
+        let mut plan: Value = serde_json::from_slice(&files[plan_at].1).unwrap();
+        let mut items = plan["mission"]["items"].as_array().unwrap().clone();
+        change(&mut items);
+        plan["mission"]["items"] = Value::Array(items.clone());
+        files[plan_at].1 = serde_json::to_vec(&plan).unwrap();
+        let home = plan["mission"]["plannedHomePosition"]
+            .as_array()
+            .unwrap()
+            .clone();
+        let mut text = format!(
+            "QGC WPL 110\n0\t1\t0\t16\t0\t0\t0\t0\t{}\t{}\t{}\t1\n",
+            home[0], home[1], home[2]
+        );
+        for (k, item) in items.iter().enumerate() {
+            let p: Vec<String> = item["params"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|v| v.as_f64().map_or("nan".to_string(), |v| v.to_string()))
+                .collect();
+            text.push_str(&format!(
+                "{}\t0\t{}\t{}\t{}\t1\n",
+                k + 1,
+                item["frame"],
+                item["command"],
+                p.join("\t")
+            ));
+        }
+        let twin = files
+            .iter()
+            .position(|(n, _)| n == "sortie_01.waypoints")
+            .unwrap();
+        files[twin].1 = text.into_bytes();
+    }
+
+    fn failed(verdict: &Verdict) -> Vec<&'static str> {
+        verdict
+            .checks
+            .iter()
+            .filter(|c| !c.passed)
+            .map(|c| c.name)
+            .collect()
+    }
+
+    #[test]
+    fn the_plan_as_written_flies_safely_and_covers_the_field() {
+        let (scenario, settings, files) = planned();
+        let verdict = verdict(&scenario, &settings, &files);
+        assert!(verdict.safe, "{:?}", verdict.failures);
+        assert!(verdict.fields[0].covered_fraction >= 0.99);
+        assert!(verdict.sprayed_outside_fraction <= MAX_OUTSIDE_FRACTION);
+        // Planned from the launch marker, relative altitudes (no DEM).
+        assert_eq!(verdict.altitude_reference, AltitudeReference::Relative);
+    }
+
+    fn position_items(items: &[Value]) -> Vec<usize> {
+        (0..items.len())
+            .filter(|&k| items[k]["command"] == 16)
+            .collect()
+    }
+
+    #[test]
+    fn a_frame_that_is_not_the_reference_fails() {
+        let (scenario, settings, mut files) = planned();
+        edit(&mut files, |items| {
+            let k = position_items(items)[3];
+            items[k]["frame"] = 0.into();
+        });
+        assert_eq!(
+            failed(&verdict(&scenario, &settings, &files)),
+            vec!["altitude frame"]
+        );
+    }
+
+    #[test]
+    fn a_waypoint_under_the_ground_fails() {
+        let (scenario, settings, mut files) = planned();
+        edit(&mut files, |items| {
+            // The first waypoint after takeoff: the transit out, now 3 m below the ground.
+            let k = position_items(items)[0];
+            items[k]["params"][6] = (-3.0).into();
+        });
+        let verdict = verdict(&scenario, &settings, &files);
+        assert!(
+            failed(&verdict).contains(&"transit clearance"),
+            "{:?}",
+            verdict.failures
+        );
+        assert!(verdict.lowest_clearance_m < 0.0);
+    }
+
+    #[test]
+    fn a_spray_leg_through_the_hole_fails() {
+        let (scenario, settings, mut files) = planned();
+        edit(&mut files, |items| {
+            // A spray waypoint moved into the middle of the hole.
+            let mut spraying = false;
+            let mut target = None;
+            for (k, item) in items.iter().enumerate() {
+                if item["command"] == 216 {
+                    spraying = item["params"][0] == 1.0;
+                } else if spraying && item["command"] == 16 && target.is_none() {
+                    target = Some(k);
+                }
+            }
+            let k = target.unwrap();
+            items[k]["params"][4] = 45.75027.into();
+            items[k]["params"][5] = 126.63083.into();
+        });
+        let verdict = verdict(&scenario, &settings, &files);
+        assert!(
+            failed(&verdict).contains(&"holes and obstacles"),
+            "{:?}",
+            verdict.failures
+        );
+        assert!(
+            verdict.failures.iter().any(|line| line.contains("(126.63")),
+            "places in lon/lat"
+        );
+    }
+
+    #[test]
+    fn a_sortie_over_its_battery_fails() {
+        let (mut scenario, settings, files) = planned();
+        scenario.vehicle.battery_endurance_s = 60.0;
+        assert!(failed(&verdict(&scenario, &settings, &files)).contains(&"battery"));
+    }
+
+    #[test]
+    fn a_waypoints_file_that_disagrees_with_its_plan_fails() {
+        let (scenario, settings, mut files) = planned();
+        let twin = files
+            .iter()
+            .position(|(n, _)| n == "sortie_01.waypoints")
+            .unwrap();
+        let text = String::from_utf8(files[twin].1.clone()).unwrap();
+        let mut lines: Vec<&str> = text.lines().collect();
+        lines.pop();
+        files[twin].1 = (lines.join("\n") + "\n").into_bytes();
+        assert_eq!(
+            failed(&verdict(&scenario, &settings, &files)),
+            vec!["files read back"]
+        );
+    }
+}
