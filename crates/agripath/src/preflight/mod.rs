@@ -248,15 +248,13 @@ fn ring_distance(ring: &[Coord<f64>], p: Coord<f64>) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
-/// Whether `p` is inside `ring` by more than `depth_m` (depth 0: strictly inside, beyond the
-/// slack of the files' rounding); with `depth_m` < 0 also within −depth outside it.
+/// Whether `p` enters `ring` grown by `margin_m`: inside it (by more than the slack of the
+/// files' rounding when there is no margin), or outside within the margin.
 fn enters(ring: &[Coord<f64>], p: Coord<f64>, margin_m: f64) -> bool {
-    let inside = ring_contains(ring, p);
-    let distance = ring_distance(ring, p);
-    if inside {
-        distance > SLACK_M || margin_m > 0.0
+    if ring_contains(ring, p) {
+        margin_m > 0.0 || ring_distance(ring, p) > SLACK_M
     } else {
-        distance < margin_m - SLACK_M
+        margin_m > SLACK_M && ring_distance(ring, p) < margin_m - SLACK_M
     }
 }
 
