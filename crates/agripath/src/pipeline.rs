@@ -233,64 +233,51 @@ pub fn is_mission_file(name: &str) -> bool {
         || name == "waypoints.csv"
 }
 
-/// A plan folder's files with the preflight verdict on its mission files.
+/// A plan folder's files with the preflight verdict on its mission files, and the report
+/// that carries it (as `report.json` holds it).
 pub struct Rendered {
     pub files: Vec<(String, Vec<u8>)>,
     pub verdict: crate::preflight::Verdict,
+    pub report: Report,
 }
 
 impl Rendered {
-    /// The files to write: all of them when the flight is safe or `allow_unsafe`, else all
-    /// but the mission files.
-    pub fn files_to_write(&self, allow_unsafe: bool) -> Vec<&(String, Vec<u8>)> {
-        self.files
-            .iter()
-            .filter(|(name, _)| self.verdict.safe || allow_unsafe || !is_mission_file(name))
-            .collect()
+    /// Keeps the files to write: all of them when the flight is safe or `allow_unsafe`, else
+    /// all but the mission files.
+    pub fn keep_files_to_write(&mut self, allow_unsafe: bool) {
+        if !(self.verdict.safe || allow_unsafe) {
+            self.files.retain(|(name, _)| !is_mission_file(name));
+        }
     }
 }
 
-/// What the preflight holds a plan to: its altitude reference, sprayer, margins, and per
-/// field the coverage promised (99 % with edge passes; the plan's own less ½ point for the
-/// seed's layout without them, which leaves 2-4 % by design), and the spray outside.
+/// What the preflight holds a plan to: its mission settings and margins, and the limits
+/// drawn from what its own measure promised ([`crate::preflight::PreflightSettings::new`]).
 pub fn preflight_settings(mission: &PlannedMission) -> crate::preflight::PreflightSettings {
     let settings = &mission.settings;
-    // The seed's layout runs swaths to the boundary, so half a swath hangs over oblique
-    // edges: it is held to its own planned overhang (+ 0.1 point), the default to 0.5 %.
-    let outside_planned: f64 = mission
-        .coverage
-        .fields
-        .iter()
-        .map(|f| f.measure.outside_m2)
-        .sum();
-    let sprayed_planned = (mission.report.spray_length_m + mission.report.edge_length_m)
-        * mission.coverage.swath_width_m;
-    let max_outside_fraction = if settings.coverage.headland_passes > 0 || sprayed_planned <= 0.0 {
-        crate::preflight::MAX_OUTSIDE_FRACTION
-    } else {
-        crate::preflight::MAX_OUTSIDE_FRACTION.max(outside_planned / sprayed_planned + 0.001)
-    };
-    crate::preflight::PreflightSettings {
-        max_outside_fraction,
-        altitude: settings.mission.altitude,
-        sprayer: settings.mission.sprayer,
-        terrain_tolerance_m: settings.mission.terrain_tolerance_m,
-        local_origin: settings.mission.local_origin,
-        boundary_margin_m: settings.coverage.boundary_margin_m,
-        obstacle_margin_m: settings.coverage.obstacle_margin_m,
-        required_coverage: mission
+    let promise = crate::preflight::Promise {
+        headland_passes: settings.coverage.headland_passes,
+        covered_fraction: mission
             .coverage
             .fields
             .iter()
-            .map(|field| {
-                if settings.coverage.headland_passes > 0 {
-                    0.99
-                } else {
-                    (field.measure.covered_fraction - 0.005).max(0.0)
-                }
-            })
+            .map(|field| field.measure.covered_fraction)
             .collect(),
-    }
+        outside_m2: mission
+            .coverage
+            .fields
+            .iter()
+            .map(|field| field.measure.outside_m2)
+            .sum(),
+        sprayed_m2: (mission.report.spray_length_m + mission.report.edge_length_m)
+            * mission.coverage.swath_width_m,
+    };
+    crate::preflight::PreflightSettings::new(
+        &settings.mission,
+        settings.coverage.boundary_margin_m,
+        settings.coverage.obstacle_margin_m,
+        &promise,
+    )
 }
 
 /// The files of a plan folder, by name: the mission files (per sortie `sortie_NN.plan` and
@@ -408,5 +395,9 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
     ));
     files.extend(mission_files);
     files.push(("terrain.png".to_string(), png));
-    Ok(Rendered { files, verdict })
+    Ok(Rendered {
+        files,
+        verdict,
+        report,
+    })
 }

@@ -145,17 +145,12 @@ fn write_plan(
     allow_unsafe: bool,
     source: &Path,
 ) -> Result<(), Failure> {
-    let rendered = render(scenario, mission).map_err(|fault| InputError::new(source, fault))?;
-    let files: Vec<(String, Vec<u8>)> = rendered
-        .files_to_write(allow_unsafe)
-        .into_iter()
-        .cloned()
-        .collect();
-    let written = write_folder(out, &files)?;
-    let mut report = mission.report.clone();
-    report.preflight = Some(rendered.verdict.clone());
-    emit!("{}", report.to_text());
-    emitln!("wrote {}/: {}", written.display(), files_summary(&files));
+    let mut rendered = render(scenario, mission).map_err(|fault| InputError::new(source, fault))?;
+    rendered.keep_files_to_write(allow_unsafe);
+    let files = &rendered.files;
+    let written = write_folder(out, files)?;
+    emit!("{}", rendered.report.to_text());
+    emitln!("wrote {}/: {}", written.display(), files_summary(files));
     if rendered.verdict.safe {
         return Ok(());
     }

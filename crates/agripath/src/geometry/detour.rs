@@ -157,70 +157,78 @@ pub fn detour(
     Some(corners)
 }
 
-/// The convex hull of `points` grown by `margin_m` (corners rounded by 8-segment arcs), as a
-/// closed ring: the geofence's inclusion polygon around a flight.
+/// Evenly spaced directions of the geofence polygon [`grown_convex_hull`] draws.
+const FENCE_DIRECTIONS: usize = 64;
+/// Hull edges at least this long keep their own direction in the fence, metres.
+const FENCE_EDGE_M: f64 = 20.0;
+/// At most this many such edges (the longest).
+const FENCE_EDGES: usize = 256;
+
+/// The convex hull of `points` grown by `margin_m`, as a closed ring of a bounded number of
+/// corners whatever the number of points: the intersection of the support half-planes of the
+/// hull, moved out by the margin, in 64 evenly spaced directions and in the directions of its
+/// edges of 20 m or more (the 256 longest). It holds the hull grown by the margin (every
+/// half-plane does), runs along the long edges at exactly the margin, and elsewhere reaches
+/// past it by at most margin·(1/cos(π/64) − 1) + 20 m·tan(π/64) < 1 m: the geofence's
+/// inclusion polygon round a flight, small enough for an autopilot's fence storage even round
+/// a 50,000-vertex field.
 pub fn grown_convex_hull(points: &[Coord<f64>], margin_m: f64) -> Vec<Coord<f64>> {
+    if points.is_empty() {
+        return Vec::new();
+    }
     let hull =
         MultiPoint::from(points.iter().map(|&c| Point::from(c)).collect::<Vec<_>>()).convex_hull();
-    let ring = &hull.exterior().0;
-    let n = ring.len().saturating_sub(1);
-    let mut out = Vec::new();
-    if n == 0 {
-        return out;
+    let corners: Vec<Coord<f64>> = hull.exterior().0.clone();
+    let mut long_edges: Vec<(f64, f64)> = corners
+        .windows(2)
+        .filter_map(|pair| {
+            let (dx, dy) = (pair[1].x - pair[0].x, pair[1].y - pair[0].y);
+            let length = dx.hypot(dy);
+            // The normal on either side: the support takes the outer one.
+            (length >= FENCE_EDGE_M).then(|| (length, dy.atan2(-dx)))
+        })
+        .collect();
+    long_edges.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let mut angles: Vec<f64> = (0..FENCE_DIRECTIONS)
+        .map(|k| std::f64::consts::TAU * k as f64 / FENCE_DIRECTIONS as f64)
+        .collect();
+    for &(_, angle) in long_edges.iter().take(FENCE_EDGES) {
+        angles.push(angle.rem_euclid(std::f64::consts::TAU));
+        angles.push((angle + std::f64::consts::PI).rem_euclid(std::f64::consts::TAU));
     }
-    let orientation: f64 = (0..n)
-        .map(|i| ring[i].x * ring[i + 1].y - ring[i + 1].x * ring[i].y)
-        .sum();
-    let sign = if orientation >= 0.0 { 1.0 } else { -1.0 };
-    for i in 0..n {
-        let here = ring[i];
-        let (start, mut end) = if n == 1 {
-            (0.0, std::f64::consts::TAU)
-        } else {
-            let previous = ring[(i + n - 1) % n];
-            let next = ring[(i + 1) % n];
-            // Outward normals of the incoming and outgoing edges, as angles.
-            let incoming = {
-                let (dx, dy) = (here.x - previous.x, here.y - previous.y);
-                (-sign * dx).atan2(sign * dy)
-            };
-            let outgoing = {
-                let (dx, dy) = (next.x - here.x, next.y - here.y);
-                (-sign * dx).atan2(sign * dy)
-            };
-            (incoming, outgoing)
-        };
-        // Sweep in the hull's direction of travel.
-        if sign > 0.0 {
-            while end < start {
-                end += std::f64::consts::TAU;
+    angles.sort_by(f64::total_cmp);
+    angles.dedup_by(|a, b| (*a - *b).abs() < 1e-9);
+    let support: Vec<(f64, f64, f64)> = angles
+        .iter()
+        .map(|&angle| {
+            let (ux, uy) = (angle.cos(), angle.sin());
+            let reach = corners
+                .iter()
+                .map(|p| p.x * ux + p.y * uy)
+                .fold(f64::NEG_INFINITY, f64::max);
+            (ux, uy, reach + margin_m)
+        })
+        .collect();
+    let count = support.len();
+    let mut ring: Vec<Coord<f64>> = (0..count)
+        .map(|k| {
+            let (ax, ay, ca) = support[k];
+            let (bx, by, cb) = support[(k + 1) % count];
+            let determinant = ax * by - ay * bx;
+            Coord {
+                x: (ca * by - cb * ay) / determinant,
+                y: (ax * cb - bx * ca) / determinant,
             }
-        } else {
-            while end > start {
-                end -= std::f64::consts::TAU;
-            }
-        }
-        let steps = 8;
-        // The arc's points sit on a circle of radius margin / cos(half step) so that its
-        // chords stay at least `margin_m` from the corner.
-        let step = (end - start) / steps as f64;
-        let radius = margin_m / (step / 2.0).cos().max(0.5);
-        for k in 0..=steps {
-            let angle = start + step * k as f64;
-            out.push(Coord {
-                x: here.x + radius * angle.cos(),
-                y: here.y + radius * angle.sin(),
-            });
-        }
-    }
-    out.push(out[0]);
-    out
+        })
+        .collect();
+    ring.push(ring[0]);
+    ring
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use geo::{Contains, LineString};
+    use geo::{Contains, Distance, LineString};
 
     fn square(x0: f64, y0: f64, size: f64) -> Polygon<f64> {
         Polygon::new(
@@ -267,7 +275,7 @@ mod tests {
     }
 
     #[test]
-    fn the_grown_hull_contains_every_point_with_its_margin() {
+    fn the_grown_hull_contains_every_point_with_its_margin_and_little_more() {
         let points = [
             Coord { x: 0.0, y: 0.0 },
             Coord { x: 30.0, y: 5.0 },
@@ -275,7 +283,17 @@ mod tests {
             Coord { x: 12.0, y: 8.0 },
         ];
         let ring = grown_convex_hull(&points, 10.0);
-        let polygon = Polygon::new(LineString::new(ring), vec![]);
+        assert!(ring.len() <= FENCE_DIRECTIONS + 2 * FENCE_EDGES + 1);
+        let polygon = Polygon::new(LineString::new(ring.clone()), vec![]);
+        // No corner further than the documented bound from the hull of the points.
+        let hull = MultiPoint::from(points.iter().map(|&c| Point::from(c)).collect::<Vec<_>>())
+            .convex_hull();
+        for corner in &ring {
+            let distance = geo::Euclidean.distance(&Point::from(*corner), &hull);
+            let bound = 10.0 / (std::f64::consts::PI / 64.0).cos()
+                + FENCE_EDGE_M * (std::f64::consts::PI / 64.0).tan();
+            assert!(distance <= bound, "{distance} > {bound}");
+        }
         for point in points {
             for (dx, dy) in [(9.9, 0.0), (-9.9, 0.0), (0.0, 9.9), (0.0, -9.9), (7.0, 7.0)] {
                 assert!(polygon.contains(&Point::new(point.x + dx, point.y + dy)));

@@ -25,7 +25,8 @@ pub enum Sweep {
 }
 
 /// The maximal straight runs of `points` (a subset of the grid's valid points) along `sweep`,
-/// each ordered by increasing coordinate.
+/// each ordered by increasing coordinate; no run crosses an obstacle between two of its
+/// neighbouring points.
 pub fn runs(grid: &PointGrid, points: &[usize], sweep: Sweep) -> Vec<Vec<usize>> {
     let mut inside = vec![false; grid.valid.len()];
     for &p in points {
@@ -44,10 +45,15 @@ pub fn runs(grid: &PointGrid, points: &[usize], sweep: Sweep) -> Vec<Vec<usize>>
         let mut current: Vec<usize> = Vec::new();
         for i in 0..inner {
             let p = index(o, i);
+            // A run also ends where an obstacle cuts between two neighbouring points.
+            let blocked = current
+                .last()
+                .is_some_and(|&q| !grid.clear(grid.centre(q), grid.centre(p)));
+            if (!inside[p] || blocked) && !current.is_empty() {
+                result.push(std::mem::take(&mut current));
+            }
             if inside[p] {
                 current.push(p);
-            } else if !current.is_empty() {
-                result.push(std::mem::take(&mut current));
             }
         }
         if !current.is_empty() {

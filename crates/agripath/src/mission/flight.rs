@@ -14,7 +14,7 @@
 //! height (what QGroundControl's terrain following precomputes), and flat stretches need
 //! only their ends.
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use crate::error::Fault;
 use crate::geometry::{from_utm, to_utm, UtmZone};
@@ -24,7 +24,7 @@ use crate::sortie::route::{RoutePoint, Segment};
 use crate::terrain::Terrain;
 
 /// How altitudes are written (decision 0012).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum AltitudeReference {
     /// Above the launch point's ground (MAV_FRAME_GLOBAL_RELATIVE_ALT, QGC "relative"): the
@@ -104,7 +104,7 @@ impl std::str::FromStr for AltitudeReference {
 }
 
 /// How the sprayer is switched.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum SprayerCommand {
     /// MAV_CMD_DO_SPRAYER (216), ArduPilot's sprayer.
@@ -118,7 +118,7 @@ pub enum SprayerCommand {
 }
 
 /// What the mission files are asked for.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MissionSettings {
     pub altitude: AltitudeReference,
     pub sprayer: SprayerCommand,
@@ -370,21 +370,16 @@ fn transit(
     from: &RoutePoint,
     to: &RoutePoint,
     scenario: &Scenario,
+    obstacles: &[geo::Polygon<f64>],
     clearance_m: f64,
 ) -> Result<Transit, Fault> {
-    let obstacles: Vec<geo::Polygon<f64>> = scenario
-        .farm
-        .obstacles
-        .iter()
-        .map(|obstacle| obstacle.polygon.clone())
-        .collect();
     let corners = crate::geometry::detour::detour(
         geo::Coord {
             x: from.x,
             y: from.y,
         },
         geo::Coord { x: to.x, y: to.y },
-        &obstacles,
+        obstacles,
         OBSTACLE_CLEARANCE_M,
     )
     .ok_or_else(|| {
@@ -479,12 +474,19 @@ pub fn build_missions(
         item(action, point, altitude_m - point.ground_m)
     };
     let home = item(Action::Waypoint, &supply, 0.0);
+    // The geofence's exclusions, which every transit keeps out of.
+    let obstacles: Vec<geo::Polygon<f64>> = scenario
+        .farm
+        .obstacles
+        .iter()
+        .map(|obstacle| obstacle.polygon.clone())
+        .collect();
     let points = work_route.points();
     let segments = work_route.segments();
     let mut missions = Vec::new();
     for (sortie, pair) in bounds.windows(2).enumerate() {
         let (first, last) = (pair[0], pair[1]);
-        let out = transit(&supply, &points[first], scenario, cruise)?;
+        let out = transit(&supply, &points[first], scenario, &obstacles, cruise)?;
         let mut items = vec![
             level(Action::Takeoff, &supply, out.altitude_m),
             level(
@@ -549,7 +551,7 @@ pub fn build_missions(
                 }
                 Segment::Transfer => {
                     let (from, to) = (&points[index], &points[index + 1]);
-                    let hop = transit(from, to, scenario, cruise)?;
+                    let hop = transit(from, to, scenario, &obstacles, cruise)?;
                     items.push(item(
                         Action::Speed {
                             mps: vehicle.transit_speed_mps,
@@ -574,7 +576,7 @@ pub fn build_missions(
                 }
             }
         }
-        let back = transit(&points[last], &supply, scenario, cruise)?;
+        let back = transit(&points[last], &supply, scenario, &obstacles, cruise)?;
         items.push(item(
             Action::Speed {
                 mps: vehicle.transit_speed_mps,

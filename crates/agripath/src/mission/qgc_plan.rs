@@ -37,7 +37,7 @@ pub fn fence_rings(
         .items
         .iter()
         .chain(std::iter::once(&mission.home))
-        .filter(|item| item.moves() || std::ptr::eq(*item, &mission.home))
+        .filter(|item| item.moves())
         .map(|item| {
             let (x, y) = frame.plan_xy(item.lon, item.lat);
             geo::Coord { x, y }

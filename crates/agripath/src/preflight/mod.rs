@@ -21,12 +21,14 @@
 pub mod flown;
 pub mod read_back;
 pub mod sprayed;
+mod zones;
 
 use geo::Coord;
 use serde::Serialize;
 
 use crate::coverage::region::sprayable_region;
-use crate::mission::flight::{AltitudeReference, GeoFrame, SprayerCommand};
+use crate::geometry::rings;
+use crate::mission::flight::{AltitudeReference, GeoFrame, MissionSettings, SprayerCommand};
 use crate::mission::mavlink::Command;
 use crate::model::{Farm, Vehicle};
 use crate::terrain::Terrain;
@@ -42,6 +44,8 @@ const ROW_M: f64 = 0.1;
 const SLACK_M: f64 = 0.02;
 /// Most sprayed area outside the fields, as a share of the sprayed area (the default layout).
 pub const MAX_OUTSIDE_FRACTION: f64 = 0.005;
+/// Smallest change of direction between two spray legs that sweeps a turn's disc, radians.
+const MIN_TURN_RAD: f64 = 0.5 * std::f64::consts::PI / 180.0;
 /// Lines reported per failed check (the count of the rest follows).
 const LINES_PER_CHECK: usize = 3;
 
@@ -65,6 +69,59 @@ pub struct PreflightSettings {
     pub required_coverage: Vec<f64>,
     /// Most sprayed area outside the fields, as a share of the sprayed area.
     pub max_outside_fraction: f64,
+}
+
+/// What a plan promised by its own measure, which the coverage and spray-outside limits are
+/// drawn from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Promise {
+    pub headland_passes: usize,
+    /// Per field, the share of its sprayable area the plan's measure covers.
+    pub covered_fraction: Vec<f64>,
+    /// Strip area the plan's measure puts outside the sprayable region, m².
+    pub outside_m2: f64,
+    /// Swath and edge-pass metres × swath width, m².
+    pub sprayed_m2: f64,
+}
+
+impl PreflightSettings {
+    /// The settings a plan is held to (decision 0012). With edge passes: 99 % of each field
+    /// and at most [`MAX_OUTSIDE_FRACTION`] outside. The seed's layout (`--headland 0`)
+    /// leaves 2-4 % at oblique swath ends and runs swaths to the boundary, half a swath
+    /// overhanging it: it is held to its own coverage − ½ point and its own overhang
+    /// + 0.1 point.
+    pub fn new(
+        mission: &MissionSettings,
+        boundary_margin_m: f64,
+        obstacle_margin_m: f64,
+        promise: &Promise,
+    ) -> Self {
+        let seed_layout = promise.headland_passes == 0;
+        Self {
+            altitude: mission.altitude,
+            sprayer: mission.sprayer,
+            terrain_tolerance_m: mission.terrain_tolerance_m,
+            local_origin: mission.local_origin,
+            boundary_margin_m,
+            obstacle_margin_m,
+            required_coverage: promise
+                .covered_fraction
+                .iter()
+                .map(|&covered| {
+                    if seed_layout {
+                        (covered - 0.005).max(0.0)
+                    } else {
+                        0.99
+                    }
+                })
+                .collect(),
+            max_outside_fraction: if seed_layout && promise.sprayed_m2 > 0.0 {
+                MAX_OUTSIDE_FRACTION.max(promise.outside_m2 / promise.sprayed_m2 + 0.001)
+            } else {
+                MAX_OUTSIDE_FRACTION
+            },
+        }
+    }
 }
 
 /// One check and its figure.
@@ -219,45 +276,6 @@ impl Tally {
     }
 }
 
-/// Even-odd point in ring.
-fn ring_contains(ring: &[Coord<f64>], p: Coord<f64>) -> bool {
-    let mut inside = false;
-    for pair in ring.windows(2) {
-        let (a, b) = (pair[0], pair[1]);
-        if (a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) / (b.y - a.y) * (b.x - a.x) {
-            inside = !inside;
-        }
-    }
-    inside
-}
-
-/// Distance from `p` to the ring's edges.
-fn ring_distance(ring: &[Coord<f64>], p: Coord<f64>) -> f64 {
-    ring.windows(2)
-        .map(|pair| {
-            let (a, b) = (pair[0], pair[1]);
-            let (dx, dy) = (b.x - a.x, b.y - a.y);
-            let length2 = dx * dx + dy * dy;
-            let t = if length2 > 0.0 {
-                (((p.x - a.x) * dx + (p.y - a.y) * dy) / length2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            (p.x - a.x - t * dx).hypot(p.y - a.y - t * dy)
-        })
-        .fold(f64::INFINITY, f64::min)
-}
-
-/// Whether `p` enters `ring` grown by `margin_m`: inside it (by more than the slack of the
-/// files' rounding when there is no margin), or outside within the margin.
-fn enters(ring: &[Coord<f64>], p: Coord<f64>, margin_m: f64) -> bool {
-    if ring_contains(ring, p) {
-        margin_m > 0.0 || ring_distance(ring, p) > SLACK_M
-    } else {
-        margin_m > SLACK_M && ring_distance(ring, p) < margin_m - SLACK_M
-    }
-}
-
 /// The places a horizontal leg is sampled at: both ends and every [`SAMPLE_M`].
 fn samples(leg: &Leg) -> impl Iterator<Item = f64> {
     let steps = (leg.horizontal_m() / SAMPLE_M).ceil().max(1.0) as usize;
@@ -301,31 +319,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
     let low_limit = low_legs.limit;
 
     // Field, hole and obstacle rings in plan metres.
-    let fields: Vec<&geo::Polygon<f64>> = world.farm.fields.iter().map(|f| &f.polygon).collect();
-    let obstacles: Vec<&[Coord<f64>]> = world
-        .farm
-        .obstacles
-        .iter()
-        .map(|o| o.polygon.exterior().0.as_slice())
-        .collect();
-    let in_no_go = |p: Coord<f64>| -> bool {
-        fields.iter().any(|field| {
-            ring_contains(&field.exterior().0, p)
-                && field
-                    .interiors()
-                    .iter()
-                    .any(|hole| enters(&hole.0, p, settings.obstacle_margin_m.min(0.0)))
-        }) || obstacles
-            .iter()
-            .any(|ring| enters(ring, p, settings.obstacle_margin_m))
-    };
-    let over_field = |p: Coord<f64>| -> bool {
-        fields.iter().any(|field| {
-            (ring_contains(&field.exterior().0, p)
-                || ring_distance(&field.exterior().0, p) <= SLACK_M)
-                && !field.interiors().iter().any(|hole| enters(&hole.0, p, 0.0))
-        }) && !obstacles.iter().any(|ring| enters(ring, p, 0.0))
-    };
+    let zones = zones::Zones::new(world.farm, settings.obstacle_margin_m);
 
     let mut strips = Vec::new();
     let mut sorties = Vec::new();
@@ -407,7 +401,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             }
         };
         // The fence as the file gives it.
-        let fence_rings: Vec<(bool, Vec<Coord<f64>>)> = plan
+        let fences: Vec<zones::Fence> = plan
             .fence
             .iter()
             .map(|polygon| {
@@ -424,8 +418,19 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 }
                 (polygon.inclusion, ring)
             })
+            .filter(|(_, ring): &(bool, Vec<Coord<f64>>)| {
+                // A closed ring of fewer than three corners fences nothing.
+                let usable = ring.len() >= 4;
+                if !usable {
+                    fence.fail(format!(
+                        "sortie {sortie}: {name} has a geofence polygon of fewer than 3 corners"
+                    ));
+                }
+                usable
+            })
+            .map(|(inclusion, ring)| zones::Fence::new(inclusion, &ring))
             .collect();
-        if !fence_rings.iter().any(|(inclusion, _)| *inclusion) {
+        if !fences.iter().any(|fence| fence.inclusion) {
             fence.fail(format!("sortie {sortie}: {name} has no inclusion geofence"));
         }
         let mut figures = SortieFlown {
@@ -444,31 +449,24 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             let vertical = leg.vertical_m(terrain).unwrap_or(0.0);
             figures.flight_time_s +=
                 (horizontal / leg.speed_mps).max(vertical / vehicle.climb_speed_mps);
-            let mut points = Vec::new();
-            for t in samples(leg) {
-                match leg.at(t, terrain) {
-                    Ok((x, y, altitude)) => match terrain.height_m(x, y) {
-                        Ok(ground) => points.push((x, y, altitude, ground)),
-                        Err(error) => {
-                            read.fail(format!("sortie {sortie}, item {}: {error}", leg.item));
-                            break;
-                        }
-                    },
-                    Err(error) => {
-                        read.fail(format!("sortie {sortie}, item {}: {error}", leg.item));
-                        break;
-                    }
+            // Where the terrain has no answer (a waypoint off the DEM), the leg cannot be
+            // checked: that is a failure, and the leg's other checks are skipped.
+            let sampled: Result<Vec<(f64, f64, f64, f64)>, crate::TerrainError> = samples(leg)
+                .map(|t| {
+                    let (x, y, altitude) = leg.at(t, terrain)?;
+                    Ok((x, y, altitude, terrain.height_m(x, y)?))
+                })
+                .collect();
+            let points = match sampled {
+                Ok(points) => points,
+                Err(error) => {
+                    read.fail(format!("sortie {sortie}, item {}: {error}", leg.item));
+                    continue;
                 }
-            }
+            };
             for &(x, y, _, _) in &points {
                 let p = Coord { x, y };
-                let outside = fence_rings.iter().any(|(inclusion, ring)| {
-                    if *inclusion {
-                        !ring_contains(ring, p) && ring_distance(ring, p) > SLACK_M
-                    } else {
-                        ring_contains(ring, p) && ring_distance(ring, p) > SLACK_M
-                    }
-                });
+                let outside = fences.iter().any(|polygon| polygon.breached_at(p));
                 fence.record(f64::from(u8::from(outside)), outside, || {
                     format!(
                         "sortie {sortie}, item {} at {}: outside the geofence",
@@ -488,10 +486,18 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 let (a, b) = (points[0], points[points.len() - 1]);
                 let half = vehicle.swath_width_m / 2.0;
                 let strip = Strip::new(Coord { x: a.0, y: a.1 }, Coord { x: b.0, y: b.1 }, half);
-                // The run goes on spraying through the next leg: the footprint turns here.
-                let turns_on = legs
-                    .get(leg_index + 1)
-                    .is_some_and(|next| next.spraying && next.horizontal_m() > 0.0);
+                // The run goes on spraying through the next leg in another direction: the
+                // footprint turns here (not at the waypoints of a straight swath that only
+                // follow the terrain).
+                let turns_on = legs.get(leg_index + 1).is_some_and(|next| {
+                    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
+                    let (nx, ny) = (next.to.x - next.from.x, next.to.y - next.from.y);
+                    let cross = dx * ny - dy * nx;
+                    let dot = dx * nx + dy * ny;
+                    next.spraying
+                        && next.horizontal_m() > 0.0
+                        && cross.atan2(dot).abs() > MIN_TURN_RAD
+                });
                 strips.extend(strip.map(|strip| {
                     if turns_on {
                         strip.turning_at_end(Coord { x: b.0, y: b.1 }, half)
@@ -517,7 +523,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                             )
                         },
                     );
-                    let inside = in_no_go(Coord { x, y });
+                    let inside = zones.no_go(Coord { x, y });
                     no_go.record(f64::from(u8::from(inside)), inside, || {
                         format!(
                             "sortie {sortie}, item {} at {}: spraying inside a hole or an obstacle",
@@ -548,7 +554,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             }
             let within_field = points
                 .iter()
-                .all(|&(x, y, _, _)| over_field(Coord { x, y }));
+                .all(|&(x, y, _, _)| zones.over_field(Coord { x, y }));
             if within_field {
                 for &(x, y, altitude, ground) in &points {
                     let clearance = altitude - ground;
@@ -650,11 +656,13 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             ))
         })
         .collect();
-    let ground = Rings::new(world.farm.fields.iter().flat_map(|field| {
-        std::iter::once(field.polygon.exterior())
-            .chain(field.polygon.interiors())
-            .map(|ring| ring.0.as_slice())
-    }));
+    let ground = Rings::new(
+        world
+            .farm
+            .fields
+            .iter()
+            .flat_map(|field| rings(&field.polygon)),
+    );
     let excluded: Vec<Rings> = world
         .farm
         .obstacles
@@ -784,92 +792,45 @@ pub fn check_folder(world: &World, folder: &std::path::Path) -> Result<Verdict, 
             report_path.display()
         ))
     };
-    let mission = &report["mission"];
-    let altitude: AltitudeReference = match mission["altitude"].as_str() {
-        Some("relative") => AltitudeReference::Relative,
-        Some("sea_level") => AltitudeReference::SeaLevel,
-        Some("terrain") => AltitudeReference::Terrain,
-        _ => return Err(missing("mission.altitude")),
-    };
-    let sprayer = match mission["sprayer"]["kind"].as_str() {
-        Some("do_sprayer") => SprayerCommand::DoSprayer,
-        Some("servo") => {
-            let field = |key: &str| {
-                mission["sprayer"][key]
-                    .as_u64()
-                    .and_then(|v| u16::try_from(v).ok())
-                    .ok_or_else(|| missing("mission.sprayer"))
-            };
-            SprayerCommand::Servo {
-                channel: field("channel")?,
-                on_pwm: field("on_pwm")?,
-                off_pwm: field("off_pwm")?,
-            }
-        }
-        _ => return Err(missing("mission.sprayer")),
-    };
+    let mission: MissionSettings = serde_json::from_value(report["mission"].clone())
+        .map_err(|error| missing(&format!("valid mission settings ({error})")))?;
     let number =
         |value: &serde_json::Value, what: &str| value.as_f64().ok_or_else(|| missing(what));
-    let origin = &mission["local_origin"];
-    let headland = report["settings"]["headland_passes"].as_u64().unwrap_or(1);
-    let planned: Vec<f64> = report["fields"]
-        .as_array()
-        .map(|fields| {
-            fields
-                .iter()
-                .map(|f| f["covered_fraction"].as_f64().unwrap_or(1.0))
-                .collect()
-        })
-        .unwrap_or_default();
-    let outside_planned = report["fields"]
-        .as_array()
-        .map(|fields| {
-            fields
-                .iter()
-                .map(|f| f["outside_m2"].as_f64().unwrap_or(0.0))
-                .sum::<f64>()
-        })
-        .unwrap_or(0.0);
-    let sprayed_planned =
-        report["spray_length_m"].as_f64().unwrap_or(0.0) * world.vehicle.swath_width_m;
-    let settings = PreflightSettings {
-        max_outside_fraction: if headland > 0 || sprayed_planned <= 0.0 {
-            MAX_OUTSIDE_FRACTION
-        } else {
-            MAX_OUTSIDE_FRACTION.max(outside_planned / sprayed_planned + 0.001)
-        },
-        altitude,
-        sprayer,
-        terrain_tolerance_m: number(
-            &mission["terrain_tolerance_m"],
-            "mission.terrain_tolerance_m",
-        )?,
-        local_origin: (
-            number(&origin[0], "mission.local_origin")?,
-            number(&origin[1], "mission.local_origin")?,
-        ),
-        boundary_margin_m: number(
-            &report["settings"]["boundary_margin_m"],
-            "settings.boundary_margin_m",
-        )?,
-        obstacle_margin_m: number(
-            &report["settings"]["obstacle_margin_m"],
-            "settings.obstacle_margin_m",
-        )?,
-        required_coverage: world
+    let fields = report["fields"].as_array().cloned().unwrap_or_default();
+    let promise = Promise {
+        headland_passes: report["settings"]["headland_passes"].as_u64().unwrap_or(1) as usize,
+        covered_fraction: world
             .farm
             .fields
             .iter()
             .enumerate()
             .map(|(index, _)| {
-                if headland > 0 {
-                    0.99
-                } else {
-                    (planned.get(index).copied().unwrap_or(1.0) - 0.005).max(0.0)
-                }
+                fields
+                    .get(index)
+                    .and_then(|field| field["covered_fraction"].as_f64())
+                    .unwrap_or(1.0)
             })
             .collect(),
+        outside_m2: fields
+            .iter()
+            .map(|field| field["outside_m2"].as_f64().unwrap_or(0.0))
+            .sum(),
+        sprayed_m2: (number(&report["spray_length_m"], "spray_length_m")?
+            + number(&report["edge_length_m"], "edge_length_m")?)
+            * world.vehicle.swath_width_m,
     };
+    let settings = PreflightSettings::new(
+        &mission,
+        number(
+            &report["settings"]["boundary_margin_m"],
+            "settings.boundary_margin_m",
+        )?,
+        number(
+            &report["settings"]["obstacle_margin_m"],
+            "settings.obstacle_margin_m",
+        )?,
+        &promise,
+    );
     let mut files = Vec::new();
     let entries = std::fs::read_dir(folder)
         .map_err(|error| Fault::Structure(format!("{}: cannot read: {error}", folder.display())))?;

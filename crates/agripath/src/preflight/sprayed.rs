@@ -131,19 +131,11 @@ impl Rings {
 
     /// The rings of a polygon with holes.
     pub fn of_polygon(polygon: &geo::Polygon<f64>) -> Self {
-        Self::new(
-            std::iter::once(polygon.exterior())
-                .chain(polygon.interiors())
-                .map(|ring| ring.0.as_slice()),
-        )
+        Self::new(crate::geometry::rings(polygon))
     }
 
     pub fn of_multi_polygon(region: &geo::MultiPolygon<f64>) -> Self {
-        Self::new(region.0.iter().flat_map(|polygon| {
-            std::iter::once(polygon.exterior())
-                .chain(polygon.interiors())
-                .map(|ring| ring.0.as_slice())
-        }))
+        Self::new(region.0.iter().flat_map(crate::geometry::rings))
     }
 }
 
@@ -333,7 +325,8 @@ pub fn measure(
     let mut excluded_cursors: Vec<Cursor> = excluded.iter().map(Cursor::new).collect();
     let (mut raw, mut covered, mut twice, mut inside) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    let (mut blocked, mut piece, mut allowed) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut blocked, mut piece, mut allowed, mut merged) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let rows = ((high - low) / row_m).ceil() as usize;
     for row in 0..rows {
         let y = low + (row as f64 + 0.5) * row_m;
@@ -354,21 +347,16 @@ pub fn measure(
             figures.covered_m2 += overlap_length(&inside, &covered) * row_m;
             figures.doubled_m2 += overlap_length(&inside, &twice) * row_m;
         }
-        if covered.is_empty() {
-            // Keep the cursors of the ground moving; nothing sprayed on this row.
-            ground_cursor.intervals(y, &mut inside);
-            for cursor in &mut excluded_cursors {
-                cursor.intervals(y, &mut piece);
-            }
-            continue;
-        }
+        // The cursors walk every row, sprayed or not (rows come in increasing y).
         ground_cursor.intervals(y, &mut inside);
         blocked.clear();
         for cursor in &mut excluded_cursors {
             cursor.intervals(y, &mut piece);
             blocked.extend_from_slice(&piece);
         }
-        let mut merged = Vec::new();
+        if covered.is_empty() {
+            continue;
+        }
         union(&mut blocked, &mut merged);
         subtract(&inside, &merged, &mut allowed);
         let sprayed = length(&covered);

@@ -13,6 +13,7 @@ use geo::{Coord, Polygon};
 
 use crate::coverage::drape::GroundPoint;
 use crate::geometry::validate::point_in_ring;
+use crate::geometry::{distance_to_segment, rings};
 use crate::model::Farm;
 
 /// A transfer leg between two pass ends.
@@ -206,25 +207,8 @@ fn is_convex(ring: &[Coord<f64>]) -> bool {
     true
 }
 
-fn rings(polygon: &Polygon<f64>) -> impl Iterator<Item = &[Coord<f64>]> {
-    std::iter::once(polygon.exterior())
-        .chain(polygon.interiors())
-        .map(|ring| ring.0.as_slice())
-}
-
 fn cross(origin: Coord<f64>, a: Coord<f64>, b: Coord<f64>) -> f64 {
     (a.x - origin.x) * (b.y - origin.y) - (a.y - origin.y) * (b.x - origin.x)
-}
-
-fn distance_to_segment(point: Coord<f64>, start: Coord<f64>, end: Coord<f64>) -> f64 {
-    let (dx, dy) = (end.x - start.x, end.y - start.y);
-    let length_squared = dx * dx + dy * dy;
-    let t = if length_squared > 0.0 {
-        (((point.x - start.x) * dx + (point.y - start.y) * dy) / length_squared).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (point.x - start.x - t * dx).hypot(point.y - start.y - t * dy)
 }
 
 fn on_boundary(point: Coord<f64>, polygon: &Polygon<f64>) -> bool {

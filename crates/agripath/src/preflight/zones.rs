@@ -1,0 +1,216 @@
+//! The farm's fields, holes and obstacles as the preflight asks about them: a sample every
+//! metre of every leg, on farms of up to 10,000 fields and fields of up to 50,000 vertices.
+//! Each ring is indexed by bands ([`IndexedRing`]) and the rings by a grid of cells over the
+//! farm, so a query looks at the few rings near the point.
+
+use geo::Coord;
+
+use super::SLACK_M;
+use crate::geometry::ring_index::IndexedRing;
+use crate::model::Farm;
+
+/// A field: its boundary and its holes.
+struct FieldRings {
+    boundary: IndexedRing,
+    holes: Vec<IndexedRing>,
+}
+
+/// Which items' boxes (grown by a reach) meet each cell of a grid.
+struct Cells {
+    origin: Coord<f64>,
+    cell_m: f64,
+    columns: usize,
+    rows: usize,
+    items: Vec<Vec<u32>>,
+}
+
+impl Cells {
+    fn new(boxes: &[(Coord<f64>, Coord<f64>)], reach_m: f64) -> Self {
+        let mut low = Coord {
+            x: f64::INFINITY,
+            y: f64::INFINITY,
+        };
+        let mut high = Coord {
+            x: f64::NEG_INFINITY,
+            y: f64::NEG_INFINITY,
+        };
+        for (a, b) in boxes {
+            low.x = low.x.min(a.x - reach_m);
+            low.y = low.y.min(a.y - reach_m);
+            high.x = high.x.max(b.x + reach_m);
+            high.y = high.y.max(b.y + reach_m);
+        }
+        if boxes.is_empty() {
+            return Self {
+                origin: Coord { x: 0.0, y: 0.0 },
+                cell_m: 1.0,
+                columns: 0,
+                rows: 0,
+                items: Vec::new(),
+            };
+        }
+        // About one item a cell, at most 512 × 512 cells.
+        let side = (boxes.len() as f64).sqrt().ceil().clamp(1.0, 512.0);
+        let cell_m = ((high.x - low.x).max(high.y - low.y) / side).max(1e-6);
+        let columns = ((high.x - low.x) / cell_m).ceil().max(1.0) as usize;
+        let rows = ((high.y - low.y) / cell_m).ceil().max(1.0) as usize;
+        let mut items = vec![Vec::new(); columns * rows];
+        for (index, (a, b)) in boxes.iter().enumerate() {
+            let column =
+                |x: f64| (((x - low.x) / cell_m).floor().max(0.0) as usize).min(columns - 1);
+            let row = |y: f64| (((y - low.y) / cell_m).floor().max(0.0) as usize).min(rows - 1);
+            for r in row(a.y - reach_m)..=row(b.y + reach_m) {
+                for c in column(a.x - reach_m)..=column(b.x + reach_m) {
+                    items[r * columns + c].push(index as u32);
+                }
+            }
+        }
+        Self {
+            origin: low,
+            cell_m,
+            columns,
+            rows,
+            items,
+        }
+    }
+
+    /// The items whose grown box may hold `p`.
+    fn near(&self, p: Coord<f64>) -> &[u32] {
+        let column = ((p.x - self.origin.x) / self.cell_m).floor();
+        let row = ((p.y - self.origin.y) / self.cell_m).floor();
+        if column < 0.0 || row < 0.0 || column >= self.columns as f64 || row >= self.rows as f64 {
+            return &[];
+        }
+        &self.items[row as usize * self.columns + column as usize]
+    }
+}
+
+fn bounds(ring: &[Coord<f64>]) -> (Coord<f64>, Coord<f64>) {
+    ring.iter().fold(
+        (
+            Coord {
+                x: f64::INFINITY,
+                y: f64::INFINITY,
+            },
+            Coord {
+                x: f64::NEG_INFINITY,
+                y: f64::NEG_INFINITY,
+            },
+        ),
+        |(low, high), p| {
+            (
+                Coord {
+                    x: low.x.min(p.x),
+                    y: low.y.min(p.y),
+                },
+                Coord {
+                    x: high.x.max(p.x),
+                    y: high.y.max(p.y),
+                },
+            )
+        },
+    )
+}
+
+/// Whether `p` enters `ring` grown by `margin_m`: inside it (by more than the slack of the
+/// files' rounding when there is no margin), or outside within the margin.
+fn enters(ring: &IndexedRing, p: Coord<f64>, margin_m: f64) -> bool {
+    if ring.contains(p) {
+        margin_m > 0.0 || !ring.near(p, SLACK_M)
+    } else {
+        margin_m > SLACK_M && ring.near(p, margin_m - SLACK_M)
+    }
+}
+
+/// The fields, holes and obstacles of a farm, indexed.
+pub struct Zones {
+    fields: Vec<FieldRings>,
+    obstacles: Vec<IndexedRing>,
+    field_cells: Cells,
+    obstacle_cells: Cells,
+    obstacle_margin_m: f64,
+}
+
+impl Zones {
+    pub fn new(farm: &Farm, obstacle_margin_m: f64) -> Self {
+        let reach = obstacle_margin_m.max(0.0) + SLACK_M;
+        let field_boxes: Vec<_> = farm
+            .fields
+            .iter()
+            .map(|field| bounds(&field.polygon.exterior().0))
+            .collect();
+        let obstacle_boxes: Vec<_> = farm
+            .obstacles
+            .iter()
+            .map(|obstacle| bounds(&obstacle.polygon.exterior().0))
+            .collect();
+        Self {
+            fields: farm
+                .fields
+                .iter()
+                .map(|field| FieldRings {
+                    boundary: IndexedRing::new(&field.polygon.exterior().0),
+                    holes: field
+                        .polygon
+                        .interiors()
+                        .iter()
+                        .map(|hole| IndexedRing::new(&hole.0))
+                        .collect(),
+                })
+                .collect(),
+            obstacles: farm
+                .obstacles
+                .iter()
+                .map(|obstacle| IndexedRing::new(&obstacle.polygon.exterior().0))
+                .collect(),
+            field_cells: Cells::new(&field_boxes, reach),
+            obstacle_cells: Cells::new(&obstacle_boxes, reach),
+            obstacle_margin_m,
+        }
+    }
+
+    fn enters_obstacle(&self, p: Coord<f64>, margin_m: f64) -> bool {
+        self.obstacle_cells
+            .near(p)
+            .iter()
+            .any(|&k| enters(&self.obstacles[k as usize], p, margin_m))
+    }
+
+    /// Whether spraying at `p` is in a hole or an obstacle (grown by the obstacle margin).
+    pub fn no_go(&self, p: Coord<f64>) -> bool {
+        self.field_cells.near(p).iter().any(|&k| {
+            let field = &self.fields[k as usize];
+            field.boundary.contains(p) && field.holes.iter().any(|hole| enters(hole, p, 0.0))
+        }) || self.enters_obstacle(p, self.obstacle_margin_m)
+    }
+
+    /// Whether `p` is over a field (its boundary included), not over a hole or an obstacle.
+    pub fn over_field(&self, p: Coord<f64>) -> bool {
+        self.field_cells.near(p).iter().any(|&k| {
+            let field = &self.fields[k as usize];
+            (field.boundary.contains(p) || field.boundary.near(p, SLACK_M))
+                && !field.holes.iter().any(|hole| enters(hole, p, 0.0))
+        }) && !self.enters_obstacle(p, 0.0)
+    }
+}
+
+/// A geofence polygon as the file gives it, indexed.
+pub struct Fence {
+    pub inclusion: bool,
+    ring: IndexedRing,
+}
+
+impl Fence {
+    pub fn new(inclusion: bool, ring: &[Coord<f64>]) -> Self {
+        Self {
+            inclusion,
+            ring: IndexedRing::new(ring),
+        }
+    }
+
+    /// Whether `p` breaks this polygon: outside an inclusion, inside an exclusion (beyond the
+    /// files' rounding).
+    pub fn breached_at(&self, p: Coord<f64>) -> bool {
+        self.ring.contains(p) != self.inclusion && !self.ring.near(p, SLACK_M)
+    }
+}
