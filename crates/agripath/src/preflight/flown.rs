@@ -153,12 +153,18 @@ pub fn fly(
             return Err(fail("an item after the landing".into()));
         }
         match item.command {
-            CMD_NAV_TAKEOFF => {
+            CMD_NAV_TAKEOFF | CMD_NAV_WAYPOINT => {
                 let target = place(item)?;
-                let to = Place {
-                    x: here.x,
-                    y: here.y,
-                    height: target.height,
+                // Takeoff climbs where the vehicle stands; a waypoint is flown to.
+                let (to, motion) = if item.command == CMD_NAV_TAKEOFF {
+                    let above = Place {
+                        x: here.x,
+                        y: here.y,
+                        height: target.height,
+                    };
+                    (above, Motion::Takeoff)
+                } else {
+                    (target, Motion::Flight)
                 };
                 legs.push(Leg {
                     item: number,
@@ -166,19 +172,7 @@ pub fn fly(
                     to,
                     spraying,
                     speed_mps: speed,
-                    motion: Motion::Takeoff,
-                });
-                here = to;
-            }
-            CMD_NAV_WAYPOINT => {
-                let to = place(item)?;
-                legs.push(Leg {
-                    item: number,
-                    from: here,
-                    to,
-                    spraying,
-                    speed_mps: speed,
-                    motion: Motion::Flight,
+                    motion,
                 });
                 here = to;
             }
