@@ -89,23 +89,32 @@ pub enum Command {
         #[arg(long)]
         out: PathBuf,
     },
-    /// Plan a safe point-to-point 3D track over terrain and threat cylinders (seed 000's
-    /// orchard, seed 002's survey space, SPSO's scenario). Writes DIR/track.geojson,
-    /// DIR/report.json, DIR/table.md, DIR/top_view.svg/.png, DIR/profile_NAME.svg,
-    /// DIR/convergence.svg and DIR/NAME.waypoints (QGC WPL 110) per planner.
+    /// Plan a safe point-to-point 3D track over terrain and threat cylinders. Writes
+    /// DIR/track.geojson, DIR/report.json, DIR/table.md, DIR/top_view.svg/.png,
+    /// DIR/profile_NAME.svg, DIR/convergence.svg and, per planner whose track is safe,
+    /// DIR/NAME.waypoints (QGC WPL 110). Exits 3 and writes no .waypoints when no planner
+    /// finds a safe track.
+    ///
+    /// Scenario formats (detected from the extension and keys): seed 000's orchard JSON
+    /// (`tasks`, `terrain.coefficients`/`terrain.hills`, e.g. data/seed000_orchard.json);
+    /// seed 002's survey JSON (`ga`, data/seed002_field_survey.json); SPSO's JSON
+    /// (`threat_cylinders_x_y_z_r` with a `dem.file`, data/spso/scenario.json); the operator
+    /// TOML (a DEM, start/goal/threats in lon/lat or local metres, a height band above the
+    /// ground, data/tracks/christmas_island_track.toml). Unknown keys are an error. A start
+    /// or goal below the band's floor is reached by a vertical climb or descent.
     Track {
-        /// Scenario JSON: seed000_orchard.json, seed002_field_survey.json or spso/scenario.json.
+        /// Scenario file: JSON of seed 000, seed 002 or SPSO, or an operator TOML.
         scenario: PathBuf,
-        /// Seed 000's task: I, II or III.
+        /// Seed 000's task (I, II or III, or a task name of the file).
         #[arg(long)]
         task: Option<String>,
         /// Planners, comma-separated: lattice (ours), iba-fcs, ba, ilssiwba, pso, spso, ga,
         /// aco-r, gsa, lshade, improved-ga.
         #[arg(long, default_value = "lattice")]
         algorithm: String,
-        /// Independent runs per planner.
-        #[arg(long, default_value_t = 5)]
-        runs: u64,
+        /// Independent runs per planner (default: the scenario's `algorithms.runs`, else 5).
+        #[arg(long)]
+        runs: Option<u64>,
         /// Seed of the random streams.
         #[arg(long, default_value_t = 1)]
         seed: u64,
@@ -116,6 +125,16 @@ pub enum Command {
         /// Evaluations per run (default: the scenario paper's population × iterations).
         #[arg(long)]
         evaluations: Option<u64>,
+        /// Least height above the terrain a safe track keeps along its cruise, metres
+        /// (checked every 1 m against the terrain as given).
+        #[arg(long, default_value_t = 2.0)]
+        min_clearance: f64,
+        /// The vehicle's radius: least distance from a threat cylinder's wall, metres.
+        #[arg(long, default_value_t = 1.0)]
+        vehicle_radius: f64,
+        /// Write the .waypoints of unsafe tracks too, and exit 0 with a warning.
+        #[arg(long)]
+        allow_unsafe: bool,
         #[arg(long)]
         out: PathBuf,
     },

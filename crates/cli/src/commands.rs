@@ -95,17 +95,25 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
             seed,
             encoding,
             evaluations,
+            min_clearance,
+            vehicle_radius,
+            allow_unsafe,
             out,
-        } => track(
-            &scenario,
-            task.as_deref(),
-            &algorithm,
+        } => track(TrackRequest {
+            scenario_path: &scenario,
+            task: task.as_deref(),
+            algorithms: &algorithm,
             runs,
             seed,
-            encoding.as_deref(),
+            encoding: encoding.as_deref(),
             evaluations,
-            &out,
-        ),
+            limits: agripath::track::SafetyLimits {
+                min_clearance_m: min_clearance,
+                vehicle_radius_m: vehicle_radius,
+            },
+            allow_unsafe,
+            out: &out,
+        }),
         Command::Validate { inputs, json } => validate(&inputs, json),
         Command::Terrain { action } => terrain(action),
     }
@@ -388,24 +396,29 @@ fn bad_argument(flag: &str, value: &str, why: impl Into<String>) -> Failure {
     .into()
 }
 
-#[allow(clippy::too_many_arguments)]
-fn track(
-    scenario_path: &Path,
-    task: Option<&str>,
-    algorithms: &str,
-    runs: u64,
+/// What `agripath track` was asked.
+struct TrackRequest<'a> {
+    scenario_path: &'a Path,
+    task: Option<&'a str>,
+    algorithms: &'a str,
+    runs: Option<u64>,
     seed: u64,
-    encoding: Option<&str>,
+    encoding: Option<&'a str>,
     evaluations: Option<u64>,
-    out: &Path,
-) -> Result<(), Failure> {
+    limits: agripath::track::SafetyLimits,
+    allow_unsafe: bool,
+    out: &'a Path,
+}
+
+fn track(request: TrackRequest) -> Result<(), Failure> {
     use agripath::track::files::{self, PlannerRuns};
     use agripath::track::{plan, Encoding, Planner, TrackScenario, TrackSettings};
-    let planners = algorithms
+    let planners = request
+        .algorithms
         .split(',')
         .map(|name| Planner::parse(name).map_err(|why| bad_argument("--algorithm", name, why)))
         .collect::<Result<Vec<_>, _>>()?;
-    let encoding = match encoding {
+    let encoding = match request.encoding {
         None => None,
         Some(text) => Some(Encoding::parse(text).ok_or_else(|| {
             bad_argument(
@@ -415,6 +428,13 @@ fn track(
             )
         })?),
     };
+    if request.evaluations == Some(0) {
+        return Err(bad_argument("--evaluations", "0", "must be at least 1"));
+    }
+    let scenario = TrackScenario::read(request.scenario_path, request.task)?
+        .with_limits(request.limits)
+        .map_err(|fault| InputError::new(request.scenario_path, fault))?;
+    let runs = request.runs.or(scenario.paper_runs).unwrap_or(5);
     if runs == 0 || runs > 1000 {
         return Err(bad_argument(
             "--runs",
@@ -422,10 +442,6 @@ fn track(
             "must be 1..=1000",
         ));
     }
-    if evaluations == Some(0) {
-        return Err(bad_argument("--evaluations", "0", "must be at least 1"));
-    }
-    let scenario = TrackScenario::read(scenario_path, task)?;
     let bar = progress_bar(runs * planners.len() as u64, "runs");
     let mut results = Vec::new();
     for planner in planners {
@@ -433,11 +449,11 @@ fn track(
             planner,
             encoding,
             runs,
-            seed,
-            evaluations,
+            seed: request.seed,
+            evaluations: request.evaluations,
         };
         let runs = plan(&scenario, &settings, &|| bar.inc(1))
-            .map_err(|fault| InputError::new(scenario_path, fault))?;
+            .map_err(|fault| InputError::new(request.scenario_path, fault))?;
         results.push(PlannerRuns {
             planner,
             encoding: planner.encoding(&scenario, encoding),
@@ -445,22 +461,27 @@ fn track(
         });
     }
     bar.finish_and_clear();
-    let files = files::files(&scenario, &results, seed).map_err(Failure::Output)?;
-    let written = write_folder(out, &files)?;
+    let files = files::files(&scenario, &results, request.seed, request.allow_unsafe)
+        .map_err(Failure::Output)?;
+    let written = write_folder(request.out, &files)?;
     emit!("{}", files::table(&scenario, &results));
-    for result in &results {
-        let best = result.best();
-        if !best.is_safe() {
-            emitln!(
-                "{}: the best track is NOT safe: {}",
-                result.planner.label(),
-                best.verdict.violations.join("; ")
-            );
-        }
+    let reasons: Vec<String> = results
+        .iter()
+        .filter_map(PlannerRuns::unsafe_reason)
+        .collect();
+    for reason in &reasons {
+        emitln!("{reason}");
     }
     let names: Vec<&str> = files.iter().map(|(name, _)| name.as_str()).collect();
     emitln!("wrote {}/: {}", written.display(), names.join(", "));
-    Ok(())
+    if reasons.len() < results.len() {
+        return Ok(());
+    }
+    if request.allow_unsafe {
+        emitln!("warning: the .waypoints of unsafe tracks were written (--allow-unsafe)");
+        return Ok(());
+    }
+    Err(Failure::Unsafe(reasons))
 }
 
 fn grid(
@@ -1096,7 +1117,9 @@ fn repro_tracks(
             } else {
                 String::new()
             };
-            for (name, bytes) in files::files(scenario, results, seed).map_err(Failure::Output)? {
+            for (name, bytes) in
+                files::files(scenario, results, seed, false).map_err(Failure::Output)?
+            {
                 if name == "table.md" {
                     continue;
                 }

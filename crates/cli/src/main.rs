@@ -52,7 +52,7 @@ fn main() -> ExitCode {
             for line in lines {
                 eprintln!("agripath: unsafe: {line}");
             }
-            eprintln!("agripath: error: the mission is not safe to fly as written (no mission file was written by plan; --allow-unsafe writes them)");
+            eprintln!("agripath: error: not safe to fly as planned: no mission file was written (--allow-unsafe writes them)");
             ExitCode::from(3)
         }
     }

@@ -369,7 +369,7 @@ fn corpus() -> Vec<(Vec<String>, String, &'static str)> {
         (
             track_with(&data("seed000_orchard.json"), &["--task", "IV"]),
             data("seed000_orchard.json"),
-            "tasks I, II and III",
+            "the scenario has tasks I, II, III",
         ),
         (
             track_with(&data("seed000_orchard.json"), &["--encoding", "polar"]),
@@ -395,6 +395,26 @@ fn corpus() -> Vec<(Vec<String>, String, &'static str)> {
             track_with(&bad("track_start_outside.json"), &[]),
             bad("track_start_outside.json"),
             "outside the planning area",
+        ),
+        (
+            track_with(&bad("track_start_in_threat.json"), &[]),
+            bad("track_start_in_threat.json"),
+            "start = (505, 500) is invalid: inside threat cylinder 0",
+        ),
+        (
+            track_with(&bad("track_goal_under_terrain.json"), &[]),
+            bad("track_goal_under_terrain.json"),
+            "m under the terrain",
+        ),
+        (
+            track_with(&bad("track_unknown_key.json"), &[]),
+            bad("track_unknown_key.json"),
+            "unknown key 'terrain.hils'",
+        ),
+        (
+            track_with(&data("seed000_orchard.json"), &["--min-clearance", "5000"]),
+            data("seed000_orchard.json"),
+            "--min-clearance",
         ),
         (
             track_with(&bad("track_spso_missing_dem.json"), &[]),

@@ -754,6 +754,231 @@ fn track_writes_safe_tracks_missions_and_pictures_and_repeats_byte_for_byte() {
     std::fs::remove_dir_all(second).unwrap();
 }
 
+/// The composite formula of a seed-000 JSON scenario, evaluated here from the file's own
+/// numbers (the oracle does not use agripath's terrain code).
+fn formula_height(scenario: &serde_json::Value, x: f64, y: f64) -> f64 {
+    let terrain = &scenario["terrain"];
+    let c = |key: &str| terrain["coefficients"][key].as_f64().unwrap();
+    let r = (x * x + y * y).sqrt();
+    let z1 = (y + c("a")).sin()
+        + c("b") * x.sin()
+        + c("c") * (c("d") * r).cos()
+        + c("e") * y.cos()
+        + c("f") * (c("g") * r).sin();
+    let hills = &terrain["hills"];
+    let column = |key: &str| -> Vec<f64> {
+        hills[key]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_f64().unwrap())
+            .collect()
+    };
+    let (h, hx, hy, sx, sy) = (
+        column("h"),
+        column("x"),
+        column("y"),
+        column("xs"),
+        column("ys"),
+    );
+    let z2: f64 = (0..h.len())
+        .map(|i| h[i] * (-((x - hx[i]) / sx[i]).powi(2) - ((y - hy[i]) / sy[i]).powi(2)).exp())
+        .sum();
+    z1.max(z2)
+}
+
+#[test]
+fn every_track_called_safe_clears_the_formula_of_its_own_random_hills_and_its_threats() {
+    // Scenarios from the generator (other hills, 6-14 threats, start and goal on the
+    // ground), planned by the command; each track it calls safe is flown here every 0.5 m
+    // over the file's formula.
+    for seed in [3u64, 11, 21] {
+        let folder = scratch(&format!("track-random-{seed}"));
+        let value = agripath::track::random_scenario::json(seed);
+        let path = folder.join("scenario.json");
+        std::fs::write(&path, value.to_string()).unwrap();
+        let out = folder.join("out");
+        let output = agripath(
+            &[
+                "track",
+                path.to_str().unwrap(),
+                "--task",
+                "R",
+                "--algorithm",
+                "lattice,iba-fcs,pso",
+                "--runs",
+                "1",
+                "--evaluations",
+                "8000",
+                "--seed",
+                &seed.to_string(),
+                "--out",
+                out.to_str().unwrap(),
+            ],
+            &folder,
+        );
+        let status = output.status.code();
+        assert!(
+            matches!(status, Some(0) | Some(3)),
+            "{}",
+            String::from_utf8_lossy(&output.stderr)
+        );
+        let geojson: serde_json::Value =
+            serde_json::from_str(&std::fs::read_to_string(out.join("track.geojson")).unwrap())
+                .unwrap();
+        let task = &value["tasks"][0];
+        let threats: Vec<[f64; 3]> = task["threat_cylinders_x_y_r"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|t| [0, 1, 2].map(|k| t[k].as_f64().unwrap()))
+            .collect();
+        let mut safe_tracks = 0;
+        for feature in geojson["features"].as_array().unwrap() {
+            let properties = &feature["properties"];
+            if properties["kind"] != "track" {
+                continue;
+            }
+            let key = match properties["planner"].as_str().unwrap() {
+                "lattice+refine (ours)" => "lattice",
+                "IBA-FCS" => "iba-fcs",
+                _ => "pso",
+            };
+            let waypoints = out.join(format!("{key}.waypoints"));
+            if properties["safe"] != true {
+                assert!(!waypoints.exists(), "an unsafe track has no mission file");
+                continue;
+            }
+            assert!(waypoints.is_file());
+            safe_tracks += 1;
+            let points: Vec<[f64; 3]> = feature["geometry"]["coordinates"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|p| [0, 1, 2].map(|k| p[k].as_f64().unwrap()))
+                .collect();
+            // Start and goal on the ground, vertical legs up to the band's 30 m floor.
+            let ground_start = formula_height(&value, points[0][0], points[0][1]);
+            assert!((points[0][2] - ground_start).abs() < 1e-6);
+            assert!((points[1][2] - ground_start - 30.0).abs() < 1e-6);
+            assert_eq!(points[0][..2], points[1][..2]);
+            let cruise = &points[1..points.len() - 1];
+            let mut lowest = f64::INFINITY;
+            for pair in cruise.windows(2) {
+                let (a, b) = (pair[0], pair[1]);
+                let steps = (((b[0] - a[0]).hypot(b[1] - a[1]) / 0.5).ceil() as usize).max(1);
+                for step in 0..=steps {
+                    let t = step as f64 / steps as f64;
+                    let p = [0, 1, 2].map(|k| a[k] + t * (b[k] - a[k]));
+                    lowest = lowest.min(p[2] - formula_height(&value, p[0], p[1]));
+                    for threat in &threats {
+                        assert!(
+                            (p[0] - threat[0]).hypot(p[1] - threat[1]) >= threat[2] + 1.0 - 1e-6,
+                            "{key} passes within the vehicle's radius of a threat"
+                        );
+                    }
+                }
+            }
+            // The 2 m minimum on 1 m samples; between them the formula's ripples (under
+            // 1.5 m high, 6.3 m long) move the ground by at most a few decimetres.
+            assert!(
+                lowest >= 2.0 - 0.3,
+                "{key}: {lowest} m above the file's terrain"
+            );
+            let reported = properties["lowest_clearance_m"].as_f64().unwrap();
+            assert!(
+                (reported - lowest).abs() < 0.3,
+                "{key}: reported {reported}, flown {lowest}"
+            );
+        }
+        assert!(
+            safe_tracks >= 1,
+            "seed {seed}: the lattice finds a safe track"
+        );
+        std::fs::remove_dir_all(folder).unwrap();
+    }
+}
+
+#[test]
+fn a_walled_in_goal_exits_3_with_a_line_per_planner_and_no_waypoints() {
+    let folder = scratch("track-walled");
+    let out = folder.join("out");
+    let output = agripath(
+        &[
+            "track",
+            data("test/track_walled_in.json").to_str().unwrap(),
+            "--algorithm",
+            "lattice,pso",
+            "--runs",
+            "1",
+            "--evaluations",
+            "3000",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &folder,
+    );
+    assert_eq!(
+        output.status.code(),
+        Some(3),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    let lines: Vec<&str> = stderr
+        .lines()
+        .filter(|line| line.starts_with("agripath: unsafe: "))
+        .collect();
+    assert_eq!(lines.len(), 2, "{stderr}");
+    assert!(
+        lines[0].contains("lattice+refine (ours): no safe track")
+            && lines[0].contains("threat cylinder"),
+        "{stderr}"
+    );
+    assert!(out.join("track.geojson").is_file() && out.join("profile_lattice.svg").is_file());
+    assert!(!out.join("lattice.waypoints").exists() && !out.join("pso.waypoints").exists());
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["safe"], false);
+    // --allow-unsafe writes them, with a warning, and exits 0.
+    let output = agripath(
+        &[
+            "track",
+            data("test/track_walled_in.json").to_str().unwrap(),
+            "--algorithm",
+            "lattice",
+            "--runs",
+            "1",
+            "--evaluations",
+            "3000",
+            "--allow-unsafe",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+        &folder,
+    );
+    assert!(stdout(&output).contains("--allow-unsafe"));
+    assert!(out.join("lattice.waypoints").is_file());
+    std::fs::remove_dir_all(folder).unwrap();
+}
+
+#[test]
+fn track_help_names_every_scenario_format() {
+    let text = stdout(&agripath(&["track", "--help"], &std::env::temp_dir()));
+    for format in [
+        "seed 000",
+        "seed 002",
+        "SPSO",
+        "operator",
+        "TOML",
+        "--min-clearance",
+        "--vehicle-radius",
+        "--allow-unsafe",
+    ] {
+        assert!(text.contains(format), "{format} missing from track --help");
+    }
+}
+
 #[test]
 fn track_over_a_real_dem_in_lon_lat_comes_back_in_lon_lat() {
     let scenario = data("tracks/christmas_island_track.toml");

@@ -103,6 +103,7 @@ pub struct Search<'a> {
     evaluations: u64,
     best_cost: f64,
     best_position: Vec<f64>,
+    converged: bool,
 }
 
 impl<'a> Search<'a> {
@@ -116,6 +117,7 @@ impl<'a> Search<'a> {
             evaluations: 0,
             best_cost: f64::INFINITY,
             best_position: problem.bounds().lower().to_vec(),
+            converged: false,
         }
     }
 
@@ -151,6 +153,12 @@ impl<'a> Search<'a> {
     /// The current iteration: 0 during `start`, then 1, 2, …
     pub fn iteration(&self) -> usize {
         self.iteration
+    }
+
+    /// Ends the run after this step: the optimizer knows it can gain nothing more (a local
+    /// search whose every step size has shrunk away, say). The run's outcome says so.
+    pub fn declare_converged(&mut self) {
+        self.converged = true;
     }
 
     pub fn evaluations(&self) -> u64 {
@@ -222,6 +230,9 @@ impl<'a> Search<'a> {
     }
 
     fn stop_reason(&self) -> Option<StopReason> {
+        if self.converged {
+            return Some(StopReason::Converged);
+        }
         let termination = self.termination;
         if termination
             .target_cost
@@ -258,6 +269,8 @@ pub enum StopReason {
     Evaluations,
     Target,
     Time,
+    /// The optimizer declared itself converged ([`Search::declare_converged`]).
+    Converged,
 }
 
 /// One point of the convergence history: the best cost after an iteration.
@@ -343,6 +356,9 @@ impl Runner {
             let evaluations_before = search.evaluations;
             optimizer.step(&mut search);
             record(&search);
+            if search.converged {
+                break StopReason::Converged;
+            }
             let only_evaluations_stop =
                 self.termination.max_iterations.is_none() && self.termination.time_limit.is_none();
             if search.evaluations == evaluations_before && only_evaluations_stop {

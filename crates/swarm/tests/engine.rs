@@ -73,3 +73,32 @@ fn an_evaluation_budget_is_never_exceeded_and_a_target_stops_early() {
     assert_eq!(outcome.stopped_by, swarm::StopReason::Target);
     assert!(outcome.iterations < 10_000);
 }
+
+/// An optimizer that evaluates one point per step and declares itself converged at step 3.
+struct GivesUp;
+
+impl swarm::Optimizer for GivesUp {
+    fn name(&self) -> &'static str {
+        "gives up"
+    }
+    fn start(&mut self, search: &mut swarm::Search) {
+        let x = search.random_position();
+        search.evaluate(&x);
+    }
+    fn step(&mut self, search: &mut swarm::Search) {
+        let x = search.random_position();
+        search.evaluate(&x);
+        if search.iteration() == 3 {
+            search.declare_converged();
+        }
+    }
+}
+
+#[test]
+fn an_optimizer_that_declares_convergence_ends_its_run_there() {
+    let problem = FunctionProblem::new(functions::by_key("f1").unwrap(), 5).unwrap();
+    let runner = Runner::new(Termination::evaluations(1_000), 1).unwrap();
+    let outcome = runner.run(&mut GivesUp, &problem, 0);
+    assert_eq!(outcome.stopped_by, swarm::StopReason::Converged);
+    assert_eq!((outcome.iterations, outcome.evaluations), (3, 4));
+}

@@ -36,7 +36,7 @@ pub(crate) fn escape(text: &str) -> String {
 }
 
 /// "Nice" tick values covering [low, high].
-fn ticks(low: f64, high: f64, wanted: usize) -> Vec<f64> {
+pub(crate) fn ticks(low: f64, high: f64, wanted: usize) -> Vec<f64> {
     let span = (high - low).max(f64::MIN_POSITIVE);
     let raw = span / wanted as f64;
     let magnitude = 10f64.powf(raw.log10().floor());
@@ -50,7 +50,7 @@ fn ticks(low: f64, high: f64, wanted: usize) -> Vec<f64> {
     (first..=last).map(|k| k as f64 * step).collect()
 }
 
-fn tick_label(value: f64) -> String {
+pub(crate) fn tick_label(value: f64) -> String {
     if value != 0.0 && (value.abs() >= 1e5 || value.abs() < 1e-3) {
         format!("{value:e}")
     } else {
@@ -58,8 +58,13 @@ fn tick_label(value: f64) -> String {
     }
 }
 
-/// The chart as an SVG document.
+/// The chart as an SVG document, series in the palette's order.
 pub fn render(chart: &Chart, series: &[Series]) -> String {
+    render_coloured(chart, series, &[])
+}
+
+/// The chart with series `i` drawn in `colours[i]` (the palette's order beyond them).
+pub fn render_coloured(chart: &Chart, series: &[Series], colours: &[&str]) -> String {
     let transformed: Vec<Vec<(f64, f64)>> = series
         .iter()
         .map(|s| {
@@ -162,7 +167,10 @@ pub fn render(chart: &Chart, series: &[Series]) -> String {
         escape(chart.y_label)
     );
     for (index, (line, points)) in series.iter().zip(&transformed).enumerate() {
-        let colour = COLOURS[index % COLOURS.len()];
+        let colour = colours
+            .get(index)
+            .copied()
+            .unwrap_or(COLOURS[index % COLOURS.len()]);
         if !points.is_empty() {
             let mut data = String::new();
             for (k, &(x, y)) in points.iter().enumerate() {

@@ -6,12 +6,67 @@
 //! of. The papers' infinite branches (a collision, a crash) are a finite penalty per
 //! violation, [`PENALTY`], as the MetaBox port of SPSO's model does: averages over runs stay
 //! finite, and any track carrying one is reported infeasible by [`super::safety`].
+//!
+//! **Along the legs (ours, a deviation from every paper; decision 0013).** The papers score
+//! the terrain and the band at the waypoints only, and a leg between two good waypoints may
+//! sag out of the band or cut through a hill. Every model here also samples each leg at every
+//! half terrain cell ([`HeightMap::leg_excess`](super::height_map::HeightMap::leg_excess)):
+//! - under the ground: [`PENALTY`] per leg that dips (the papers' infinite branch) plus
+//!   [`DEPTH_PENALTY`] per unit × metre of depth integrated along the leg, so that a track
+//!   grazing the ground costs less than one cutting through a hill and every optimizer is
+//!   pulled out of the terrain;
+//! - the ground the costs see is raised by the verdict's minimum clearance (plus the
+//!   raster's error, [`TrackScenario::cost_clearance`]) and every cylinder grown by the
+//!   vehicle's radius, so that the costs pull towards what the safety verdict accepts;
+//! - out of the height band: the integrated excursion (units × metres) divided by the
+//!   straight track's leg ([`TrackScenario::reference_leg`]), at the model's own factor for
+//!   a waypoint out of the band, so that an excursion held over one leg costs what the paper
+//!   charges for one waypoint that far out.
 
 use super::height_map::planar_length;
 use super::scenario::TrackScenario;
 
 /// What one infinite branch of a paper's cost costs here.
 pub const PENALTY: f64 = 1.0e4;
+
+/// Cost per scenario unit × metre of depth under the ground, integrated along a leg.
+pub const DEPTH_PENALTY: f64 = 100.0;
+
+/// The legs' excursions between their waypoints, summed over a cruise.
+#[derive(Debug, Clone, Copy, Default)]
+struct AlongLegs {
+    legs_under_ground: usize,
+    under_ground: f64,
+    outside_band: f64,
+}
+
+impl AlongLegs {
+    fn of(scenario: &TrackScenario, points: &[[f64; 3]]) -> Self {
+        let mut sums = Self::default();
+        for pair in points.windows(2) {
+            let excess = scenario.terrain.leg_excess(
+                pair[0],
+                pair[1],
+                scenario.cost_clearance(),
+                scenario.height_band,
+            );
+            sums.legs_under_ground += usize::from(excess.dips);
+            sums.under_ground += excess.under_ground;
+            sums.outside_band += excess.outside_band;
+        }
+        sums
+    }
+
+    /// The cost of going under the ground.
+    fn terrain_cost(&self) -> f64 {
+        self.legs_under_ground as f64 * PENALTY + DEPTH_PENALTY * self.under_ground
+    }
+
+    /// The band excursion in waypoint-equivalents (metres out of the band).
+    fn band_metres(&self, scenario: &TrackScenario) -> f64 {
+        self.outside_band / scenario.reference_leg()
+    }
+}
 
 /// A cost and its terms (named by the model).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -129,6 +184,15 @@ impl CostModel {
         }
     }
 
+    /// The weight of the length term, which a track's vertical legs add to.
+    pub fn length_weight(&self) -> f64 {
+        match self {
+            CostModel::Seed000(model) => model.weights[0],
+            CostModel::Spso(model) => model.weights[0],
+            CostModel::Seed002(_) => 1.0,
+        }
+    }
+
     pub fn label(&self) -> &'static str {
         match self {
             CostModel::Seed000(_) => "seed 000 F (eqs. 17-26)",
@@ -151,14 +215,15 @@ impl CostModel {
 /// Seed 000, eqs. (17)-(26), with the decisions of `docs/decisions/0011-tracks.md`:
 /// d_k is the 2D distance from the axis to the segment; α is the turn angle between the
 /// horizontal projections (atan2 of |cross| and dot: eq. (23) prints the arctan of a sine);
-/// eq. (21) sums H over every point of the track; a segment that dips under the terrain
-/// between its ends takes the h ≤ 0 branch of eq. (20) once (MISSION.md decision 7).
+/// eq. (21) sums H over every point of the track; the legs add their depth under the ground
+/// and their band excursion (module doc).
 fn seed000(model: &Seed000Cost, scenario: &TrackScenario, points: &[[f64; 3]]) -> CostBreakdown {
     let mut length = 0.0;
     let mut threat = 0.0;
     let mut height = 0.0;
     let mut angles = 0.0;
     let (h_min, h_max) = scenario.height_band.unwrap_or((0.0, f64::INFINITY));
+    let vehicle = scenario.limits.vehicle_radius_m / scenario.unit_m;
     for pair in points.windows(2) {
         let (a, b) = (pair[0], pair[1]);
         length += length_3d(a, b);
@@ -166,16 +231,15 @@ fn seed000(model: &Seed000Cost, scenario: &TrackScenario, points: &[[f64; 3]]) -
             let d = point_segment_distance(cylinder.x, cylinder.y, a, b);
             threat += if d >= model.danger_m + cylinder.radius {
                 0.0
-            } else if d > cylinder.radius {
+            } else if d > cylinder.radius + vehicle {
                 model.threat_factor * (model.danger_m + cylinder.radius - d)
             } else {
                 PENALTY
             };
         }
-        if !scenario.terrain.segment_clears(a, b, 0.0) {
-            height += PENALTY;
-        }
     }
+    let along = AlongLegs::of(scenario, points);
+    height += along.terrain_cost() + model.height_factor * along.band_metres(scenario);
     for point in points {
         let h = point[2] - scenario.terrain.height(point[0], point[1]);
         height += if h <= 0.0 {
@@ -225,9 +289,10 @@ fn spso(model: &SpsoCost, scenario: &TrackScenario, points: &[[f64; 3]]) -> Cost
         .sum();
     // J2: the three-branch threat cost per segment and cylinder.
     let mut threat = 0.0;
+    let vehicle = scenario.limits.vehicle_radius_m / scenario.unit_m;
     for cylinder in &scenario.threats {
         let outer = cylinder.radius + model.drone_size + model.danger;
-        let inner = cylinder.radius + model.drone_size;
+        let inner = cylinder.radius + model.drone_size.max(vehicle);
         for pair in points.windows(2) {
             let d = point_segment_distance(cylinder.x, cylinder.y, pair[0], pair[1]);
             threat += if d > outer {
@@ -242,17 +307,20 @@ fn spso(model: &SpsoCost, scenario: &TrackScenario, points: &[[f64; 3]]) -> Cost
     // J3: |z − z_mid| over the free nodes (above ground); z < 0 is a crash.
     let (z_min, z_max) = scenario.height_band.unwrap_or((0.0, 0.0));
     let middle = 0.5 * (z_min + z_max);
-    let altitude: f64 = points[1..count - 1]
-        .iter()
-        .map(|point| {
-            let above = point[2] - scenario.terrain.height(point[0], point[1]);
-            if above < 0.0 {
-                PENALTY
-            } else {
-                (above - middle).abs()
-            }
-        })
-        .sum();
+    let along = AlongLegs::of(scenario, points);
+    let altitude: f64 = along.terrain_cost()
+        + along.band_metres(scenario)
+        + points[1..count - 1]
+            .iter()
+            .map(|point| {
+                let above = point[2] - scenario.terrain.height(point[0], point[1]);
+                if above < 0.0 {
+                    PENALTY
+                } else {
+                    (above - middle).abs()
+                }
+            })
+            .sum::<f64>();
     // J4: turning angles and climb-angle changes above 45°, in degrees; a zero-length
     // horizontal projection is replaced by the nearest non-zero one (backward for the
     // first segment, forward for the second), as the reference does.
@@ -301,7 +369,8 @@ fn spso(model: &SpsoCost, scenario: &TrackScenario, points: &[[f64; 3]]) -> Cost
     CostBreakdown { total, terms }
 }
 
-/// Seed 002 eqs. (13)-(16) over points 1..n (T_c0 = E_c0 = 0 for the start), T_c per leg.
+/// Seed 002 eqs. (13)-(16) over points 1..n (T_c0 = E_c0 = 0 for the start), T_c per leg
+/// with its depth (module doc).
 fn seed002(scenario: &TrackScenario, points: &[[f64; 3]]) -> CostBreakdown {
     let length: f64 = points
         .windows(2)
@@ -312,9 +381,12 @@ fn seed002(scenario: &TrackScenario, points: &[[f64; 3]]) -> CostBreakdown {
     let mut terrain = 0.0;
     let mut boundary = 0.0;
     for (leg, point) in points.windows(2).zip(&points[1..]) {
-        if !scenario.terrain.segment_clears(leg[0], leg[1], 0.0) {
+        let clearance = scenario.cost_clearance();
+        let excess = scenario.terrain.leg_excess(leg[0], leg[1], clearance, None);
+        if excess.dips || point[2] < scenario.terrain.height(point[0], point[1]) + clearance {
             terrain += PENALTY;
         }
+        terrain += DEPTH_PENALTY * excess.under_ground;
         let outside = !(min_x..=max_x).contains(&point[0])
             || !(min_y..=max_y).contains(&point[1])
             || !(0.0..=z_max).contains(&point[2]);

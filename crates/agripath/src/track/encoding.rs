@@ -14,7 +14,9 @@
 //!   start/goal both readings are within 9° of each other; decision 0011).
 //!
 //! The increment encodings clamp each point to the area and the altitude bounds after every
-//! step, as SPSO's `SphericalToCart.m` does; the last leg goes to the goal.
+//! step, as SPSO's `SphericalToCart.m` does; the last leg goes to the goal. The increments
+//! start from the cruise's start ([`TrackScenario::cruise_start`]): above a start on the
+//! ground, the band's floor.
 
 use std::f64::consts::{FRAC_PI_4, PI};
 
@@ -64,7 +66,8 @@ impl Encoding {
                 ([0.0, -PI, -climb], [reach, PI, climb])
             }
             Encoding::Spherical => {
-                let reach = 2.0 * length_3d(scenario.start, scenario.goal) / waypoints as f64;
+                let reach =
+                    2.0 * length_3d(scenario.cruise_start, scenario.cruise_goal) / waypoints as f64;
                 let azimuth = start_goal_azimuth(scenario);
                 (
                     [0.0, -FRAC_PI_4, azimuth - FRAC_PI_4],
@@ -77,7 +80,8 @@ impl Encoding {
         Bounds::new(lower, upper).expect("track encodings have non-empty boxes")
     }
 
-    /// Decodes `x` into start, waypoints, goal (z in the scenario's altitude reference).
+    /// Decodes `x` into the cruise: its start, the waypoints, its goal (z in the scenario's
+    /// altitude reference).
     pub fn decode_into(self, scenario: &TrackScenario, x: &[f64], points: &mut Vec<[f64; 3]>) {
         let (min_x, min_y, max_x, max_y) = scenario.area;
         let (low_z, high_z) = scenario.altitude_bounds;
@@ -89,7 +93,7 @@ impl Encoding {
             ]
         };
         points.clear();
-        points.push(scenario.start);
+        points.push(scenario.cruise_start);
         for gene in x.chunks_exact(3) {
             let previous = *points.last().expect("the start is there");
             let next = match self {
@@ -113,13 +117,13 @@ impl Encoding {
             };
             points.push(next);
         }
-        points.push(scenario.goal);
+        points.push(scenario.cruise_goal);
     }
 
     /// The vector that decodes to these free waypoints (inverse of `decode_into` where no
     /// clamping happened), clamped into the box.
     pub fn encode(self, scenario: &TrackScenario, waypoints: &[[f64; 3]]) -> Vec<f64> {
-        let mut previous = scenario.start;
+        let mut previous = scenario.cruise_start;
         let mut x = Vec::with_capacity(3 * waypoints.len());
         for &point in waypoints {
             let (dx, dy, dz) = (
@@ -159,7 +163,7 @@ mod tests {
                 [
                     100.0 + 800.0 * t,
                     900.0 - 800.0 * t + 20.0 * (t * 9.0).sin(),
-                    100.0 + 90.0 * t,
+                    scenario.cruise_start[2] + 40.0 * (t * 7.0).sin(),
                 ]
             })
             .collect();

@@ -20,18 +20,45 @@ pub struct PlannerRuns {
 }
 
 impl PlannerRuns {
-    /// The run with the lowest final cost (the first of equals).
+    /// The track handed over: the safe run with the lowest final cost, or the lowest-cost
+    /// run when none is safe (the first of equals).
     pub fn best(&self) -> &TrackRun {
-        self.runs
-            .iter()
-            .min_by(|a, b| a.final_cost().total_cmp(&b.final_cost()))
+        fn lowest<'r>(runs: impl Iterator<Item = &'r TrackRun>) -> Option<&'r TrackRun> {
+            runs.min_by(|a, b| a.final_cost().total_cmp(&b.final_cost()))
+        }
+        lowest(self.runs.iter().filter(|run| run.is_safe()))
+            .or_else(|| lowest(self.runs.iter()))
             .expect("at least one run")
+    }
+
+    /// The verdict of the track handed over.
+    pub fn verdict(&self) -> &super::safety::Verdict {
+        let best = self.best();
+        match &best.smoothed {
+            Some(smoothed) if smoothed.verdict.is_safe() => &smoothed.verdict,
+            _ => &best.verdict,
+        }
+    }
+
+    /// Why the planner found no safe track: its best track's worst violation.
+    pub fn unsafe_reason(&self) -> Option<String> {
+        let verdict = self.verdict();
+        (!verdict.is_safe()).then(|| {
+            format!(
+                "{}: no safe track in {} runs; the best: {}",
+                self.planner.label(),
+                self.runs.len(),
+                verdict.worst().unwrap_or("unsafe")
+            )
+        })
     }
 }
 
-/// Mission waypoints of a track: takeoff at the start, the track's points (at most 100,
-/// evenly thinned for a smoothed curve), land at the goal; altitudes above sea level.
-pub fn mission(scenario: &TrackScenario, points: &[[f64; 3]]) -> String {
+/// Mission waypoints of a whole track: takeoff at the start, climbing to the cruise's first
+/// altitude (vertically above the start), the cruise's points (at most 100, evenly thinned for
+/// a smoothed curve), the point above the goal, land at the goal; altitudes above sea level.
+pub fn mission(scenario: &TrackScenario, track: &[[f64; 3]]) -> String {
+    let (points, _) = scenario.cruise_of(track);
     let item = |action: Action, p: [f64; 3]| {
         let (lon, lat) = scenario.lon_lat(p[0], p[1]);
         let ground = scenario.terrain.height(p[0], p[1]);
@@ -44,6 +71,7 @@ pub fn mission(scenario: &TrackScenario, points: &[[f64; 3]]) -> String {
         }
     };
     let stride = points.len().div_ceil(100).max(1);
+    // A takeoff item climbs above its own position to its altitude.
     let mut items = vec![item(Action::Takeoff, points[0])];
     for (index, &p) in points.iter().enumerate().skip(1) {
         if index + 1 == points.len() {
@@ -53,10 +81,17 @@ pub fn mission(scenario: &TrackScenario, points: &[[f64; 3]]) -> String {
             items.push(item(Action::Waypoint, p));
         }
     }
-    items.push(item(Action::Land, points[points.len() - 1]));
+    let last = points[points.len() - 1];
+    if scenario.lands() {
+        items.push(item(Action::Waypoint, last));
+        items.push(item(Action::Land, track[track.len() - 1]));
+    } else {
+        items.push(item(Action::Land, last));
+    }
     let mission = SortieMission {
         sortie: 1,
-        home: items[0],
+        // Home is the start as given: on the ground when the track takes off from it.
+        home: item(Action::Takeoff, track[0]),
         items,
     };
     let settings = MissionSettings {
@@ -106,11 +141,15 @@ pub fn geojson(scenario: &TrackScenario, results: &[PlannerRuns]) -> String {
     }
     for result in results {
         let best = result.best();
+        let verdict = result.verdict();
         let points: Vec<[f64; 3]> = best.final_points().iter().map(|&p| position(p)).collect();
         features.push(json!({"type": "Feature",
             "properties": {"kind": "track", "planner": result.planner.label(), "run": best.run,
-                           "cost": best.final_cost(), "safe": best.is_safe(),
-                           "violations": best.verdict.violations},
+                           "cost": best.final_cost(), "safe": verdict.is_safe(),
+                           "lowest_clearance_m": verdict.lowest_clearance_m,
+                           "threat_margin_m": verdict.threat_margin_m,
+                           "outside_band_m": verdict.outside_band_m,
+                           "violations": verdict.violations},
             "geometry": {"type": "LineString", "coordinates": points}}));
         let inner = best.points.len().saturating_sub(2);
         for (seq, &p) in best.points.iter().enumerate().skip(1).take(inner) {
@@ -135,6 +174,7 @@ pub fn report(scenario: &TrackScenario, results: &[PlannerRuns], seed: u64) -> S
         .map(|result| {
             let stats = statistics(&result.runs);
             let best = result.best();
+            let verdict = result.verdict();
             let terms: serde_json::Map<String, Value> = names
                 .iter()
                 .zip(best.cost.terms)
@@ -150,11 +190,13 @@ pub fn report(scenario: &TrackScenario, results: &[PlannerRuns], seed: u64) -> S
                 "mean_runtime_s": stats.mean_seconds,
                 "evaluations_per_run": best.evaluations,
                 "best_run": {"run": best.run, "cost": best.final_cost(), "terms": terms,
-                             "lowest_clearance_m": best.verdict.lowest_clearance_m,
-                             "threat_margin": best.verdict.threat_margin,
-                             "waypoints_outside_band": best.verdict.outside_band,
+                             "safe": verdict.is_safe(),
+                             "lowest_clearance_m": verdict.lowest_clearance_m,
+                             "lowest_clearance_at": scenario.to_input(verdict.lowest_clearance_at[0], verdict.lowest_clearance_at[1]),
+                             "threat_margin_m": verdict.threat_margin_m,
+                             "outside_band_m": verdict.outside_band_m,
                              "smoothed": best.smoothed.as_ref().map(|s| json!({"cost": s.cost.total, "safe": s.verdict.is_safe(), "violations": s.verdict.violations})),
-                             "violations": best.verdict.violations},
+                             "violations": verdict.violations},
                 "costs": result.runs.iter().map(TrackRun::final_cost).collect::<Vec<_>>(),
             })
         })
@@ -165,6 +207,12 @@ pub fn report(scenario: &TrackScenario, results: &[PlannerRuns], seed: u64) -> S
         "free_waypoints": scenario.free_waypoints,
         "scenario_evaluation_budget": scenario.evaluation_budget(),
         "seed": seed,
+        "safety": {"min_clearance_m": scenario.limits.min_clearance_m,
+                   "vehicle_radius_m": scenario.limits.vehicle_radius_m,
+                   "sample_spacing_m": super::safety::SAMPLE_SPACING_M,
+                   "takeoff_climb_m": scenario.takes_off().then(|| scenario.sea_level(scenario.cruise_start)[2] - scenario.sea_level(scenario.start)[2]),
+                   "landing_descent_m": scenario.lands().then(|| scenario.sea_level(scenario.cruise_goal)[2] - scenario.sea_level(scenario.goal)[2])},
+        "safe": results.iter().any(|result| result.verdict().is_safe()),
         "planners": planners,
     });
     serde_json::to_string_pretty(&report).expect("JSON values serialise") + "\n"
@@ -201,7 +249,11 @@ pub fn convergence(scenario: &TrackScenario, results: &[PlannerRuns]) -> String 
             }
         })
         .collect();
-    line_chart::render(
+    let colours: Vec<&str> = results
+        .iter()
+        .map(|result| result.planner.colour())
+        .collect();
+    line_chart::render_coloured(
         &Chart {
             title: &format!("{}: mean best cost", scenario.name),
             x_label: "evaluations",
@@ -209,6 +261,7 @@ pub fn convergence(scenario: &TrackScenario, results: &[PlannerRuns]) -> String 
             log_y: true,
         },
         &series,
+        &colours,
     )
 }
 
@@ -238,11 +291,13 @@ pub fn table(scenario: &TrackScenario, results: &[PlannerRuns]) -> String {
     text
 }
 
-/// Every file of `agripath track`, by name.
+/// Every file of `agripath track`, by name. A planner's `.waypoints` are written only when
+/// its track is safe, unless `allow_unsafe`.
 pub fn files(
     scenario: &TrackScenario,
     results: &[PlannerRuns],
     seed: u64,
+    allow_unsafe: bool,
 ) -> Result<Vec<(String, Vec<u8>)>, String> {
     let mut files = vec![
         (
@@ -262,36 +317,38 @@ pub fn files(
             convergence(scenario, results).into_bytes(),
         ),
     ];
-    let tracks: Vec<(String, Vec<[f64; 3]>)> = results
+    let drawn: Vec<track_svg::DrawnTrack> = results
         .iter()
-        .map(|result| {
-            (
-                result.planner.label().to_string(),
-                result.best().final_points().to_vec(),
-            )
+        .map(|result| track_svg::DrawnTrack {
+            label: result.planner.label(),
+            colour: result.planner.colour(),
+            points: result.best().final_points(),
+            safe: result.verdict().is_safe(),
         })
         .collect();
-    let top = track_svg::top_view(scenario, &scenario.name, &tracks);
+    let top = track_svg::top_view(scenario, &scenario.name, &drawn);
     files.push((
         "top_view.png".to_string(),
         crate::plot::raster::svg_to_png(&top, 1200)?,
     ));
     files.push(("top_view.svg".to_string(), top.into_bytes()));
-    for result in results {
-        let best = result.best();
+    for (result, track) in results.iter().zip(&drawn) {
         let key = result.planner.key();
-        files.push((
-            format!("{key}.waypoints"),
-            mission(scenario, best.final_points()).into_bytes(),
-        ));
+        if track.safe || allow_unsafe {
+            files.push((
+                format!("{key}.waypoints"),
+                mission(scenario, track.points).into_bytes(),
+            ));
+        }
         let title = format!(
-            "{}: altitude profile of the best track ({})",
+            "{}: altitude profile of the best track ({}){}",
             scenario.name,
-            result.planner.label()
+            result.planner.label(),
+            if track.safe { "" } else { ", UNSAFE" }
         );
         files.push((
             format!("profile_{key}.svg"),
-            track_svg::profile(scenario, &title, best.final_points()).into_bytes(),
+            track_svg::profile(scenario, &title, track).into_bytes(),
         ));
     }
     Ok(files)

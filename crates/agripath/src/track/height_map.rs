@@ -29,6 +29,8 @@ pub struct HeightMap {
     origin_x: f64,
     origin_y: f64,
     cell: f64,
+    /// 1 / cell: a multiplication in the inner loop instead of a division.
+    per_cell: f64,
     columns: usize,
     rows: usize,
     heights: Vec<f32>,
@@ -36,8 +38,12 @@ pub struct HeightMap {
     /// Highest height over blocks of `BLOCK × BLOCK` cells (and one cell of overlap), so
     /// that a segment well above its blocks is cleared without walking it.
     block_max: Vec<f32>,
+    /// Lowest height over the same blocks, so that a stretch well inside the height band
+    /// is cleared without walking it too.
+    block_min: Vec<f32>,
     block_columns: usize,
-    /// The highest height held.
+    /// The lowest and highest heights held.
+    lowest: f64,
     highest: f64,
 }
 
@@ -47,6 +53,21 @@ pub fn planar_length(dx: f64, dy: f64) -> f64 {
 }
 
 const BLOCK: usize = 16;
+
+/// Where a stretch of leg is proven clear of the ground, its band excursion is sampled every
+/// this many cells.
+const BAND_STRIDE: usize = 4;
+
+/// What a leg does between its ends ([`HeightMap::leg_excess`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct LegExcess {
+    /// ∫ depth under the ground (raised by the clearance) along the leg (units × metres).
+    pub under_ground: f64,
+    /// ∫ distance outside the height band along the leg (scenario units × metres).
+    pub outside_band: f64,
+    /// Whether any sample is under the ground (raised by the clearance).
+    pub dips: bool,
+}
 
 /// Most samples a sampled height map holds (16 MB of heights).
 pub const MAX_SAMPLES: f64 = 4.0e6;
@@ -70,6 +91,7 @@ impl HeightMap {
         let block_columns = columns.div_ceil(BLOCK);
         let block_rows = rows.div_ceil(BLOCK);
         let mut block_max = vec![f32::NEG_INFINITY; block_columns * block_rows];
+        let mut block_min = vec![f32::INFINITY; block_columns * block_rows];
         for row in 0..rows {
             for column in 0..columns {
                 let height = heights[row * columns + column];
@@ -81,25 +103,31 @@ impl HeightMap {
                     let block_column_range = (column.saturating_sub(1) / BLOCK)
                         ..=((column + 1).min(columns - 1) / BLOCK);
                     for block_column in block_column_range {
-                        let slot = &mut block_max[block_row * block_columns + block_column];
-                        *slot = slot.max(height);
+                        let slot = block_row * block_columns + block_column;
+                        block_max[slot] = block_max[slot].max(height);
+                        block_min[slot] = block_min[slot].min(height);
                     }
                 }
             }
         }
-        let highest = heights
+        let (lowest, highest) = heights
             .iter()
-            .fold(f64::NEG_INFINITY, |high, &h| high.max(f64::from(h)));
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &h| {
+                (low.min(f64::from(h)), high.max(f64::from(h)))
+            });
         Self {
+            lowest,
             highest,
             origin_x: origin.0,
             origin_y: origin.1,
             cell,
+            per_cell: 1.0 / cell,
             columns,
             rows,
             heights,
             sampling,
             block_max,
+            block_min,
             block_columns,
         }
     }
@@ -182,13 +210,10 @@ impl HeightMap {
 
     /// Lowest and highest height held.
     pub fn range(&self) -> (f64, f64) {
-        self.heights
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), &h| {
-                (low.min(f64::from(h)), high.max(f64::from(h)))
-            })
+        (self.lowest, self.highest)
     }
 
+    #[inline(always)]
     fn at(&self, row: usize, column: usize) -> f64 {
         f64::from(self.heights[row * self.columns + column])
     }
@@ -211,9 +236,10 @@ impl HeightMap {
     }
 
     /// The bilinear height: what a physical surface through the centres looks like.
+    #[inline]
     pub fn bilinear(&self, x: f64, y: f64) -> f64 {
-        let u = ((x - self.origin_x) / self.cell).clamp(0.0, (self.columns - 1) as f64);
-        let v = ((y - self.origin_y) / self.cell).clamp(0.0, (self.rows - 1) as f64);
+        let u = ((x - self.origin_x) * self.per_cell).clamp(0.0, (self.columns - 1) as f64);
+        let v = ((y - self.origin_y) * self.per_cell).clamp(0.0, (self.rows - 1) as f64);
         let column = (u as usize).min(self.columns - 2);
         let row = (v as usize).min(self.rows - 2);
         let (fu, fv) = (u - column as f64, v - row as f64);
@@ -222,11 +248,12 @@ impl HeightMap {
         low * (1.0 - fv) + high * fv
     }
 
-    /// The highest height in the blocks that the box [x0, x1] × [y0, y1] touches: an upper
-    /// bound of the terrain under anything inside the box.
-    fn highest_under(&self, x0: f64, y0: f64, x1: f64, y1: f64) -> f64 {
+    /// The lowest and highest heights in the blocks that the box [x0, x1] × [y0, y1] touches:
+    /// bounds of the terrain under anything inside the box.
+    #[inline]
+    fn range_under(&self, x0: f64, y0: f64, x1: f64, y1: f64) -> (f64, f64) {
         let to_block = |value: f64, origin: f64, count: usize| -> usize {
-            let cell = ((value - origin) / self.cell).clamp(0.0, (count - 1) as f64);
+            let cell = ((value - origin) * self.per_cell).clamp(0.0, (count - 1) as f64);
             cell as usize / BLOCK
         };
         let (c0, c1) = (
@@ -237,13 +264,15 @@ impl HeightMap {
             to_block(y0, self.origin_y, self.rows),
             to_block(y1, self.origin_y, self.rows),
         );
-        let mut highest = f32::NEG_INFINITY;
+        let (mut lowest, mut highest) = (f32::INFINITY, f32::NEG_INFINITY);
         for row in r0..=r1 {
             for column in c0..=c1 {
-                highest = highest.max(self.block_max[row * self.block_columns + column]);
+                let slot = row * self.block_columns + column;
+                highest = highest.max(self.block_max[slot]);
+                lowest = lowest.min(self.block_min[slot]);
             }
         }
-        f64::from(highest)
+        (f64::from(lowest), f64::from(highest))
     }
 
     /// Whether the straight segment a → b (z above sea level) stays more than `clearance`
@@ -268,7 +297,7 @@ impl HeightMap {
         (0..=steps).step_by(per_run).all(|first| {
             let last = (first + per_run).min(steps);
             let (from, to) = (at(first), at(last));
-            let highest = self.highest_under(
+            let (_, highest) = self.range_under(
                 from[0].min(to[0]),
                 from[1].min(to[1]),
                 from[0].max(to[0]),
@@ -280,6 +309,127 @@ impl HeightMap {
                     p[2] - self.bilinear(p[0], p[1]) > clearance
                 })
         })
+    }
+
+    /// How far the straight leg a → b (z above sea level) goes under the terrain raised by
+    /// `clearance` and out of the height band `band` (heights above the ground), integrated
+    /// along the leg: each
+    /// sample at the middle of a half-cell stretch counts its depth times the stretch's
+    /// horizontal length (scenario units × metres), on this map's own sampling. Stretches
+    /// whose blocks prove them above the ground and inside the band are skipped, which gives
+    /// the same sums as walking every sample.
+    pub fn leg_excess(
+        &self,
+        a: [f64; 3],
+        b: [f64; 3],
+        clearance: f64,
+        band: Option<(f64, f64)>,
+    ) -> LegExcess {
+        let mut excess = LegExcess::default();
+        let (floor, ceiling) = band.unwrap_or((f64::NEG_INFINITY, f64::INFINITY));
+        let horizontal = planar_length(b[0] - a[0], b[1] - a[1]);
+        let steps = ((horizontal / self.cell).ceil() as usize).max(1);
+        let stretch = horizontal / steps as f64;
+        let at = |t: f64| -> [f64; 3] { [0, 1, 2].map(|axis| a[axis] + t * (b[axis] - a[axis])) };
+        // (clear of the ground, inside the band) for the stretch from → to, by its blocks.
+        let proven = |from: [f64; 3], to: [f64; 3]| {
+            let (lowest, highest) = self.range_under(
+                from[0].min(to[0]),
+                from[1].min(to[1]),
+                from[0].max(to[0]),
+                from[1].max(to[1]),
+            );
+            let (low_z, high_z) = (from[2].min(to[2]), from[2].max(to[2]));
+            (
+                low_z - highest > clearance,
+                low_z - highest > floor && high_z - lowest < ceiling,
+            )
+        };
+        // A leg above the highest ground and under the lowest ceiling needs no walk.
+        if a[2].min(b[2]) - self.highest > floor.max(clearance)
+            && a[2].max(b[2]) - self.lowest < ceiling
+        {
+            return excess;
+        }
+        let per_run = BLOCK;
+        for first in (0..steps).step_by(per_run) {
+            let last = (first + per_run).min(steps);
+            let (clear, inside) = proven(
+                at(first as f64 / steps as f64),
+                at(last as f64 / steps as f64),
+            );
+            if clear && inside {
+                continue;
+            }
+            // Clear of the ground, only the band's excursion is measured: every fourth sample
+            // (it is a preference, smooth along the leg; decision 0013).
+            let stride = if clear { BAND_STRIDE } else { 1 };
+            let (under, outside) = match self.sampling {
+                Sampling::Bilinear => self.walk(
+                    a,
+                    b,
+                    steps,
+                    first..last,
+                    stride,
+                    clearance,
+                    floor,
+                    ceiling,
+                    |x, y| self.bilinear(x, y),
+                ),
+                Sampling::Nearest => self.walk(
+                    a,
+                    b,
+                    steps,
+                    first..last,
+                    stride,
+                    clearance,
+                    floor,
+                    ceiling,
+                    |x, y| self.nearest(x, y),
+                ),
+            };
+            if under > 0.0 {
+                excess.dips = true;
+            }
+            excess.under_ground += under * stretch;
+            excess.outside_band += outside * stretch;
+        }
+        excess
+    }
+
+    /// Sums of depth under `clearance` and of distance out of [floor, ceiling] at the middles
+    /// of samples `range` of `steps` along a → b (every `stride`-th, each counting for the
+    /// samples it stands for), heights read by `height`.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn walk(
+        &self,
+        a: [f64; 3],
+        b: [f64; 3],
+        steps: usize,
+        range: std::ops::Range<usize>,
+        stride: usize,
+        clearance: f64,
+        floor: f64,
+        ceiling: f64,
+        height: impl Fn(f64, f64) -> f64,
+    ) -> (f64, f64) {
+        let per_step = 1.0 / steps as f64;
+        let (dx, dy, dz) = (
+            (b[0] - a[0]) * per_step,
+            (b[1] - a[1]) * per_step,
+            (b[2] - a[2]) * per_step,
+        );
+        let (mut under, mut outside) = (0.0, 0.0);
+        let end = range.end;
+        for step in range.step_by(stride) {
+            let count = stride.min(end - step) as f64;
+            let k = step as f64 + 0.5 * count;
+            let above = a[2] + k * dz - height(a[0] + k * dx, a[1] + k * dy);
+            under += count * (clearance - above).max(0.0);
+            outside += count * ((floor - above).max(0.0) + (above - ceiling).max(0.0));
+        }
+        (under, outside)
     }
 
     /// Samples along a → b: one every half cell, at least one interval.
@@ -374,13 +524,18 @@ mod tests {
     #[test]
     fn the_orchard_raster_follows_its_formula() {
         let terrain = Composite::seed000();
-        let map = HeightMap::sample(&terrain, (0.0, 0.0, 1000.0, 1000.0), 1.0).unwrap();
+        let map = HeightMap::sample(
+            &terrain,
+            (0.0, 0.0, 1000.0, 1000.0),
+            crate::track::scenario::ORCHARD_CELL_M,
+        )
+        .unwrap();
         let mut worst: f64 = 0.0;
-        for index in 0..2000 {
+        for index in 0..20000 {
             let x = (index as f64 * 7.31) % 1000.0;
             let y = (index as f64 * 3.17 + 0.4) % 1000.0;
             worst = worst.max((map.height(x, y) - terrain.height_m(x, y).unwrap()).abs());
         }
-        assert!(worst < 0.15, "worst difference {worst} m");
+        assert!(worst < 0.6, "worst difference {worst} m");
     }
 }

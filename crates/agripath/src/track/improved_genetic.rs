@@ -89,7 +89,7 @@ impl<'a> ImprovedGenetic<'a> {
 
     /// The padded Cartesian vector of a chromosome: unused room at the goal.
     fn padded(&self, genes: &[[f64; 3]]) -> Vec<f64> {
-        let goal = self.scenario.goal;
+        let goal = self.scenario.cruise_goal;
         (0..self.parameters.max_length)
             .flat_map(|index| *genes.get(index).unwrap_or(&goal))
             .collect()
@@ -267,7 +267,9 @@ impl<'a> ImprovedGenetic<'a> {
 
     /// Whether the leg a → b stays in the space and above the terrain.
     fn leg_is_clear(&self, a: [f64; 3], b: [f64; 3]) -> bool {
-        self.scenario.terrain.segment_clears(a, b, 0.0)
+        self.scenario
+            .terrain
+            .segment_clears(a, b, self.scenario.cost_clearance())
     }
 
     fn gene_is_valid(&self, gene: [f64; 3]) -> bool {
@@ -276,12 +278,13 @@ impl<'a> ImprovedGenetic<'a> {
         (min_x..=max_x).contains(&gene[0])
             && (min_y..=max_y).contains(&gene[1])
             && (low..=high).contains(&gene[2])
-            && gene[2] > self.scenario.terrain.height(gene[0], gene[1])
+            && gene[2]
+                > self.scenario.terrain.height(gene[0], gene[1]) + self.scenario.cost_clearance()
     }
 
     /// Steps (1)-(4) of the heuristic multi-mutation, once.
     fn mutate_once(&self, search: &mut Search, mut genes: Vec<[f64; 3]>) -> Vec<[f64; 3]> {
-        let (start, goal) = (self.scenario.start, self.scenario.goal);
+        let (start, goal) = (self.scenario.cruise_start, self.scenario.cruise_goal);
         let neighbour = |genes: &[[f64; 3]], index: isize| -> [f64; 3] {
             if index < 0 {
                 start

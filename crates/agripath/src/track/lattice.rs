@@ -143,8 +143,10 @@ impl<'a> Lattice<'a> {
 
     /// Dijkstra from the node nearest the start to the node nearest the goal.
     fn shortest(&self) -> Option<Vec<usize>> {
-        let source = self.nearest_open(self.scenario.start[0], self.scenario.start[1])?;
-        let target = self.nearest_open(self.scenario.goal[0], self.scenario.goal[1])?;
+        let source =
+            self.nearest_open(self.scenario.cruise_start[0], self.scenario.cruise_start[1])?;
+        let target =
+            self.nearest_open(self.scenario.cruise_goal[0], self.scenario.cruise_goal[1])?;
         let mut distance = vec![f64::INFINITY; self.open.len()];
         let mut previous = vec![usize::MAX; self.open.len()];
         let mut queue = BinaryHeap::new();
@@ -247,9 +249,9 @@ pub fn corridors(scenario: &TrackScenario, count: usize) -> Vec<Vec<[f64; 3]>> {
         let Some(path) = lattice.shortest() else {
             break;
         };
-        let mut polyline: Vec<[f64; 3]> = vec![scenario.start];
+        let mut polyline: Vec<[f64; 3]> = vec![scenario.cruise_start];
         polyline.extend(path.iter().map(|&node| lattice.position(node)));
-        polyline.push(scenario.goal);
+        polyline.push(scenario.cruise_goal);
         found.push(resample(scenario, &polyline, scenario.free_waypoints));
         lattice.discourage(&path);
     }
@@ -287,7 +289,8 @@ fn resample(scenario: &TrackScenario, polyline: &[[f64; 3]], count: usize) -> Ve
             // Without a band, the shortest climb is the straight start-goal slope, raised
             // where the ground is higher.
             let fraction = index as f64 / (count + 1) as f64;
-            let slope = scenario.start[2] + fraction * (scenario.goal[2] - scenario.start[2]);
+            let slope = scenario.cruise_start[2]
+                + fraction * (scenario.cruise_goal[2] - scenario.cruise_start[2]);
             let (low, high) = scenario.altitude_bounds;
             z = slope.max(z).clamp(low, high);
         }

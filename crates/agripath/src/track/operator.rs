@@ -23,7 +23,9 @@ use serde::Deserialize;
 
 use super::cost::{CostModel, Seed000Cost};
 use super::height_map::HeightMap;
-use super::scenario::{validated, AltitudeReference, Georeference, Threat, TrackScenario};
+use super::scenario::{
+    validated, AltitudeReference, Georeference, GroundTruth, SafetyLimits, Threat, TrackScenario,
+};
 use crate::error::{Fault, InputError};
 use crate::geometry::UtmZone;
 use crate::model::CoordinateSystem;
@@ -219,6 +221,11 @@ pub fn read(path: &Path, text: &str) -> Result<TrackScenario, InputError> {
         iterations: parsed.iterations,
         georeference,
         unit_m: 1.0,
+        ground_truth: GroundTruth::Model(std::sync::Arc::from(terrain)),
+        limits: SafetyLimits::default(),
+        cruise_start: [0.0; 3],
+        cruise_goal: [0.0; 3],
+        paper_runs: None,
     })
     .map_err(fail)
 }

@@ -52,6 +52,20 @@ impl Planner {
         }
     }
 
+    /// The planner's colour in every picture (its place in [`Planner::all`], colour-blind-safe
+    /// Okabe-Ito and Tol colours).
+    pub fn colour(self) -> &'static str {
+        const PALETTE: [&str; 12] = [
+            "#0072B2", "#E69F00", "#009E73", "#CC79A7", "#56B4E9", "#882255", "#DDCC77", "#999933",
+            "#44AA99", "#AA4499", "#000000", "#D55E00",
+        ];
+        let index = Planner::all()
+            .iter()
+            .position(|planner| *planner == self)
+            .unwrap_or(0);
+        PALETTE[index % PALETTE.len()]
+    }
+
     pub fn all() -> Vec<Planner> {
         let mut all: Vec<Planner> = Algorithm::ALL.into_iter().map(Planner::Swarm).collect();
         all.extend([Planner::Spso, Planner::ImprovedGenetic, Planner::Lattice]);
@@ -227,10 +241,10 @@ pub fn plan(
             let mut points = problem.track(&outcome.best_position);
             if settings.planner == Planner::ImprovedGenetic {
                 // Drop the padding: waypoints parked at the goal.
-                let goal = scenario.sea_level(scenario.goal);
+                let goal = scenario.sea_level(scenario.cruise_goal);
                 points.dedup_by(|a, b| a == b && *a == goal);
             }
-            let cost = scenario.cost.evaluate(scenario, &points);
+            let cost = scenario.evaluate(&points);
             let verdict = safety::check(scenario, &points);
             let smoothed = (settings.planner == Planner::ImprovedGenetic)
                 .then(|| smooth_safely(scenario, &points));
@@ -253,7 +267,9 @@ pub fn plan(
 /// 0011) the spline is drawn through the polyline with each leg split in 2, 4 and 8, which hugs
 /// it ever closer, until the smoothed track is safe; altitudes above sea level are held within
 /// the space's floor and ceiling. The last try is returned, safe or not.
-fn smooth_safely(scenario: &TrackScenario, points: &[[f64; 3]]) -> Smoothed {
+fn smooth_safely(scenario: &TrackScenario, track: &[[f64; 3]]) -> Smoothed {
+    // The cruise is smoothed; the vertical legs stay as they are.
+    let (points, _) = scenario.cruise_of(track);
     let mut tried = None;
     for splits in [1usize, 2, 4, 8] {
         let mut dense = Vec::with_capacity(points.len() * splits);
@@ -273,8 +289,9 @@ fn smooth_safely(scenario: &TrackScenario, points: &[[f64; 3]]) -> Smoothed {
                 point[2] = point[2].clamp(low, high);
             }
         }
+        let curve = scenario.whole_track(&curve);
         let smoothed = Smoothed {
-            cost: scenario.cost.evaluate(scenario, &curve),
+            cost: scenario.evaluate(&curve),
             verdict: safety::check(scenario, &curve),
             points: curve,
             splits,

@@ -39,8 +39,14 @@ impl<'a> TrackProblem<'a> {
         self.waypoints
     }
 
-    /// Start, waypoints and goal with altitudes above sea level.
+    /// The whole track with altitudes above sea level: the takeoff leg (when the start is
+    /// below the band), the cruise through the waypoints, the landing leg.
     pub fn track(&self, x: &[f64]) -> Vec<[f64; 3]> {
+        self.scenario.whole_track(&self.cruise(x))
+    }
+
+    /// The cruise's start, the waypoints and the cruise's goal, above sea level.
+    pub fn cruise(&self, x: &[f64]) -> Vec<[f64; 3]> {
         let mut points = Vec::with_capacity(self.waypoints + 2);
         self.encoding.decode_into(self.scenario, x, &mut points);
         for point in &mut points {
@@ -50,7 +56,7 @@ impl<'a> TrackProblem<'a> {
     }
 
     pub fn breakdown(&self, x: &[f64]) -> CostBreakdown {
-        self.scenario.cost.evaluate(self.scenario, &self.track(x))
+        self.scenario.evaluate(&self.track(x))
     }
 }
 

@@ -13,20 +13,23 @@
 //! by then are dropped at a third of the budget, so the rest goes to the best corridor.
 //!
 //! It runs on the swarm engine like every planner (the Runner counts its evaluations and
-//! keeps its convergence history) with the Cartesian encoding.
+//! keeps its convergence history) with the Cartesian encoding. Once one lane is left and a
+//! tenth of the budget has passed without its cost falling by a millionth, it declares
+//! itself converged and hands the rest of the budget back.
 
 use swarm::{Optimizer, Search};
 
 use super::lattice;
 use super::scenario::TrackScenario;
 
-/// Waypoint `k` of the Cartesian vector `x`; −1 is the start and one past the last the goal.
+/// Waypoint `k` of the Cartesian vector `x`; −1 is the cruise's start and one past the last
+/// its goal.
 fn waypoint(scenario: &TrackScenario, x: &[f64], k: isize) -> [f64; 3] {
     let count = (x.len() / 3) as isize;
     if k < 0 {
-        scenario.start
+        scenario.cruise_start
     } else if k >= count {
-        scenario.goal
+        scenario.cruise_goal
     } else {
         let k = 3 * k as usize;
         [x[k], x[k + 1], x[k + 2]]
@@ -47,7 +50,14 @@ pub struct LatticeRefine<'a> {
     scenario: &'a TrackScenario,
     lanes: Vec<Lane>,
     pass: usize,
+    /// The best cost at the last real improvement, and the share of the budget used then.
+    improved: (f64, f64),
 }
+
+/// Share of the budget without a relative improvement of [`STILL`] after which the lane
+/// has converged.
+const PATIENCE: f64 = 0.1;
+const STILL: f64 = 1e-6;
 
 impl<'a> LatticeRefine<'a> {
     pub fn new(scenario: &'a TrackScenario) -> Self {
@@ -55,6 +65,7 @@ impl<'a> LatticeRefine<'a> {
             scenario,
             lanes: Vec::new(),
             pass: 0,
+            improved: (f64::INFINITY, 0.0),
         }
     }
 }
@@ -91,6 +102,13 @@ impl Optimizer for LatticeRefine<'_> {
 
     fn step(&mut self, search: &mut Search) {
         self.pass += 1;
+        let best = search.best_cost();
+        if best < self.improved.0 - STILL * self.improved.0.abs() {
+            self.improved = (best, search.progress());
+        } else if self.lanes.len() == 1 && search.progress() - self.improved.1 > PATIENCE {
+            search.declare_converged();
+            return;
+        }
         if search.progress() > 0.15 && self.lanes.len() > 1 {
             let best = self
                 .lanes

@@ -1,68 +1,162 @@
-//! Is a track safe to fly? Checked on the geometry, whatever the cost model said.
+//! Is a track safe to fly? Checked on the geometry against the terrain as given, whatever
+//! the cost model said (decision 0013).
 //!
-//! A track is safe when every segment, sampled at every half terrain cell, stays above the
-//! terrain (bilinear between DEM cells), no segment passes within a threat cylinder (2D
-//! distance from the axis to the segment), and every waypoint lies in the planning area
-//! (and, for altitudes above sea level, between the space's floor and ceiling).
-//! Height-band excursions are reported but do not make a track unsafe: the band is a
-//! preference of the cost models, the ground and the threats are not.
+//! Every leg of the cruise is sampled at most 1 m apart (horizontally) against the scenario's
+//! [`GroundTruth`](super::scenario::GroundTruth): the formula of an analytic terrain, or the
+//! DEM bilinear on its own cells, never the planners' raster. A track is safe when
+//! - every sample of the cruise is at least [`SafetyLimits::min_clearance_m`] above the
+//!   terrain (the takeoff and landing legs, vertical above the start and the goal, start on
+//!   the ground and are exempt: their ground is the start's and the goal's);
+//! - every leg stays at least the vehicle's radius from every threat cylinder's wall (the 2D
+//!   distance from the axis to the segment, exact);
+//! - every waypoint lies in the planning area (and, for altitudes above sea level, between
+//!   the space's floor and ceiling).
+//!
+//! Metres flown outside the height band are reported and do not make a track unsafe: the
+//! band is a preference of the cost models, the ground and the threats are not.
+//!
+//! [`SafetyLimits::min_clearance_m`]: super::scenario::SafetyLimits
 
 use super::cost::point_segment_distance;
-use super::scenario::TrackScenario;
+use super::height_map::planar_length;
+use super::scenario::{AltitudeReference, TrackScenario};
+
+/// Horizontal spacing of the verdict's samples, metres.
+pub const SAMPLE_SPACING_M: f64 = 1.0;
 
 /// What the check found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Verdict {
-    /// Lowest height above the terrain along the track (scenario units of height: metres).
+    /// Lowest height above the terrain along the cruise (metres) and where (scenario x, y).
     pub lowest_clearance_m: f64,
-    /// Smallest 2D distance from a threat cylinder's wall (negative: inside), if any threats.
-    pub threat_margin: Option<f64>,
-    /// Human-readable violations; empty when the track is safe.
+    pub lowest_clearance_at: [f64; 2],
+    /// Smallest distance from a threat cylinder's wall (metres; negative: inside), if any.
+    pub threat_margin_m: Option<f64>,
+    /// Horizontal metres of the cruise flown outside the height band.
+    pub outside_band_m: f64,
+    /// One line per unsafe leg or waypoint; empty when the track is safe.
     pub violations: Vec<String>,
-    /// Waypoints outside the height band (reported, not a violation).
-    pub outside_band: usize,
 }
 
 impl Verdict {
     pub fn is_safe(&self) -> bool {
         self.violations.is_empty()
     }
+
+    /// The first violation, for one-line reports.
+    pub fn worst(&self) -> Option<&str> {
+        self.violations.first().map(String::as_str)
+    }
 }
 
-/// Checks a track given with altitudes above sea level.
+/// A place as the scenario's input gives it: longitude/latitude or the local x, y.
+fn place(scenario: &TrackScenario, x: f64, y: f64) -> String {
+    let (a, b) = scenario.to_input(x, y);
+    if scenario.is_local() {
+        format!("({a:.1}, {b:.1})")
+    } else {
+        format!("({a:.6}, {b:.6})")
+    }
+}
+
+/// Checks a whole track (takeoff leg, cruise, landing leg) given with altitudes above sea
+/// level.
 pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
+    let limits = scenario.limits;
     let mut violations = Vec::new();
     let mut lowest_clearance_m = f64::INFINITY;
-    let mut threat_margin: Option<f64> = None;
+    let mut lowest_clearance_at = [scenario.start[0], scenario.start[1]];
+    let mut threat_margin_m: Option<f64> = None;
+    let mut outside_band_m = 0.0;
+    let first_cruise_leg = usize::from(scenario.takes_off());
+    let cruise_legs = points
+        .len()
+        .saturating_sub(1 + first_cruise_leg + usize::from(scenario.lands()));
+    let spacing = SAMPLE_SPACING_M / scenario.unit_m;
     for (index, pair) in points.windows(2).enumerate() {
-        let clearance = scenario.terrain.lowest_clearance(pair[0], pair[1]);
-        lowest_clearance_m = lowest_clearance_m.min(clearance);
-        if clearance <= 0.0 {
+        let (a, b) = (pair[0], pair[1]);
+        let leg = index + 1;
+        for (threat_index, threat) in scenario.threats.iter().enumerate() {
+            let distance = point_segment_distance(threat.x, threat.y, a, b);
+            let margin = (distance - threat.radius) * scenario.unit_m;
+            threat_margin_m = Some(threat_margin_m.map_or(margin, |m| m.min(margin)));
+            if margin < limits.vehicle_radius_m {
+                let closest = closest_point(threat.x, threat.y, a, b);
+                violations.push(if margin < 0.0 {
+                    format!(
+                        "leg {leg} enters threat cylinder {threat_index} by {:.2} m at {}",
+                        -margin,
+                        place(scenario, closest[0], closest[1])
+                    )
+                } else {
+                    format!(
+                        "leg {leg} passes {margin:.2} m from threat cylinder {threat_index} at {} (the vehicle's radius is {} m)",
+                        place(scenario, closest[0], closest[1]),
+                        limits.vehicle_radius_m
+                    )
+                });
+            }
+        }
+        let in_cruise = (first_cruise_leg..first_cruise_leg + cruise_legs).contains(&index);
+        if !in_cruise {
+            continue;
+        }
+        let horizontal = planar_length(b[0] - a[0], b[1] - a[1]);
+        let steps = ((horizontal / spacing).ceil() as usize).max(1);
+        let mut leg_lowest = (f64::INFINITY, [a[0], a[1]]);
+        let mut off_model = None;
+        for step in 0..=steps {
+            let t = step as f64 / steps as f64;
+            let p = [0, 1, 2].map(|axis| a[axis] + t * (b[axis] - a[axis]));
+            let Some(ground) = scenario.true_ground(p[0], p[1]) else {
+                off_model.get_or_insert([p[0], p[1]]);
+                continue;
+            };
+            let clearance = p[2] - ground;
+            if clearance < leg_lowest.0 {
+                leg_lowest = (clearance, [p[0], p[1]]);
+            }
+            if let Some((low, high)) = scenario.height_band {
+                if step < steps && !(low..=high).contains(&clearance) {
+                    outside_band_m += horizontal / steps as f64 * scenario.unit_m;
+                }
+            }
+        }
+        if let Some([x, y]) = off_model {
             violations.push(format!(
-                "segment {index} goes {:.1} m under the terrain",
-                -clearance
+                "leg {leg} leaves the terrain model at {}",
+                place(scenario, x, y)
             ));
         }
-        for (threat_index, threat) in scenario.threats.iter().enumerate() {
-            let margin =
-                point_segment_distance(threat.x, threat.y, pair[0], pair[1]) - threat.radius;
-            threat_margin = Some(threat_margin.map_or(margin, |m| m.min(margin)));
-            if margin <= 0.0 {
-                violations.push(format!(
-                    "segment {index} enters threat cylinder {threat_index} by {:.1}",
-                    -margin
-                ));
-            }
+        let (clearance, [x, y]) = leg_lowest;
+        if clearance < lowest_clearance_m {
+            lowest_clearance_m = clearance;
+            lowest_clearance_at = [x, y];
+        }
+        if clearance < limits.min_clearance_m {
+            violations.push(if clearance < 0.0 {
+                format!(
+                    "leg {leg} goes {:.2} m under the terrain at {}",
+                    -clearance,
+                    place(scenario, x, y)
+                )
+            } else {
+                format!(
+                    "leg {leg} passes {clearance:.2} m above the terrain at {} (minimum {} m)",
+                    place(scenario, x, y),
+                    limits.min_clearance_m
+                )
+            });
         }
     }
     let (min_x, min_y, max_x, max_y) = scenario.area;
     let (low, high) = scenario.altitude_bounds;
+    let sea_level = scenario.altitude_reference == AltitudeReference::SeaLevel;
     for (index, point) in points.iter().enumerate() {
         if !(min_x..=max_x).contains(&point[0]) || !(min_y..=max_y).contains(&point[1]) {
             violations.push(format!("waypoint {index} lies outside the planning area"));
         }
         // Above sea level, the altitude bounds are the space's floor and ceiling.
-        let sea_level = scenario.altitude_reference == super::scenario::AltitudeReference::SeaLevel;
         if sea_level && !(low - 1e-9..=high + 1e-9).contains(&point[2]) {
             violations.push(format!(
                 "waypoint {index} at {:.1} m is outside the space's altitudes [{low}, {high}]",
@@ -70,31 +164,43 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
             ));
         }
     }
-    let outside_band = match scenario.height_band {
-        Some((low, high)) => points
-            .iter()
-            .filter(|p| {
-                let above = p[2] - scenario.terrain.height(p[0], p[1]);
-                !(low..=high).contains(&above)
-            })
-            .count(),
-        None => 0,
-    };
     Verdict {
         lowest_clearance_m,
-        threat_margin,
+        lowest_clearance_at,
+        threat_margin_m,
+        outside_band_m,
         violations,
-        outside_band,
     }
+}
+
+/// The point of the segment a → b nearest (x, y), horizontally.
+fn closest_point(x: f64, y: f64, a: [f64; 3], b: [f64; 3]) -> [f64; 2] {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let length_squared = dx * dx + dy * dy;
+    let t = if length_squared > 0.0 {
+        (((x - a[0]) * dx + (y - a[1]) * dy) / length_squared).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    [a[0] + t * dx, a[1] + t * dy]
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
+    /// Task `task` with the start and goal moved to the cruise's ends: no vertical legs, so
+    /// a hand-made track is all cruise.
+    pub(super) fn cruise_only(task: &str) -> TrackScenario {
+        let mut scenario = TrackScenario::seed000(task).unwrap();
+        scenario.start = scenario.cruise_start;
+        scenario.goal = scenario.cruise_goal;
+        scenario
+    }
+
     #[test]
-    fn a_track_through_a_threat_or_a_hill_is_unsafe() {
-        let scenario = TrackScenario::seed000("I").unwrap();
+    fn a_track_through_a_threat_or_a_hill_or_too_close_is_unsafe() {
+        let scenario = cruise_only("I");
         let threat = scenario.threats[0];
         let through = [
             [threat.x - 100.0, threat.y, 300.0],
@@ -102,7 +208,13 @@ mod tests {
         ];
         let verdict = check(&scenario, &through);
         assert!(!verdict.is_safe());
-        assert!(verdict.violations[0].contains("threat cylinder 0"));
+        assert!(verdict.violations[0].contains("enters threat cylinder 0"));
+        // Half a metre from the wall: inside the vehicle's 1 m radius.
+        let y = threat.y + threat.radius + 0.5;
+        let grazing = [[threat.x - 100.0, y, 300.0], [threat.x + 100.0, y, 300.0]];
+        let verdict = check(&scenario, &grazing);
+        assert!(verdict.violations[0].contains("passes 0.50 m from threat cylinder 0"));
+        assert!((verdict.threat_margin_m.unwrap() - 0.5).abs() < 1e-9);
         // Under the terrain near the highest hill (350, 650).
         let under = [[300.0, 650.0, 50.0], [400.0, 650.0, 50.0]];
         assert!(check(&scenario, &under)
@@ -111,7 +223,78 @@ mod tests {
             .any(|v| v.contains("under the terrain")));
         // High above everything, away from threats.
         let safe = [[0.0, 1000.0, 390.0], [10.0, 990.0, 390.0]];
-        assert!(check(&scenario, &safe).is_safe());
+        let verdict = check(&scenario, &safe);
+        assert!(verdict.is_safe(), "{:?}", verdict.violations);
+        // 390 m above sea level is above the band's 300 m ceiling over that ground.
+        assert!((verdict.outside_band_m - 200f64.sqrt()).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_track_one_metre_above_the_ground_breaks_the_two_metre_minimum() {
+        let scenario = cruise_only("II");
+        let ground = |x: f64, y: f64| scenario.true_ground(x, y).unwrap();
+        let (a, b) = ([20.0, 20.0], [60.0, 20.0]);
+        let low = [
+            [a[0], a[1], ground(a[0], a[1]) + 1.0],
+            [b[0], b[1], ground(b[0], b[1]) + 1.0],
+        ];
+        let verdict = check(&scenario, &low);
+        assert!(
+            verdict
+                .violations
+                .iter()
+                .any(|v| v.contains("above the terrain") && v.contains("minimum 2 m")),
+            "{:?}",
+            verdict.violations
+        );
+        // Every sampled metre below the band's 100 m floor counts as outside it.
+        assert!(
+            (verdict.outside_band_m - 40.0).abs() < 1.01,
+            "{}",
+            verdict.outside_band_m
+        );
+        let relaxed = scenario
+            .clone()
+            .with_limits(super::super::scenario::SafetyLimits {
+                min_clearance_m: 0.5,
+                vehicle_radius_m: 1.0,
+            })
+            .unwrap();
+        assert!(check(&relaxed, &low).is_safe());
+    }
+
+    #[test]
+    fn the_vertical_legs_at_a_start_on_the_ground_are_exempt_from_the_clearance() {
+        let mut scenario = TrackScenario::seed000("III").unwrap();
+        scenario.start[2] = scenario
+            .true_ground(scenario.start[0], scenario.start[1])
+            .unwrap();
+        let scenario = super::super::scenario::validated(scenario).unwrap();
+        assert!(scenario.takes_off());
+        let above = scenario.cruise_start[2]
+            - scenario
+                .true_ground(scenario.start[0], scenario.start[1])
+                .unwrap();
+        assert!(
+            (above - 100.0).abs() < 1e-9,
+            "climbs to the band's floor: {above}"
+        );
+        let cruise = [
+            scenario.cruise_start,
+            [500.0, 200.0, 390.0],
+            scenario.sea_level(scenario.cruise_goal),
+        ];
+        let track = scenario.whole_track(&cruise);
+        assert_eq!(
+            track.len(),
+            cruise.len() + usize::from(scenario.lands()) + 1
+        );
+        let verdict = check(&scenario, &track);
+        assert!(
+            !verdict.violations.iter().any(|v| v.contains("terrain")),
+            "{:?}",
+            verdict.violations
+        );
     }
 }
 
@@ -125,21 +308,24 @@ mod properties {
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(64))]
 
-        /// Against brute force on the formula itself: a leg that dips more than the raster's
-        /// interpolation error under the terrain, or into a cylinder, is always reported, and a
-        /// leg clear of both by a margin never is.
+        /// Against brute force on the formula itself, sampled every 0.25 m: a leg that comes
+        /// closer to the terrain than the minimum (by more than the terrain's change between
+        /// 1 m samples) or to a threat's wall than the vehicle's radius is always reported, and
+        /// a leg clear of both by that margin never is.
         #[test]
         fn the_check_agrees_with_dense_sampling_of_the_exact_terrain(
             ax in 0.0..1000.0f64, ay in 0.0..1000.0f64, az in 0.0..160.0f64,
             bx in 0.0..1000.0f64, by in 0.0..1000.0f64, bz in 0.0..160.0f64,
         ) {
-            let scenario = TrackScenario::seed000("III").unwrap();
+            let scenario = super::tests::cruise_only("III");
             let exact = Composite::seed000();
             let (a, b) = ([ax, ay, az], [bx, by, bz]);
+            let length = (bx - ax).hypot(by - ay);
+            let steps = ((length / 0.25).ceil() as usize).max(1);
             let mut lowest: f64 = f64::INFINITY;
             let mut threat_margin: f64 = f64::INFINITY;
-            for step in 0..=4000 {
-                let t = step as f64 / 4000.0;
+            for step in 0..=steps {
+                let t = step as f64 / steps as f64;
                 let (x, y, z) = (ax + t * (bx - ax), ay + t * (by - ay), az + t * (bz - az));
                 lowest = lowest.min(z - exact.height_m(x, y).unwrap());
                 for threat in &scenario.threats {
@@ -147,12 +333,12 @@ mod properties {
                 }
             }
             let verdict = check(&scenario, &[a, b]);
-            let says_under = verdict.violations.iter().any(|v| v.contains("under the terrain"));
+            let says_low = verdict.violations.iter().any(|v| v.contains("terrain"));
             let says_threat = verdict.violations.iter().any(|v| v.contains("threat cylinder"));
-            if lowest < -0.3 { prop_assert!(says_under, "lowest {lowest}"); }
-            if lowest > 0.3 { prop_assert!(!says_under, "lowest {lowest}"); }
-            if threat_margin < -0.5 { prop_assert!(says_threat); }
-            if threat_margin > 0.5 { prop_assert!(!says_threat); }
+            if lowest < 2.0 - 0.2 { prop_assert!(says_low, "lowest {lowest}"); }
+            if lowest > 2.0 + 0.01 { prop_assert!(!says_low, "lowest {lowest}"); }
+            if threat_margin < 1.0 - 0.01 { prop_assert!(says_threat); }
+            if threat_margin > 1.0 + 0.01 { prop_assert!(!says_threat); }
         }
     }
 }
