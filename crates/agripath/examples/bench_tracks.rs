@@ -25,6 +25,7 @@ fn main() {
         for (planner, evaluations) in cases {
             let mut seconds = Vec::new();
             let mut cost = 0.0;
+            let mut used = 0;
             for run in 0..5 {
                 let settings = TrackSettings {
                     planner,
@@ -36,12 +37,14 @@ fn main() {
                 let started = Instant::now();
                 let runs = plan(&scenario, &settings, &|| {}).unwrap();
                 seconds.push(started.elapsed().as_secs_f64());
-                assert_eq!(runs[0].evaluations, evaluations);
+                // Ours may declare convergence and hand the rest of the budget back.
+                assert!(runs[0].evaluations <= evaluations);
+                used += runs[0].evaluations / 5;
                 cost += runs[0].final_cost() / 5.0;
             }
             seconds.sort_by(f64::total_cmp);
             println!(
-                "task {task:<3} {:<22} {evaluations:>7} evaluations: median {:.3} s per run (min {:.3}, max {:.3}), mean cost {cost:.1}",
+                "task {task:<3} {:<22} {evaluations:>7} evaluations (mean used {used}): median {:.3} s per run (min {:.3}, max {:.3}), mean cost {cost:.1}",
                 planner.label(), seconds[2], seconds[0], seconds[4]
             );
         }

@@ -182,13 +182,13 @@ pub fn top_view(scenario: &TrackScenario, title: &str, tracks: &[DrawnTrack]) ->
         if danger > 0.0 {
             let _ = write!(
                 svg,
-                r##"<circle cx="{cx:.1}" cy="{cy:.1}" r="{:.1}" fill="#D55E00" fill-opacity="0.15" stroke="#A33" stroke-dasharray="4 3" stroke-width="0.8"/>"##,
+                r##"<circle cx="{cx:.1}" cy="{cy:.1}" r="{:.1}" fill="#C00000" fill-opacity="0.12" stroke="#C00000" stroke-dasharray="4 3" stroke-width="0.9"/>"##,
                 (threat.radius + danger) * scale
             );
         }
         let _ = write!(
             svg,
-            r##"<circle cx="{cx:.1}" cy="{cy:.1}" r="{:.1}" fill="#D55E00" fill-opacity="0.45" stroke="#A33" stroke-width="1.2"/>"##,
+            r##"<circle cx="{cx:.1}" cy="{cy:.1}" r="{:.1}" fill="#C00000" fill-opacity="0.35" stroke="#C00000" stroke-width="1.4"/>"##,
             threat.radius * scale
         );
     }
@@ -272,7 +272,7 @@ pub fn top_view(scenario: &TrackScenario, title: &str, tracks: &[DrawnTrack]) ->
     }
     let _ = write!(
         svg,
-        r##"<rect x="{lx:.0}" y="{:.0}" width="10" height="10" fill="#222"/><text x="{:.0}" y="{:.0}">start</text><circle cx="{:.0}" cy="{:.0}" r="5" fill="#222"/><text x="{:.0}" y="{:.0}">goal</text><circle cx="{:.0}" cy="{:.0}" r="6" fill="#D55E00" fill-opacity="0.45" stroke="#A33"/><text x="{:.0}" y="{:.0}">threat cylinder</text>"##,
+        r##"<rect x="{lx:.0}" y="{:.0}" width="10" height="10" fill="#222"/><text x="{:.0}" y="{:.0}">start</text><circle cx="{:.0}" cy="{:.0}" r="5" fill="#222"/><text x="{:.0}" y="{:.0}">goal</text><circle cx="{:.0}" cy="{:.0}" r="6" fill="#C00000" fill-opacity="0.35" stroke="#C00000"/><text x="{:.0}" y="{:.0}">threat cylinder</text>"##,
         ly + 6.0,
         lx + 28.0,
         ly + 15.0,
@@ -289,7 +289,7 @@ pub fn top_view(scenario: &TrackScenario, title: &str, tracks: &[DrawnTrack]) ->
     if danger > 0.0 {
         let _ = write!(
             svg,
-            r##"<circle cx="{:.0}" cy="{:.0}" r="6" fill="#D55E00" fill-opacity="0.15" stroke="#A33" stroke-dasharray="3 2"/><text x="{:.0}" y="{:.0}">danger band ({} {})</text>"##,
+            r##"<circle cx="{:.0}" cy="{:.0}" r="6" fill="#C00000" fill-opacity="0.12" stroke="#C00000" stroke-dasharray="3 2"/><text x="{:.0}" y="{:.0}">danger band ({} {})</text>"##,
             lx + 5.0,
             ly - 4.0,
             lx + 28.0,
@@ -368,7 +368,7 @@ pub fn profile(scenario: &TrackScenario, title: &str, track: &DrawnTrack) -> Str
     }
     let margin = 0.06 * (high - low).max(1.0);
     let (low, high) = (low - margin, high + margin);
-    let (width, height, left, right, top, bottom) = (820.0, 420.0, 70.0, 190.0, 40.0, 50.0);
+    let (width, height, left, right, top, bottom) = (860.0, 420.0, 70.0, 230.0, 40.0, 50.0);
     let plot_w = width - left - right;
     let plot_h = height - top - bottom;
     let length = along.max(1e-9);

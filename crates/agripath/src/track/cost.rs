@@ -10,7 +10,8 @@
 //! **Along the legs (ours, a deviation from every paper; decision 0013).** The papers score
 //! the terrain and the band at the waypoints only, and a leg between two good waypoints may
 //! sag out of the band or cut through a hill. Every model here also samples each leg at every
-//! half terrain cell ([`HeightMap::leg_excess`](super::height_map::HeightMap::leg_excess)):
+//! raster cell near the ground, and the band on a coarser raster where the leg is proven
+//! clear of it ([`HeightMap::leg_excess`](super::height_map::HeightMap::leg_excess)):
 //! - under the ground: [`PENALTY`] per leg that dips (the papers' infinite branch) plus
 //!   [`DEPTH_PENALTY`] per unit × metre of depth integrated along the leg, so that a track
 //!   grazing the ground costs less than one cutting through a hill and every optimizer is

@@ -100,7 +100,8 @@ pub fn json(seed: u64) -> Value {
         }
     }
     json!({
-        "source": format!("agripath random track scenario {seed} (track/random_scenario.rs)"),
+        "name": format!("random scenario {seed}"),
+        "source": "agripath's generator of track scenarios (track/random_scenario.rs)",
         "terrain": {
             "kind": "composite",
             "coefficients": {"a": coefficients[0], "b": coefficients[1], "c": coefficients[2],

@@ -103,7 +103,7 @@ impl Optimizer for LatticeRefine<'_> {
     fn step(&mut self, search: &mut Search) {
         self.pass += 1;
         let best = search.best_cost();
-        if best < self.improved.0 - STILL * self.improved.0.abs() {
+        if !self.improved.0.is_finite() || best < self.improved.0 - STILL * self.improved.0.abs() {
             self.improved = (best, search.progress());
         } else if self.lanes.len() == 1 && search.progress() - self.improved.1 > PATIENCE {
             search.declare_converged();

@@ -734,6 +734,7 @@ const DOCUMENTATION: [&str; 5] = [
 
 fn orchard(value: &Value, task: &str) -> Result<TrackScenario, Fault> {
     let top = [
+        "name",
         "terrain",
         "height_band_agl_m",
         "free_waypoints",
@@ -861,7 +862,10 @@ fn orchard(value: &Value, task: &str) -> Result<TrackScenario, Fault> {
         Err(_) => None,
     };
     validated(TrackScenario {
-        name: format!("seed 000 task {task}"),
+        name: match value.get("name") {
+            Some(_) => format!("{}, task {task}", text(value, "name")?),
+            None => format!("seed 000 task {task}"),
+        },
         terrain: map,
         area: (0.0, 0.0, extent[0], extent[1]),
         altitude_bounds: (0.0, extent[2]),
