@@ -14,7 +14,7 @@
 //!
 //! It runs on the swarm engine like every planner (the Runner counts its evaluations and
 //! keeps its convergence history) with the Cartesian encoding. Once one lane is left and a
-//! tenth of the budget has passed without its cost falling by a millionth, it declares
+//! tenth of the budget has passed without its cost falling by a thousandth, it declares
 //! itself converged and hands the rest of the budget back.
 
 use swarm::{Optimizer, Search};
@@ -57,7 +57,7 @@ pub struct LatticeRefine<'a> {
 /// Share of the budget without a relative improvement of [`STILL`] after which the lane
 /// has converged.
 const PATIENCE: f64 = 0.1;
-const STILL: f64 = 1e-6;
+const STILL: f64 = 1e-3;
 
 impl<'a> LatticeRefine<'a> {
     pub fn new(scenario: &'a TrackScenario) -> Self {
