@@ -45,9 +45,10 @@ impl PlannerRuns {
         let verdict = self.verdict();
         (!verdict.is_safe()).then(|| {
             format!(
-                "{}: no safe track in {} runs; the best: {}",
+                "{}: no safe track in {} run{}; the best: {}",
                 self.planner.label(),
                 self.runs.len(),
+                if self.runs.len() == 1 { "" } else { "s" },
                 verdict.worst().unwrap_or("unsafe")
             )
         })
