@@ -16,6 +16,14 @@ pub fn rings(polygon: &Polygon<f64>) -> impl Iterator<Item = &[Coord<f64>]> {
         .map(|ring| ring.0.as_slice())
 }
 
+/// Where a leg `length` long is sampled when it is checked against the terrain: both ends
+/// and at most every `spacing`, as fractions of the leg from 0 to 1 (the mission preflight
+/// and the track verdict both sample every 1 m).
+pub fn leg_samples(length: f64, spacing: f64) -> impl Iterator<Item = f64> {
+    let steps = ((length / spacing).ceil() as usize).max(1);
+    (0..=steps).map(move |k| k as f64 / steps as f64)
+}
+
 /// Distance from `point` to the segment `start`–`end`, metres.
 pub fn distance_to_segment(point: Coord<f64>, start: Coord<f64>, end: Coord<f64>) -> f64 {
     let (dx, dy) = (end.x - start.x, end.y - start.y);

@@ -278,8 +278,7 @@ impl Tally {
 
 /// The places a horizontal leg is sampled at: both ends and every [`SAMPLE_M`].
 fn samples(leg: &Leg) -> impl Iterator<Item = f64> {
-    let steps = (leg.horizontal_m() / SAMPLE_M).ceil().max(1.0) as usize;
-    (0..=steps).map(move |k| k as f64 / steps as f64)
+    crate::geometry::leg_samples(leg.horizontal_m(), SAMPLE_M)
 }
 
 /// Runs the check on the mission files among `files` (name, bytes).

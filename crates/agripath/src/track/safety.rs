@@ -1,7 +1,8 @@
 //! Is a track safe to fly? Checked on the geometry against the terrain as given, whatever
 //! the cost model said (decision 0013).
 //!
-//! Every leg of the cruise is sampled at most 1 m apart (horizontally) against the scenario's
+//! Every leg of the cruise is sampled at most 1 m apart (horizontally, the mission preflight's
+//! spacing and sampling, `geometry::leg_samples`) against the scenario's
 //! [`GroundTruth`](super::scenario::GroundTruth): the formula of an analytic terrain, or the
 //! DEM bilinear on its own cells, never the planners' raster. A track is safe when
 //! - every sample of the cruise is at least [`SafetyLimits::min_clearance_m`] above the
@@ -21,8 +22,8 @@ use super::cost::point_segment_distance;
 use super::height_map::planar_length;
 use super::scenario::{AltitudeReference, TrackScenario};
 
-/// Horizontal spacing of the verdict's samples, metres.
-pub const SAMPLE_SPACING_M: f64 = 1.0;
+/// Horizontal spacing of the verdict's samples, metres: the mission preflight's.
+pub const SAMPLE_SPACING_M: f64 = crate::preflight::SAMPLE_M;
 
 /// What the check found.
 #[derive(Debug, Clone, PartialEq)]
@@ -105,8 +106,7 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
         let steps = ((horizontal / spacing).ceil() as usize).max(1);
         let mut leg_lowest = (f64::INFINITY, [a[0], a[1]]);
         let mut off_model = None;
-        for step in 0..=steps {
-            let t = step as f64 / steps as f64;
+        for (step, t) in crate::geometry::leg_samples(horizontal, spacing).enumerate() {
             let p = [0, 1, 2].map(|axis| a[axis] + t * (b[axis] - a[axis]));
             let Some(ground) = scenario.true_ground(p[0], p[1]) else {
                 off_model.get_or_insert([p[0], p[1]]);
