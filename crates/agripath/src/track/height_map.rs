@@ -399,6 +399,19 @@ impl HeightMap {
             return excess;
         }
         if clear_leg {
+            // The coarse raster's own blocks (16 coarse cells a side) may prove the leg inside
+            // the band where the whole map's extremes cannot.
+            if let Some(coarse) = &self.coarse {
+                let (lowest, highest) = coarse.range_under(
+                    a[0].min(b[0]),
+                    a[1].min(b[1]),
+                    a[0].max(b[0]),
+                    a[1].max(b[1]),
+                );
+                if low_z - highest > floor && high_z - lowest < ceiling {
+                    return excess;
+                }
+            }
             excess.outside_band = self.band_excess(a, b, horizontal, floor, ceiling);
             return excess;
         }
@@ -663,10 +676,10 @@ mod tests {
                 "{} vs {under}",
                 excess.under_ground
             );
-            // Clear of the ground, the band is read on the coarse raster: within a tenth of
-            // the excursion and a tenth of a metre of it over the leg's length.
+            // Clear of the ground, the band is read on the coarse raster (16 m here): within a
+            // quarter of the excursion and a quarter of a metre of it over the leg's length.
             assert!(
-                (excess.outside_band - outside).abs() <= 0.1 * outside + 0.1 * horizontal,
+                (excess.outside_band - outside).abs() <= 0.25 * outside + 0.25 * horizontal,
                 "{} vs {outside}",
                 excess.outside_band
             );
