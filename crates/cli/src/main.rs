@@ -28,14 +28,45 @@ impl From<agripath::InputError> for Failure {
     }
 }
 
+/// Clap's message in one line: its first paragraph (the fault and, for missing arguments, the
+/// indented list of them), without its `error:` prefix.
+fn usage_error_line(text: &str) -> String {
+    let paragraph: Vec<&str> = text
+        .lines()
+        .take_while(|line| !line.trim().is_empty())
+        .map(str::trim)
+        .collect();
+    let mut line = paragraph
+        .join(" ")
+        .trim_start_matches("error:")
+        .trim()
+        .to_string();
+    if let Some(tip) = text
+        .lines()
+        .map(str::trim)
+        .find(|line| line.starts_with("tip:"))
+    {
+        line.push_str("; ");
+        line.push_str(tip);
+    }
+    line
+}
+
 fn main() -> ExitCode {
     let arguments = match args::Arguments::try_parse() {
         Ok(arguments) => arguments,
         Err(error) => {
-            // Help and version go to stdout with status 0; usage errors are bad input.
-            let code = if error.use_stderr() { 2 } else { 0 };
-            let _ = error.print();
-            return ExitCode::from(code);
+            // Help and version go to stdout with status 0; usage errors are bad input, one
+            // line like every other.
+            if !error.use_stderr() {
+                let _ = error.print();
+                return ExitCode::SUCCESS;
+            }
+            eprintln!(
+                "agripath: error: arguments: {} (see agripath --help)",
+                usage_error_line(&error.render().to_string())
+            );
+            return ExitCode::from(2);
         }
     };
     match commands::run(arguments) {

@@ -200,6 +200,27 @@ fn help_and_version_exit_0_and_usage_errors_exit_2() {
             .code(),
         Some(2)
     );
+    // Usage errors are one line like every other error, with clap's tip when it has one.
+    for (arguments, fragment) in [
+        (
+            &["plan", "--seed", "abc"][..],
+            "invalid value 'abc' for '--seed <SEED>'",
+        ),
+        (
+            &["track", "x"][..],
+            "required arguments were not provided: --out <OUT>",
+        ),
+        (&["plnn"][..], "tip: a similar subcommand exists: 'plan'"),
+    ] {
+        let output = agripath(arguments, &folder);
+        assert_eq!(output.status.code(), Some(2));
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(
+            stderr.starts_with("agripath: error: arguments: ") && stderr.contains(fragment),
+            "{stderr}"
+        );
+    }
     std::fs::remove_dir_all(&folder).unwrap();
 }
 
