@@ -292,6 +292,21 @@ fn corpus() -> Vec<(Vec<String>, String, &'static str)> {
             "swath_width_m = 0 is invalid",
         ),
         (
+            farm_with(&["--safe-height", "1e308"]),
+            "--safe-height".into(),
+            "safe_height_m = 1e308 is invalid: a vehicle's safe_height_m lies in 0..=500",
+        ),
+        (
+            farm_with(&["--spray-height", "1e308"]),
+            "--spray-height".into(),
+            "spray_height_m = 1e308 is invalid",
+        ),
+        (
+            farm_with(&["--swath-width", "0.001"]),
+            "--swath-width".into(),
+            "lies in 0.5..=200",
+        ),
+        (
             farm_with(&["--swath-width", "-5"]),
             "--swath-width".into(),
             "must be a finite number above 0",

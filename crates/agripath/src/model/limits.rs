@@ -20,3 +20,26 @@ pub const MAX_GRIDDED_CELLS: u64 = 100_000_000;
 pub const MAX_TEXT_FILE_BYTES: u64 = 2_000_000_000;
 /// Scan lines across one field (its diagonal over the swath width).
 pub const MAX_SCAN_LINES: usize = 200_000;
+
+/// Plausible ranges of a vehicle's figures (`Vehicle::validate`): beyond them a value is a
+/// typo or an attack (`1e308`), not an aircraft, and planning with it would overflow or run
+/// without end.
+pub const VEHICLE_RANGES: [(&str, f64, f64); 13] = [
+    ("swath_width_m", 0.5, 200.0),
+    ("spray_height_m", 0.0, 500.0),
+    ("safe_height_m", 0.0, 500.0),
+    ("spray_speed_mps", 0.1, 100.0),
+    ("turn_speed_mps", 0.1, 100.0),
+    ("transit_speed_mps", 0.1, 100.0),
+    ("climb_speed_mps", 0.1, 50.0),
+    ("battery_endurance_s", 1.0, 86_400.0),
+    ("battery_swap_s", 0.0, 86_400.0),
+    ("refill_base_s", 0.0, 86_400.0),
+    ("refill_max_s", 0.0, 86_400.0),
+    ("tank_spray_time_s", 1.0, 86_400.0),
+    ("tank_l", 0.01, 100_000.0),
+];
+
+/// Largest application rate, litres per hectare (ultra-low-volume spraying is 1-10, ground
+/// rigs 100-400).
+pub const MAX_APPLICATION_RATE_L_PER_HA: f64 = 10_000.0;

@@ -118,12 +118,41 @@ impl Vehicle {
                 }
             }
         }
-        if self.swath_width_m > 200.0 {
-            return Err(invalid(
-                "swath_width_m",
-                self.swath_width_m,
-                "no sprayer or camera covers more than 200 m in one pass",
-            ));
+        for (what, low, high) in super::limits::VEHICLE_RANGES {
+            let value = match what {
+                "swath_width_m" => Some(self.swath_width_m),
+                "spray_height_m" => Some(self.spray_height_m),
+                "safe_height_m" => Some(self.safe_height_m),
+                "spray_speed_mps" => Some(self.spray_speed_mps),
+                "turn_speed_mps" => Some(self.turn_speed_mps),
+                "transit_speed_mps" => Some(self.transit_speed_mps),
+                "climb_speed_mps" => Some(self.climb_speed_mps),
+                "battery_endurance_s" => Some(self.battery_endurance_s),
+                "battery_swap_s" => Some(self.battery_swap_s),
+                "refill_base_s" => Some(self.refill_base_s),
+                "refill_max_s" => Some(self.refill_max_s),
+                "tank_spray_time_s" => self.tank_spray_time_s,
+                "tank_l" => self.tank_l,
+                other => unreachable!("a vehicle range names an unknown figure: {other}"),
+            };
+            if let Some(value) = value {
+                if !(low..=high).contains(&value) {
+                    return Err(invalid(
+                        what,
+                        value,
+                        &format!("a vehicle's {what} lies in {low}..={high} (docs/limits.md)"),
+                    ));
+                }
+            }
+        }
+        if let Some(rate) = self.application_rate_l_per_ha {
+            if rate > super::limits::MAX_APPLICATION_RATE_L_PER_HA {
+                return Err(invalid(
+                    "application_rate_l_per_ha",
+                    rate,
+                    "at most 10000 litres per hectare (docs/limits.md)",
+                ));
+            }
         }
         if self.refill_max_s < self.refill_base_s {
             return Err(invalid(
@@ -158,9 +187,15 @@ impl Vehicle {
 }
 
 fn invalid(what: &str, value: f64, why: &str) -> Fault {
+    // 1e308 as written, not as 309 digits.
+    let shown = if value != 0.0 && !(1e-3..1e6).contains(&value.abs()) {
+        format!("{value:e}")
+    } else {
+        value.to_string()
+    };
     Fault::InvalidValue {
         what: what.to_string(),
-        value: value.to_string(),
+        value: shown,
         why: why.to_string(),
     }
 }
