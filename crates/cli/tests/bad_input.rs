@@ -239,7 +239,7 @@ fn corpus() -> Vec<(Vec<String>, String, &'static str)> {
         (
             vehicle("vehicle_unknown_key.toml"),
             bad("vehicle_unknown_key.toml"),
-            "unknown field `swath_widht_m`",
+            "line 1, column 1: unknown field `swath_widht_m`",
         ),
         (
             vehicle("vehicle_nan.toml"),
@@ -249,7 +249,7 @@ fn corpus() -> Vec<(Vec<String>, String, &'static str)> {
         (
             vehicle("vehicle_wrong_type.toml"),
             bad("vehicle_wrong_type.toml"),
-            "invalid type",
+            "line 1, column 17: invalid type",
         ),
         (
             vehicle("vehicle_tank_without_rate.toml"),

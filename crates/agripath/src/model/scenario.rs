@@ -64,7 +64,7 @@ impl Scenario {
     pub fn from_file(path: &Path, overrides: VehicleOverrides) -> Result<Self, InputError> {
         let text = read_text(path)?;
         let file: ScenarioFile = toml::from_str(&text)
-            .map_err(|error| InputError::new(path, Fault::Toml(one_line(&error))))?;
+            .map_err(|error| InputError::new(path, Fault::Toml(one_line(&error, &text))))?;
         let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
         let coordinates = match file.crs.as_deref() {
             None => CoordinateChoice::FromFile,
@@ -152,7 +152,11 @@ fn load_vehicle(parts: &ScenarioParts) -> Result<Vehicle, InputError> {
         Some(path) => {
             let text = read_text(path)?;
             let table: toml::Table = toml::from_str(&text)
-                .map_err(|error| InputError::new(path, Fault::Toml(one_line(&error))))?;
+                .map_err(|error| InputError::new(path, Fault::Toml(one_line(&error, &text))))?;
+            // Read as a vehicle straight from the text too, so that a wrong type or an unknown
+            // key is reported at its line and column (the merged table below has no places).
+            toml::from_str::<Vehicle>(&text)
+                .map_err(|error| InputError::new(path, Fault::Toml(one_line(&error, &text))))?;
             (table, path.clone())
         }
         None => (toml::Table::new(), PathBuf::new()),
@@ -183,7 +187,7 @@ fn load_vehicle(parts: &ScenarioParts) -> Result<Vehicle, InputError> {
         toml::Value::Table(table)
             .try_into()
             .map_err(|error: toml::de::Error| {
-                InputError::new(&source, Fault::Toml(one_line(&error)))
+                InputError::new(&source, Fault::Toml(one_line(&error, "")))
             })?;
     let mut vehicle = vehicle;
     for (key, value, flag) in overrides {

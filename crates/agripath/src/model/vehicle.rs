@@ -74,7 +74,8 @@ impl Vehicle {
     }
 
     pub fn from_toml(text: &str) -> Result<Self, Fault> {
-        let vehicle: Self = toml::from_str(text).map_err(|error| Fault::Toml(one_line(&error)))?;
+        let vehicle: Self =
+            toml::from_str(text).map_err(|error| Fault::Toml(one_line(&error, text)))?;
         vehicle.validate()?;
         Ok(vehicle)
     }
@@ -201,11 +202,26 @@ fn invalid(what: &str, value: f64, why: &str) -> Fault {
 }
 
 /// TOML errors span several lines with a caret drawing; the CLI promises one line.
-pub(crate) fn one_line(error: &toml::de::Error) -> String {
-    let message = error.message().trim().to_string();
+/// A TOML error in one line, placed at its line and column in `text` (the file it was read
+/// from; empty when the value did not come from text).
+pub(crate) fn one_line(error: &toml::de::Error, text: &str) -> String {
+    let message = error.message().trim().replace('\n', " ");
     match error.span() {
-        Some(span) => format!("{message} (at byte {})", span.start),
-        None => message,
+        Some(span) if span.start <= text.len() => {
+            let mut end = span.start;
+            while !text.is_char_boundary(end) {
+                end -= 1;
+            }
+            let before = &text[..end];
+            let line = before.matches('\n').count() + 1;
+            let column = before
+                .rsplit('\n')
+                .next()
+                .map_or(0, |tail| tail.chars().count())
+                + 1;
+            format!("line {line}, column {column}: {message}")
+        }
+        _ => message,
     }
 }
 

@@ -71,8 +71,8 @@ fn iterations() -> usize {
 
 pub fn read(path: &Path, text: &str) -> Result<TrackScenario, InputError> {
     let fail = |fault: Fault| InputError::new(path, fault);
-    let parsed: OperatorScenario =
-        toml::from_str(text).map_err(|error| fail(Fault::Toml(error.message().to_string())))?;
+    let parsed: OperatorScenario = toml::from_str(text)
+        .map_err(|error| fail(Fault::Toml(crate::model::vehicle::one_line(&error, text))))?;
     let numbers = parsed
         .start
         .iter()
