@@ -91,8 +91,12 @@ pub fn mission(scenario: &TrackScenario, track: &[[f64; 3]]) -> String {
     }
     let mission = SortieMission {
         sortie: 1,
-        // Home is the start as given: on the ground when the track takes off from it.
-        home: item(Action::Takeoff, track[0]),
+        // Home is the ground under the start (the start itself when the track takes off
+        // from the ground).
+        home: Item {
+            above_ground_m: 0.0,
+            ..item(Action::Takeoff, track[0])
+        },
         items,
     };
     let settings = MissionSettings {
