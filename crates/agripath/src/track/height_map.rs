@@ -434,30 +434,8 @@ impl HeightMap {
                     self.band_excess(from, to, (t1 - t0) * horizontal, floor, ceiling);
                 continue;
             }
-            let (under, outside) = match self.sampling {
-                Sampling::Bilinear => self.walk(
-                    a,
-                    b,
-                    steps,
-                    first..last,
-                    1,
-                    clearance,
-                    floor,
-                    ceiling,
-                    |x, y| self.bilinear(x, y),
-                ),
-                Sampling::Nearest => self.walk(
-                    a,
-                    b,
-                    steps,
-                    first..last,
-                    1,
-                    clearance,
-                    floor,
-                    ceiling,
-                    |x, y| self.nearest(x, y),
-                ),
-            };
+            let (under, outside) =
+                self.walk(a, b, steps, first..last, 1, clearance, floor, ceiling);
             if under > 0.0 {
                 excess.dips = true;
             }
@@ -483,36 +461,22 @@ impl HeightMap {
             None => (self, BAND_STRIDE),
         };
         let steps = ((horizontal / map.cell).ceil() as usize).max(1);
-        let (_, outside) = match map.sampling {
-            Sampling::Bilinear => map.walk(
-                a,
-                b,
-                steps,
-                0..steps,
-                stride,
-                f64::NEG_INFINITY,
-                floor,
-                ceiling,
-                |x, y| map.bilinear(x, y),
-            ),
-            Sampling::Nearest => map.walk(
-                a,
-                b,
-                steps,
-                0..steps,
-                stride,
-                f64::NEG_INFINITY,
-                floor,
-                ceiling,
-                |x, y| map.nearest(x, y),
-            ),
-        };
+        let (_, outside) = map.walk(
+            a,
+            b,
+            steps,
+            0..steps,
+            stride,
+            f64::NEG_INFINITY,
+            floor,
+            ceiling,
+        );
         outside * horizontal / steps as f64
     }
 
     /// Sums of depth under `clearance` and of distance out of [floor, ceiling] at the middles
     /// of samples `range` of `steps` along a → b (every `stride`-th, each counting for the
-    /// samples it stands for), heights read by `height`.
+    /// samples it stands for), heights in this map's own sampling.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn walk(
@@ -525,8 +489,11 @@ impl HeightMap {
         clearance: f64,
         floor: f64,
         ceiling: f64,
-        height: impl Fn(f64, f64) -> f64,
     ) -> (f64, f64) {
+        let height = |x: f64, y: f64| match self.sampling {
+            Sampling::Bilinear => self.bilinear(x, y),
+            Sampling::Nearest => self.nearest(x, y),
+        };
         let per_step = 1.0 / steps as f64;
         let (dx, dy, dz) = (
             (b[0] - a[0]) * per_step,

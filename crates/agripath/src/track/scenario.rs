@@ -596,6 +596,24 @@ fn composite(terrain: &Value, default: Composite, extent: Extent) -> Result<Comp
     Ok(model)
 }
 
+/// The file's composite terrain over [0, x] × [0, y] of `extent`, and the planners' raster of
+/// it.
+fn composite_over(
+    value: &Value,
+    default: Composite,
+    extent: &[f64],
+) -> Result<(Composite, HeightMap), Fault> {
+    let area = Extent {
+        min_x: 0.0,
+        min_y: 0.0,
+        max_x: extent[0],
+        max_y: extent[1],
+    };
+    let terrain = composite(lookup(value, "terrain")?, default, area)?;
+    let map = HeightMap::sample(&terrain, (0.0, 0.0, extent[0], extent[1]), ORCHARD_CELL_M)?;
+    Ok((terrain, map))
+}
+
 /// Checks that start and goal lie in the area, above the terrain and outside every threat,
 /// that the band makes sense, and places the cruise's ends.
 pub(super) fn validated(mut scenario: TrackScenario) -> Result<TrackScenario, Fault> {
@@ -846,17 +864,7 @@ fn orchard(value: &Value, task: &str) -> Result<TrackScenario, Fault> {
             "'height_band_agl_m' needs [low, high] and 'terrain.extent_m' [x, y, z] (positive, at most 100 km)".into(),
         ));
     }
-    let terrain = composite(
-        lookup(value, "terrain")?,
-        Composite::seed000(),
-        Extent {
-            min_x: 0.0,
-            min_y: 0.0,
-            max_x: extent[0],
-            max_y: extent[1],
-        },
-    )?;
-    let map = HeightMap::sample(&terrain, (0.0, 0.0, extent[0], extent[1]), ORCHARD_CELL_M)?;
+    let (terrain, map) = composite_over(value, Composite::seed000(), &extent)?;
     let runs = match lookup(value, "algorithms.runs") {
         Ok(_) => Some(count(value, "algorithms.runs", 1000.0)?.max(1) as u64),
         Err(_) => None,
@@ -968,17 +976,7 @@ fn survey(value: &Value) -> Result<TrackScenario, Fault> {
             "'extent_m' needs [x, y, z] (positive, at most 100 km)".into(),
         ));
     }
-    let terrain = composite(
-        lookup(value, "terrain")?,
-        Composite::seed002(),
-        Extent {
-            min_x: 0.0,
-            min_y: 0.0,
-            max_x: extent[0],
-            max_y: extent[1],
-        },
-    )?;
-    let map = HeightMap::sample(&terrain, (0.0, 0.0, extent[0], extent[1]), ORCHARD_CELL_M)?;
+    let (terrain, map) = composite_over(value, Composite::seed002(), &extent)?;
     validated(TrackScenario {
         name: "seed 002 field survey".into(),
         terrain: map,
