@@ -125,30 +125,7 @@ impl Ring {
     /// the clip edges twice, but those stretches enclose no area: its |signed area| is the
     /// area of ring ∩ quadrilateral, exactly (holes lie inside their shell and apart).
     fn clipped_area(&self, corners: &[Coord<f64>; 4]) -> f64 {
-        let (low, high) = corners.iter().fold(
-            (
-                Coord {
-                    x: f64::INFINITY,
-                    y: f64::INFINITY,
-                },
-                Coord {
-                    x: f64::NEG_INFINITY,
-                    y: f64::NEG_INFINITY,
-                },
-            ),
-            |(l, h), p| {
-                (
-                    Coord {
-                        x: l.x.min(p.x),
-                        y: l.y.min(p.y),
-                    },
-                    Coord {
-                        x: h.x.max(p.x),
-                        y: h.y.max(p.y),
-                    },
-                )
-            },
-        );
+        let (low, high) = crate::geometry::bounds(corners);
         if self.upper.x < low.x
             || self.lower.x > high.x
             || self.upper.y < low.y

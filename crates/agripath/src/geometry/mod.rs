@@ -16,6 +16,25 @@ pub fn rings(polygon: &Polygon<f64>) -> impl Iterator<Item = &[Coord<f64>]> {
         .map(|ring| ring.0.as_slice())
 }
 
+/// The lowest and highest corner of `points`' bounding box (infinite for no points).
+pub fn bounds(points: &[Coord<f64>]) -> (Coord<f64>, Coord<f64>) {
+    let mut low = Coord {
+        x: f64::INFINITY,
+        y: f64::INFINITY,
+    };
+    let mut high = Coord {
+        x: f64::NEG_INFINITY,
+        y: f64::NEG_INFINITY,
+    };
+    for point in points {
+        low.x = low.x.min(point.x);
+        low.y = low.y.min(point.y);
+        high.x = high.x.max(point.x);
+        high.y = high.y.max(point.y);
+    }
+    (low, high)
+}
+
 /// Where a leg `length` long is sampled when it is checked against the terrain: both ends
 /// and at most every `spacing`, as fractions of the leg from 0 to 1 (the mission preflight
 /// and the track verdict both sample every 1 m).

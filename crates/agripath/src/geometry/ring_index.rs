@@ -27,20 +27,7 @@ impl IndexedRing {
                 points.push(first);
             }
         }
-        let mut low = Coord {
-            x: f64::INFINITY,
-            y: f64::INFINITY,
-        };
-        let mut high = Coord {
-            x: f64::NEG_INFINITY,
-            y: f64::NEG_INFINITY,
-        };
-        for point in &points {
-            low.x = low.x.min(point.x);
-            low.y = low.y.min(point.y);
-            high.x = high.x.max(point.x);
-            high.y = high.y.max(point.y);
-        }
+        let (low, high) = super::bounds(&points);
         let edges = points.len().saturating_sub(1);
         // About eight edges a band on a round ring; one band for small rings.
         let count = (edges / 8).clamp(1, 4096);

@@ -85,33 +85,6 @@ impl Cells {
     }
 }
 
-fn bounds(ring: &[Coord<f64>]) -> (Coord<f64>, Coord<f64>) {
-    ring.iter().fold(
-        (
-            Coord {
-                x: f64::INFINITY,
-                y: f64::INFINITY,
-            },
-            Coord {
-                x: f64::NEG_INFINITY,
-                y: f64::NEG_INFINITY,
-            },
-        ),
-        |(low, high), p| {
-            (
-                Coord {
-                    x: low.x.min(p.x),
-                    y: low.y.min(p.y),
-                },
-                Coord {
-                    x: high.x.max(p.x),
-                    y: high.y.max(p.y),
-                },
-            )
-        },
-    )
-}
-
 /// Whether `p` enters `ring` grown by `margin_m`: inside it (by more than the slack of the
 /// files' rounding when there is no margin), or outside within the margin.
 fn enters(ring: &IndexedRing, p: Coord<f64>, margin_m: f64) -> bool {
@@ -137,12 +110,12 @@ impl Zones {
         let field_boxes: Vec<_> = farm
             .fields
             .iter()
-            .map(|field| bounds(&field.polygon.exterior().0))
+            .map(|field| crate::geometry::bounds(&field.polygon.exterior().0))
             .collect();
         let obstacle_boxes: Vec<_> = farm
             .obstacles
             .iter()
-            .map(|obstacle| bounds(&obstacle.polygon.exterior().0))
+            .map(|obstacle| crate::geometry::bounds(&obstacle.polygon.exterior().0))
             .collect();
         Self {
             fields: farm
