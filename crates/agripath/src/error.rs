@@ -100,6 +100,15 @@ pub enum Fault {
     Terrain(#[from] TerrainError),
 }
 
+/// A number as a message shows it: `1e308` as written, not as 309 digits.
+pub fn figure(value: f64) -> String {
+    if value != 0.0 && !(1e-3..1e6).contains(&value.abs()) {
+        format!("{value:e}")
+    } else {
+        value.to_string()
+    }
+}
+
 /// A terrain query that cannot be answered.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum TerrainError {

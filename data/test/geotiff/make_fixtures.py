@@ -65,3 +65,12 @@ tifffile.imwrite(
     extratags=[(34735, "H", len(keys), keys, False),
                (33550, "d", 3, (0.001, 0.001, 0.0), False),
                (33922, "d", 6, (0.0, 0.0, 0.0, 8.5, 47.324, 0.0), False)])
+
+# Hostile rasters for the bad-input corpus (written beside it, in ../bad/): a NaN tiepoint,
+# every cell no-data, and an undeclared no-data value of 3.4e38 (float32's largest).
+write("../bad/nan_tiepoint.tif", heights(np.float32),
+      tags=[t for t in geo_tags() if t[0] != 33922] + [(33922, "d", 6, (0.0, 0.0, 0.0, float("nan"), ORIGIN_Y, 0.0), False)])
+write("../bad/all_nodata.tif", np.full((ROWS, COLS), -9999.0, np.float32), tags=geo_tags(nodata=-9999))
+huge = heights(np.float32)
+huge[5, 6] = np.finfo(np.float32).max
+write("../bad/huge_height.tif", huge)

@@ -5,7 +5,7 @@ pub mod projection;
 pub mod ring_index;
 pub mod validate;
 
-pub use projection::{from_utm, to_utm, UtmZone};
+pub use projection::{from_utm, mean_longitude, to_utm, wrap_longitude, UtmZone};
 
 use geo::{Coord, Polygon};
 

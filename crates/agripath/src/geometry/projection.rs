@@ -156,9 +156,27 @@ pub fn from_utm(easting_m: f64, northing_m: f64, zone: UtmZone) -> (f64, f64) {
         latitude += delta * (order * conformal_latitude).sin();
     }
     (
-        (longitude + zone.central_meridian_rad()).to_degrees(),
+        wrap_longitude((longitude + zone.central_meridian_rad()).to_degrees()),
         latitude.to_degrees(),
     )
+}
+
+/// A longitude in degrees brought into [−180, 180): zone 60's central meridian plus 4° is
+/// −179°, not 181°.
+pub fn wrap_longitude(lon_deg: f64) -> f64 {
+    (lon_deg + 180.0).rem_euclid(360.0) - 180.0
+}
+
+/// The mean of longitudes on the circle, in [−180, 180): the mean of 179.9° and −179.9° is
+/// 180°, not 0°.
+pub fn mean_longitude(longitudes_deg: impl IntoIterator<Item = f64>) -> f64 {
+    let (sine, cosine) = longitudes_deg
+        .into_iter()
+        .fold((0.0, 0.0), |(sine, cosine), lon: f64| {
+            let radians = lon.to_radians();
+            (sine + radians.sin(), cosine + radians.cos())
+        });
+    wrap_longitude(sine.atan2(cosine).to_degrees())
 }
 
 #[cfg(test)]
@@ -194,6 +212,19 @@ mod tests {
                 assert!((lat_back - lat).abs() < 1e-9, "lat {lon} {lat}: {lat_back}");
             }
         }
+    }
+
+    #[test]
+    fn longitudes_wrap_across_the_antimeridian() {
+        assert!((mean_longitude([179.999, -179.999]).abs() - 180.0).abs() < 1e-9);
+        assert!((mean_longitude([10.0, 20.0]) - 15.0).abs() < 1e-9);
+        assert_eq!(wrap_longitude(181.0), -179.0);
+        // A point 3° east of zone 60's central meridian (177°E) comes back as 180° ± 0.
+        let zone = UtmZone::containing(179.0, -16.0);
+        assert_eq!(zone.number, 60);
+        let (easting, northing) = to_utm(-179.5, -16.0, zone);
+        let (lon, lat) = from_utm(easting, northing, zone);
+        assert!((lon + 179.5).abs() < 1e-9 && (lat + 16.0).abs() < 1e-9, "{lon} {lat}");
     }
 
     #[test]

@@ -7,8 +7,11 @@ use geo::{Coord, LineString, Polygon};
 
 use crate::error::{Fault, InputError};
 use crate::geometry::validate::{clean_ring, validate_polygon};
-use crate::geometry::{to_utm, UtmZone};
-use crate::model::limits::{MAX_FARM_EXTENT_M, MAX_LOCAL_COORDINATE_M, MAX_POLYGONS, MAX_VERTICES};
+use crate::geometry::{mean_longitude, to_utm, wrap_longitude, UtmZone};
+use crate::model::limits::{
+    MAX_FARM_EXTENT_M, MAX_FARM_LONGITUDE_SPAN_DEG, MAX_LOCAL_COORDINATE_M, MAX_POLYGONS,
+    MAX_VERTICES,
+};
 use crate::model::{CoordinateSystem, Farm, Field, Marker, Obstacle};
 use crate::terrain::TerrainSpec;
 
@@ -209,19 +212,22 @@ fn build_polygon(
     Ok(polygon)
 }
 
-/// The UTM zone of the farm's centre; every position must be a real longitude/latitude.
+/// The UTM zone of the farm's centre (the mean longitude taken on the circle, so a farm on
+/// the antimeridian is in zone 60 or 1, not zone 30); every position must be a real
+/// longitude/latitude inside UTM's latitudes, and the farm no wider than
+/// [`MAX_FARM_LONGITUDE_SPAN_DEG`].
 fn zone_of(path: &Path, features: &[RawFeature]) -> Result<UtmZone, InputError> {
-    let (mut sum_lon, mut sum_lat, mut count) = (0.0, 0.0, 0usize);
+    let mut positions = Vec::new();
     for feature in features {
-        let positions: Box<dyn Iterator<Item = &[f64; 2]>> = match &feature.geometry {
+        let feature_positions: Box<dyn Iterator<Item = &[f64; 2]>> = match &feature.geometry {
             RawGeometry::Polygons(polygons) => Box::new(polygons.iter().flatten().flatten()),
             RawGeometry::Point(position) => Box::new(std::iter::once(position)),
         };
-        for &[lon, lat] in positions {
+        for &[lon, lat] in feature_positions {
             if !lon.is_finite() || !lat.is_finite() {
                 return Err(InputError::new(path, Fault::NonFinite).at(feature.place.clone()));
             }
-            if !(-180.0..=180.0).contains(&lon) || !(-80.0..=84.0).contains(&lat) {
+            if !(-180.0..=180.0).contains(&lon) || !(-90.0..=90.0).contains(&lat) {
                 return Err(
                     InputError::new(path, Fault::OutOfRange { lon, lat }).at(format!(
                         "{} (coordinates are read as WGS84 lon/lat; for metres in a local frame use \"crs\": \"local\" or --crs local)",
@@ -229,16 +235,35 @@ fn zone_of(path: &Path, features: &[RawFeature]) -> Result<UtmZone, InputError> 
                     )),
                 );
             }
-            sum_lon += lon;
-            sum_lat += lat;
-            count += 1;
+            if !(-80.0..=84.0).contains(&lat) {
+                return Err(InputError::new(
+                    path,
+                    Fault::Structure(format!(
+                        "latitude {lat} is in a polar region (beyond 80°S..84°N, where UPS replaces UTM): agripath plans in UTM only"
+                    )),
+                )
+                .at(feature.place.clone()));
+            }
+            positions.push((lon, lat));
         }
     }
-    if count == 0 {
+    if positions.is_empty() {
         return Err(InputError::new(path, Fault::NoFields));
     }
-    Ok(UtmZone::containing(
-        sum_lon / count as f64,
-        sum_lat / count as f64,
-    ))
+    let centre_lon = mean_longitude(positions.iter().map(|&(lon, _)| lon));
+    let centre_lat = positions.iter().map(|&(_, lat)| lat).sum::<f64>() / positions.len() as f64;
+    let (west, east) = positions.iter().fold((0.0f64, 0.0f64), |(west, east), &(lon, _)| {
+        let offset = wrap_longitude(lon - centre_lon);
+        (west.min(offset), east.max(offset))
+    });
+    if east - west > MAX_FARM_LONGITUDE_SPAN_DEG {
+        return Err(InputError::new(
+            path,
+            Fault::TooLarge(format!(
+                "the farm spans {:.2}° of longitude (limit {MAX_FARM_LONGITUDE_SPAN_DEG}°, one UTM zone's width): plan it in parts",
+                east - west
+            )),
+        ));
+    }
+    Ok(UtmZone::containing(centre_lon, centre_lat))
 }

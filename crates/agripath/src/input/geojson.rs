@@ -268,6 +268,36 @@ mod tests {
     }
 
     #[test]
+    fn a_field_on_the_antimeridian_keeps_its_true_size() {
+        // 0.002° of longitude at 16°S is 214.07 m on the ellipsoid (pyproj's geodesic); UTM's
+        // scale 3° off the central meridian (k = 1.0009) adds 0.08 %. The zone of the raw mean longitude
+        // (0°, zone 31) stretched it by 17 %.
+        let text = r#"{"type":"Polygon","coordinates":[[[179.999,-16.0],[-179.999,-16.0],[-179.999,-15.998],[179.999,-15.998],[179.999,-16.0]]]}"#;
+        let farm = farm(text).unwrap();
+        let CoordinateSystem::Utm(zone) = farm.coordinate_system else {
+            panic!("expected UTM")
+        };
+        assert!(zone.number == 60 || zone.number == 1, "zone {}", zone.number);
+        let ring = &farm.fields[0].polygon.exterior().0;
+        let width = (ring[1].x - ring[0].x).abs();
+        assert!((width / 214.07 - 1.0).abs() < 0.001, "width {width}");
+        for point in ring {
+            let (lon, _) = farm.coordinate_system.to_input(point.x, point.y);
+            assert!((-180.0..=180.0).contains(&lon), "{lon}");
+        }
+    }
+
+    #[test]
+    fn polar_and_too_wide_farms_are_refused() {
+        let polar = r#"{"type":"Polygon","coordinates":[[[10,85],[10.1,85],[10.1,85.1],[10,85]]]}"#;
+        let message = farm(polar).unwrap_err().to_string();
+        assert!(message.contains("polar region"), "{message}");
+        let wide = r#"{"type":"Polygon","coordinates":[[[0,83],[7,83],[7,83.01],[0,83]]]}"#;
+        let message = farm(wide).unwrap_err().to_string();
+        assert!(message.contains("spans 7.00° of longitude"), "{message}");
+    }
+
+    #[test]
     fn faults_name_the_feature() {
         let bow_tie = r#"{"type":"FeatureCollection","crs":"local","features":[
           {"type":"Feature","properties":{"name":"ok"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}},

@@ -7,6 +7,9 @@ pub const MAX_POLYGONS: usize = 20_000;
 pub const MAX_VERTICES: usize = 2_000_000;
 /// Largest side of a farm's bounding box, metres: a work area, not a country.
 pub const MAX_FARM_EXTENT_M: f64 = 200_000.0;
+/// Widest farm in longitude, degrees: one UTM zone's width, so a farm touches at most two
+/// zones. (Below 72° of latitude [`MAX_FARM_EXTENT_M`] is the tighter bound.)
+pub const MAX_FARM_LONGITUDE_SPAN_DEG: f64 = 6.0;
 /// Largest coordinate magnitude accepted in a local frame, metres.
 pub const MAX_LOCAL_COORDINATE_M: f64 = 1.0e7;
 /// Raster cells a terrain model may hold in memory (4 bytes each: 1.6 GB).
@@ -16,6 +19,12 @@ pub const MAX_POINT_CLOUD_POINTS: usize = 50_000_000;
 /// Cells a point cloud may be gridded into: 12 bytes each while gridding (heights, bucket
 /// offsets twice), so at most 1.2 GB.
 pub const MAX_GRIDDED_CELLS: u64 = 100_000_000;
+/// Largest cell a point cloud is gridded at, metres: coarser than the coarsest public DEMs
+/// (SRTM3, 90 m) is not a terrain model a low-flying sprayer can trust.
+pub const MAX_GRIDDED_CELL_M: f64 = 100.0;
+/// Lowest and highest terrain height accepted, metres above sea level (the Dead Sea shore is
+/// −430 m, Everest 8,849 m): anything beyond is an undeclared no-data value or a broken file.
+pub const TERRAIN_HEIGHT_RANGE_M: (f64, f64) = (-500.0, 9_000.0);
 /// Input file size, bytes, for text formats read whole.
 pub const MAX_TEXT_FILE_BYTES: u64 = 2_000_000_000;
 /// Scan lines across one field (its diagonal over the swath width).

@@ -188,15 +188,9 @@ impl Vehicle {
 }
 
 fn invalid(what: &str, value: f64, why: &str) -> Fault {
-    // 1e308 as written, not as 309 digits.
-    let shown = if value != 0.0 && !(1e-3..1e6).contains(&value.abs()) {
-        format!("{value:e}")
-    } else {
-        value.to_string()
-    };
     Fault::InvalidValue {
         what: what.to_string(),
-        value: shown,
+        value: crate::error::figure(value),
         why: why.to_string(),
     }
 }

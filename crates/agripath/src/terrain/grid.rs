@@ -6,7 +6,8 @@
 //! outside it, or where a contributing cell has no data, the query fails.
 
 use super::{Extent, Terrain};
-use crate::error::TerrainError;
+use crate::error::{Fault, TerrainError};
+use crate::model::limits::TERRAIN_HEIGHT_RANGE_M;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Grid {
@@ -62,6 +63,56 @@ impl Grid {
                     None => (height, height),
                 })
             })
+    }
+
+    /// Refuses a raster no planner can trust: a placement that is not finite (a NaN tiepoint),
+    /// no cell with data, or a height outside [`TERRAIN_HEIGHT_RANGE_M`] (an undeclared
+    /// no-data value such as 3.4e38 or −32767, which would otherwise be flown as terrain).
+    pub fn check_plausible(&self) -> Result<(), Fault> {
+        let placement = [
+            self.first_center_x,
+            self.first_center_y,
+            self.cell_x,
+            self.cell_y,
+        ];
+        if placement.iter().any(|value| !value.is_finite())
+            || self.cell_x <= 0.0
+            || self.cell_y <= 0.0
+            || !self.outer_extent().width().is_finite()
+            || !self.outer_extent().height().is_finite()
+        {
+            return Err(Fault::Structure(format!(
+                "the raster's placement is not finite: first cell centre ({}, {}), cell {} × {}",
+                self.first_center_x, self.first_center_y, self.cell_x, self.cell_y
+            )));
+        }
+        let (lowest, highest) = TERRAIN_HEIGHT_RANGE_M;
+        let mut any_data = false;
+        for (index, &height) in self.heights.iter().enumerate() {
+            if height.is_nan() {
+                continue;
+            }
+            any_data = true;
+            if !(f64::from(height) >= lowest && f64::from(height) <= highest) {
+                return Err(Fault::InvalidValue {
+                    what: format!(
+                        "the height at row {}, column {}",
+                        index / self.columns,
+                        index % self.columns
+                    ),
+                    value: format!("{} m", crate::error::figure(f64::from(height))),
+                    why: format!(
+                        "terrain lies within {lowest}..={highest} m (an undeclared no-data value?)"
+                    ),
+                });
+            }
+        }
+        if !any_data {
+            return Err(Fault::Structure(
+                "every cell of the raster is no-data".into(),
+            ));
+        }
+        Ok(())
     }
 
     /// Outer edge of the raster (cell edges, not centres).

@@ -213,7 +213,7 @@ impl TerrainSpec {
 /// Reads a DEM file into a grid, choosing the reader by extension.
 pub fn load_grid(path: &Path, cell_m: Option<f64>) -> Result<Grid, InputError> {
     let extension = crate::input::extension_of(path);
-    match extension.as_str() {
+    let grid = match extension.as_str() {
         "tif" | "tiff" => geotiff::read(path),
         "asc" => ascii_grid::read(path),
         "xyz" | "csv" | "txt" => xyz::read(path, cell_m),
@@ -221,5 +221,8 @@ pub fn load_grid(path: &Path, cell_m: Option<f64>) -> Result<Grid, InputError> {
             path,
             Fault::UnknownExtension(other.to_string()),
         )),
-    }
+    }?;
+    grid.check_plausible()
+        .map_err(|fault| InputError::new(path, fault))?;
+    Ok(grid)
 }

@@ -8,7 +8,7 @@ use std::path::Path;
 use super::Grid;
 use crate::error::{Fault, InputError};
 use crate::input::read_text;
-use crate::model::limits::{MAX_GRIDDED_CELLS, MAX_POINT_CLOUD_POINTS};
+use crate::model::limits::{MAX_GRIDDED_CELLS, MAX_GRIDDED_CELL_M, MAX_POINT_CLOUD_POINTS};
 
 /// Cells searched around a cell centre for its nearest point.
 const SEARCH_RADIUS_CELLS: i64 = 3;
@@ -107,6 +107,19 @@ pub fn grid_points(points: &[[f64; 3]], cell_m: Option<f64>) -> Result<Grid, Fau
         }
         None => (width * height / points.len() as f64).sqrt(),
     };
+    if cell > MAX_GRIDDED_CELL_M {
+        return Err(Fault::InvalidValue {
+            what: "the gridding cell".into(),
+            value: format!("{cell:.1} m"),
+            why: format!(
+                "at most {MAX_GRIDDED_CELL_M} m: the points are too sparse for a terrain model \
+                 ({} points over {:.0} × {:.0} m)",
+                points.len(),
+                width,
+                height
+            ),
+        });
+    }
     // In floating point first: a cloud kilometres wide at a tiny cell (or coordinates of
     // 1e23, as fuzzing found) must be refused, not wrap around in integer arithmetic.
     let (columns, rows) = ((width / cell).floor() + 1.0, (height / cell).floor() + 1.0);

@@ -302,11 +302,7 @@ impl TrackScenario {
 
     /// Reads a scenario file; `task` picks one of seed 000's tasks ("I", "II", "III").
     pub fn read(path: &Path, task: Option<&str>) -> Result<Self, InputError> {
-        let text = std::fs::read_to_string(path)
-            .map_err(|error| InputError::new(path, Fault::Unreadable(error.to_string())))?;
-        if text.trim().is_empty() {
-            return Err(InputError::new(path, Fault::Empty));
-        }
+        let text = crate::input::read_text(path)?;
         if crate::input::extension_of(path) == "toml" {
             return super::operator::read(path, &text);
         }
@@ -315,8 +311,7 @@ impl TrackScenario {
         let directory = path.parent().unwrap_or(Path::new("."));
         Self::from_value(&value, task, &|name| {
             let dem = directory.join(name);
-            std::fs::read(&dem)
-                .map_err(|error| InputError::new(&dem, Fault::Unreadable(error.to_string())))
+            crate::input::read_bytes(&dem)
         })
         .map_err(|error| match error {
             Loaded::Input(error) => error,
@@ -1037,6 +1032,7 @@ fn spso(value: &Value, dem: &[u8]) -> Result<TrackScenario, Fault> {
         ],
     )?;
     let grid = crate::terrain::geotiff::decode(dem)?;
+    grid.check_plausible()?;
     if lookup(value, "dem.size_cols_rows").is_ok() {
         let size = numbers(value, "dem.size_cols_rows")?;
         if size != [grid.columns as f64, grid.rows as f64] {
