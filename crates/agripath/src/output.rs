@@ -26,6 +26,12 @@ pub fn write_file_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 
 /// An output folder being written. Files go to a staging folder; [`StagedFolder::commit`]
 /// replaces the target folder with it. Dropped without a commit, it removes the staging.
+///
+/// A kill at any instant leaves the target whole: either the old folder or the new one.
+/// On Linux the commit swaps the two in one `renameat2(RENAME_EXCHANGE)`; elsewhere (or on a
+/// file system without it) the old folder is first moved to `.NAME.old-PID`, and a later run
+/// that finds the target missing moves it back. Whatever a dead run left (`.NAME.partial-PID`,
+/// `.NAME.old-PID`, the `.NAME.old` of versions before 0.2) is removed by the next run.
 pub struct StagedFolder {
     target: PathBuf,
     staging: PathBuf,
@@ -34,16 +40,11 @@ pub struct StagedFolder {
 
 impl StagedFolder {
     pub fn new(target: &Path) -> std::io::Result<Self> {
-        let parent = target
-            .parent()
-            .filter(|parent| !parent.as_os_str().is_empty())
-            .unwrap_or(Path::new("."));
+        check_target(target)?;
+        let parent = parent_of(target);
         std::fs::create_dir_all(parent)?;
-        let name = target
-            .file_name()
-            .map(|name| name.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "out".into());
-        remove_abandoned_stagings(parent, &name);
+        let name = name_of(target);
+        recover_abandoned(parent, &name, target);
         let staging = parent.join(format!(".{name}.partial-{}", std::process::id()));
         if staging.exists() {
             std::fs::remove_dir_all(&staging)?;
@@ -62,44 +63,188 @@ impl StagedFolder {
     }
 
     pub fn write(&self, name: &str, bytes: &[u8]) -> std::io::Result<()> {
-        std::fs::write(self.path(name), bytes)
+        std::fs::write(self.path(name), bytes)?;
+        fault_point();
+        Ok(())
     }
 
     /// Moves the staged folder into place, replacing what was there.
     pub fn commit(mut self) -> std::io::Result<PathBuf> {
+        fault_point();
         if self.target.exists() {
-            let old = self.staging.with_extension("old");
-            std::fs::rename(&self.target, &old)?;
-            std::fs::rename(&self.staging, &self.target)?;
-            std::fs::remove_dir_all(&old)?;
+            if exchange(&self.staging, &self.target).is_ok() {
+                // The old folder now sits where the staging was.
+                self.committed = true;
+                fault_point();
+                remove_folder(&self.staging)?;
+            } else {
+                let old = parent_of(&self.target).join(format!(
+                    ".{}.old-{}",
+                    name_of(&self.target),
+                    std::process::id()
+                ));
+                std::fs::rename(&self.target, &old)?;
+                fault_point();
+                std::fs::rename(&self.staging, &self.target)?;
+                self.committed = true;
+                fault_point();
+                remove_folder(&old)?;
+            }
         } else {
             std::fs::rename(&self.staging, &self.target)?;
+            self.committed = true;
         }
-        self.committed = true;
+        fault_point();
         Ok(self.target.clone())
     }
 }
 
-/// Removes `.NAME.partial-PID` (and `.old`) folders left by a run that was killed while it
-/// wrote (an interrupt ends the program before it can clean up): those whose process is gone.
-/// Where running processes cannot be listed (no `/proc`), nothing is removed.
-fn remove_abandoned_stagings(parent: &Path, name: &str) {
-    let proc = Path::new("/proc");
-    if !proc.join("self").exists() {
-        return;
+/// Refuses an output path that cannot become a plan folder, before anything is written or
+/// moved: an existing file (which a commit would otherwise move aside), or a path whose
+/// parent is a file.
+pub fn check_target(target: &Path) -> std::io::Result<()> {
+    let not_a_folder = |path: &Path| {
+        std::io::Error::new(
+            std::io::ErrorKind::AlreadyExists,
+            format!(
+                "{} is a file, not a folder: give --out a folder to write the plan into",
+                path.display()
+            ),
+        )
+    };
+    if target.exists() && !target.is_dir() {
+        return Err(not_a_folder(target));
     }
-    let prefix = format!(".{name}.partial-");
+    if let Some(file) = target
+        .ancestors()
+        .skip(1)
+        .find(|ancestor| !ancestor.as_os_str().is_empty() && ancestor.exists())
+        .filter(|ancestor| !ancestor.is_dir())
+    {
+        return Err(not_a_folder(file));
+    }
+    Ok(())
+}
+
+fn parent_of(target: &Path) -> &Path {
+    target
+        .parent()
+        .filter(|parent| !parent.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+}
+
+fn name_of(target: &Path) -> String {
+    target
+        .file_name()
+        .map(|name| name.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into())
+}
+
+/// Swaps two paths in one step (Linux `renameat2` with `RENAME_EXCHANGE`). The project's one
+/// `unsafe`: std has no atomic exchange, and without one a kill between two renames leaves
+/// no folder at the target.
+#[cfg(target_os = "linux")]
+#[allow(unsafe_code)]
+fn exchange(a: &Path, b: &Path) -> std::io::Result<()> {
+    use std::os::unix::ffi::OsStrExt;
+    let path = |path: &Path| {
+        std::ffi::CString::new(path.as_os_str().as_bytes())
+            .map_err(|_| std::io::Error::from(std::io::ErrorKind::InvalidInput))
+    };
+    let (a, b) = (path(a)?, path(b)?);
+    // SAFETY: both pointers are NUL-terminated strings that outlive the call.
+    let result = unsafe {
+        libc::syscall(
+            libc::SYS_renameat2,
+            libc::AT_FDCWD,
+            a.as_ptr(),
+            libc::AT_FDCWD,
+            b.as_ptr(),
+            libc::RENAME_EXCHANGE,
+        )
+    };
+    if result == 0 {
+        Ok(())
+    } else {
+        Err(std::io::Error::last_os_error())
+    }
+}
+
+#[cfg(not(target_os = "linux"))]
+fn exchange(_a: &Path, _b: &Path) -> std::io::Result<()> {
+    Err(std::io::Error::from(std::io::ErrorKind::Unsupported))
+}
+
+/// Removes a plan folder file by file (a fault point after each, for the kill test).
+fn remove_folder(folder: &Path) -> std::io::Result<()> {
+    for entry in std::fs::read_dir(folder)? {
+        let entry = entry?;
+        if entry.file_type()?.is_dir() {
+            std::fs::remove_dir_all(entry.path())?;
+        } else {
+            std::fs::remove_file(entry.path())?;
+        }
+        fault_point();
+    }
+    std::fs::remove_dir(folder)
+}
+
+/// The kill test's hook: with `AGRIPATH_FAULT_AT=N` in the environment the process aborts
+/// (no destructor runs, as under `kill -9`) at the N-th fault point it reaches. Unset, it
+/// costs one environment lookup per call.
+fn fault_point() {
+    use std::sync::atomic::{AtomicU64, Ordering};
+    static REACHED: AtomicU64 = AtomicU64::new(0);
+    let Some(at) = std::env::var("AGRIPATH_FAULT_AT")
+        .ok()
+        .and_then(|value| value.parse::<u64>().ok())
+    else {
+        return;
+    };
+    if REACHED.fetch_add(1, Ordering::SeqCst) + 1 == at {
+        std::process::abort();
+    }
+}
+
+/// Cleans up after runs that were killed while they wrote (an interrupt ends the program
+/// before it can): their `.NAME.partial-PID` and `.NAME.old-PID` folders, when that process
+/// is gone, and the `.NAME.old` of earlier versions. If the target itself is missing and a
+/// dead run's `.NAME.old-PID` holds it (killed between the fallback's two renames), it is
+/// moved back first. Where running processes cannot be listed (no `/proc`), only the
+/// target's recovery and `.NAME.old` are done.
+fn recover_abandoned(parent: &Path, name: &str, target: &Path) {
+    let proc = Path::new("/proc");
+    let can_list = proc.join("self").exists();
     let Ok(entries) = std::fs::read_dir(parent) else {
         return;
     };
+    let mut dead = Vec::new();
     for entry in entries.flatten() {
         let file_name = entry.file_name().to_string_lossy().into_owned();
-        let Some(rest) = file_name.strip_prefix(&prefix) else {
+        let Some(rest) = file_name.strip_prefix(&format!(".{name}.")) else {
             continue;
         };
-        let pid = rest.strip_suffix(".old").unwrap_or(rest);
-        if pid.parse::<u32>().is_ok() && !proc.join(pid).exists() {
-            let _ = std::fs::remove_dir_all(entry.path());
+        if rest == "old" {
+            dead.push((entry.path(), true));
+            continue;
+        }
+        let (pid, is_old) = match (rest.strip_prefix("partial-"), rest.strip_prefix("old-")) {
+            (Some(pid), _) => (pid.strip_suffix(".old").unwrap_or(pid), false),
+            (None, Some(pid)) => (pid, true),
+            (None, None) => continue,
+        };
+        if pid.parse::<u32>().is_ok() && can_list && !proc.join(pid).exists() {
+            dead.push((entry.path(), is_old));
+        }
+    }
+    if !target.exists() {
+        if let Some((old, _)) = dead.iter().find(|(_, is_old)| *is_old) {
+            let _ = std::fs::rename(old, target);
+        }
+    }
+    for (path, _) in dead {
+        if path.exists() {
+            let _ = std::fs::remove_dir_all(path);
         }
     }
 }
@@ -133,6 +278,26 @@ mod tests {
         staged.commit().unwrap();
         assert!(!target.join("stale.txt").exists());
         assert_eq!(std::fs::read(target.join("a.txt")).unwrap(), b"new");
+        assert_eq!(
+            std::fs::read_dir(&root).unwrap().count(),
+            1,
+            "only the target is left"
+        );
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn a_file_or_a_path_through_a_file_is_not_a_target() {
+        let root = std::env::temp_dir().join(format!("agripath-target-{}", std::process::id()));
+        std::fs::create_dir_all(&root).unwrap();
+        let file = root.join("notes.txt");
+        std::fs::write(&file, b"mine").unwrap();
+        for target in [file.clone(), file.join("plan")] {
+            let error = StagedFolder::new(&target).err().unwrap();
+            assert!(error.to_string().contains("notes.txt is a file"), "{error}");
+        }
+        assert_eq!(std::fs::read(&file).unwrap(), b"mine");
+        assert_eq!(std::fs::read_dir(&root).unwrap().count(), 1);
         std::fs::remove_dir_all(&root).unwrap();
     }
 
@@ -141,13 +306,25 @@ mod tests {
         let root = std::env::temp_dir().join(format!("agripath-abandoned-{}", std::process::id()));
         // PID 4294967295 cannot exist; this test's own PID is alive.
         let dead = root.join(".plan.partial-4294967295");
-        let alive = root.join(format!(".plan.partial-{}.old", std::process::id()));
+        let alive = root.join(format!(".plan.partial-{}", std::process::id()));
+        let dead_old = root.join(".plan.old-4294967295");
+        let legacy_old = root.join(".plan.old");
+        std::fs::create_dir_all(&dead_old).unwrap();
+        std::fs::create_dir_all(&legacy_old).unwrap();
+        std::fs::write(dead_old.join("report.json"), b"old").unwrap();
         std::fs::create_dir_all(&dead).unwrap();
         std::fs::create_dir_all(&alive).unwrap();
         let staged = StagedFolder::new(&root.join("plan")).unwrap();
         if Path::new("/proc/self").exists() {
             assert!(!dead.exists());
+            // The target was missing: the dead run's old folder became it again.
+            assert_eq!(
+                std::fs::read(root.join("plan/report.json")).unwrap(),
+                b"old"
+            );
+            assert!(!dead_old.exists());
         }
+        assert!(!legacy_old.exists());
         assert!(alive.exists());
         drop(staged);
         std::fs::remove_dir_all(&root).unwrap();

@@ -1,7 +1,7 @@
 //! Command-line grammar (clap derive). Values are checked here only for shape; meaning is
 //! checked by the library, once.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, Parser, Subcommand};
 
@@ -274,6 +274,26 @@ pub struct MissionArgs {
     /// For fields in local metres: LON,LAT of their origin in mission files (default 126.63,45.75).
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub origin: Option<Vec<f64>>,
+}
+
+impl Command {
+    /// The folder this command writes, if any: checked before any work is done.
+    pub fn output_folder(&self) -> Option<&Path> {
+        match self {
+            Command::Demo { out }
+            | Command::Plan { out, .. }
+            | Command::Grid { out, .. }
+            | Command::Track { out, .. } => Some(out),
+            Command::Repro { out, .. }
+            | Command::Bench {
+                action: BenchAction::Functions { out, .. },
+            } => out.as_deref(),
+            Command::Check { .. }
+            | Command::View { .. }
+            | Command::Validate { .. }
+            | Command::Terrain { .. } => None,
+        }
+    }
 }
 
 #[derive(Debug, Subcommand)]

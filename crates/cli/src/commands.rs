@@ -52,6 +52,10 @@ macro_rules! emitln {
 }
 
 pub fn run(arguments: Arguments) -> Result<(), Failure> {
+    if let Some(out) = arguments.command.output_folder() {
+        agripath::output::check_target(out)
+            .map_err(|error| InputError::new("--out", Fault::Structure(error.to_string())))?;
+    }
     match arguments.command {
         Command::Demo { out } => demo(&out),
         Command::Plan {

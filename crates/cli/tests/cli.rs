@@ -1091,6 +1091,106 @@ fn an_interrupted_run_leaves_the_previous_output_whole() {
     std::fs::remove_dir_all(root).unwrap();
 }
 
+/// The names of the files in `folder`, sorted, after checking that each is whole: not
+/// empty, and parsed where it is JSON (the outputs carry timings, so bytes differ per run).
+fn whole_folder(folder: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(folder)
+        .unwrap()
+        .map(|entry| {
+            let entry = entry.unwrap();
+            let name = entry.file_name().to_string_lossy().into_owned();
+            let bytes = std::fs::read(entry.path()).unwrap();
+            assert!(!bytes.is_empty(), "{name} is empty");
+            if name.ends_with(".json") || name.ends_with(".plan") || name.ends_with(".geojson") {
+                assert!(
+                    serde_json::from_slice::<serde_json::Value>(&bytes).is_ok(),
+                    "{name} is not whole JSON"
+                );
+            }
+            name
+        })
+        .collect();
+    names.sort();
+    names
+}
+
+/// Kills a writing run at every fault point of the output commit in turn (the
+/// `AGRIPATH_FAULT_AT` hook aborts the process there, with no destructor run, as `kill -9`
+/// does): after each kill the target holds either the old folder or the new one, whole, and
+/// the next run succeeds and leaves nothing beside it. Returns how many runs were killed.
+fn killed_at_every_commit_point(name: &str, arguments: &[&str], points: &[u64]) -> usize {
+    let root = scratch(name);
+    let out = root.join("out");
+    let run = |fault_at: Option<u64>| {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_agripath"));
+        command
+            .args(arguments)
+            .args(["--out", out.to_str().unwrap()])
+            .current_dir(&root);
+        if let Some(point) = fault_at {
+            command.env("AGRIPATH_FAULT_AT", point.to_string());
+        }
+        command.output().unwrap()
+    };
+    assert!(run(None).status.success());
+    let new = whole_folder(&out);
+    // The old output carries a marker no new run writes.
+    let marker = "old-marker.txt";
+    std::fs::write(out.join(marker), b"old").unwrap();
+    let old = whole_folder(&out);
+    let mut kills = 0;
+    for &point in points {
+        let killed = run(Some(point));
+        if killed.status.success() {
+            break;
+        }
+        kills += 1;
+        let now = whole_folder(&out);
+        assert!(
+            now == old || now == new,
+            "killed at fault point {point}: the target is neither the old nor the new folder: {now:?}"
+        );
+        assert!(
+            run(None).status.success(),
+            "the run after a kill at {point}"
+        );
+        assert_eq!(whole_folder(&out), new, "after a kill at {point}");
+        let beside: Vec<String> = std::fs::read_dir(&root)
+            .unwrap()
+            .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert_eq!(beside, vec!["out".to_string()], "after a kill at {point}");
+        std::fs::write(out.join(marker), b"old").unwrap();
+    }
+    std::fs::remove_dir_all(root).unwrap();
+    kills
+}
+
+#[test]
+fn a_kill_at_any_point_of_the_commit_leaves_the_old_or_the_new_folder_whole() {
+    // Every point of a small folder's commit (three files: staged, swapped, old removed).
+    let bench = [
+        "bench",
+        "functions",
+        "--pop",
+        "4",
+        "--iters",
+        "2",
+        "--runs",
+        "1",
+        "--functions",
+        "f1",
+        "--algorithms",
+        "pso",
+    ];
+    let points: Vec<u64> = (1..=40).collect();
+    let kills = killed_at_every_commit_point("kill-bench", &bench, &points);
+    assert!(kills >= 6, "only {kills} fault points reached");
+    // The demo's 26 files, at points while staging, at the swap and while removing the old.
+    let kills = killed_at_every_commit_point("kill-demo", &["demo"], &[20, 28, 40]);
+    assert_eq!(kills, 3, "fault points reached in the demo");
+}
+
 fn mission_files(folder: &Path) -> Vec<String> {
     std::fs::read_dir(folder)
         .unwrap()

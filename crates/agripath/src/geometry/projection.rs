@@ -224,7 +224,10 @@ mod tests {
         assert_eq!(zone.number, 60);
         let (easting, northing) = to_utm(-179.5, -16.0, zone);
         let (lon, lat) = from_utm(easting, northing, zone);
-        assert!((lon + 179.5).abs() < 1e-9 && (lat + 16.0).abs() < 1e-9, "{lon} {lat}");
+        assert!(
+            (lon + 179.5).abs() < 1e-9 && (lat + 16.0).abs() < 1e-9,
+            "{lon} {lat}"
+        );
     }
 
     #[test]

@@ -252,10 +252,12 @@ fn zone_of(path: &Path, features: &[RawFeature]) -> Result<UtmZone, InputError> 
     }
     let centre_lon = mean_longitude(positions.iter().map(|&(lon, _)| lon));
     let centre_lat = positions.iter().map(|&(_, lat)| lat).sum::<f64>() / positions.len() as f64;
-    let (west, east) = positions.iter().fold((0.0f64, 0.0f64), |(west, east), &(lon, _)| {
-        let offset = wrap_longitude(lon - centre_lon);
-        (west.min(offset), east.max(offset))
-    });
+    let (west, east) = positions
+        .iter()
+        .fold((0.0f64, 0.0f64), |(west, east), &(lon, _)| {
+            let offset = wrap_longitude(lon - centre_lon);
+            (west.min(offset), east.max(offset))
+        });
     if east - west > MAX_FARM_LONGITUDE_SPAN_DEG {
         return Err(InputError::new(
             path,

@@ -277,7 +277,11 @@ mod tests {
         let CoordinateSystem::Utm(zone) = farm.coordinate_system else {
             panic!("expected UTM")
         };
-        assert!(zone.number == 60 || zone.number == 1, "zone {}", zone.number);
+        assert!(
+            zone.number == 60 || zone.number == 1,
+            "zone {}",
+            zone.number
+        );
         let ring = &farm.fields[0].polygon.exterior().0;
         let width = (ring[1].x - ring[0].x).abs();
         assert!((width / 214.07 - 1.0).abs() < 0.001, "width {width}");

@@ -85,7 +85,8 @@ pub fn read_bytes_within(path: &Path, budget: u64) -> Result<Vec<u8>, InputError
     if metadata.len() > budget {
         return Err(too_large(metadata.len().to_string()));
     }
-    let file = std::fs::File::open(path).map_err(|error| InputError::new(path, unreadable(&error)))?;
+    let file =
+        std::fs::File::open(path).map_err(|error| InputError::new(path, unreadable(&error)))?;
     let mut bytes = Vec::with_capacity(metadata.len() as usize);
     file.take(budget + 1)
         .read_to_end(&mut bytes)
