@@ -1,10 +1,28 @@
 //! `agripath view DIR`: serves a plan folder on 127.0.0.1 so that `plan.html` (which also
-//! works straight from disk) and the files beside it open in a browser. Only files directly
-//! inside DIR are served; nothing listens beyond the loopback address.
+//! works straight from disk) and the files beside it open in a browser.
+//!
+//! Only what a local viewer needs, and nothing a hostile page or client can abuse:
+//! - it listens on the loopback address only, and answers only requests whose `Host` is
+//!   `127.0.0.1:PORT` or `localhost:PORT` (a DNS-rebinding page sends its own host name);
+//! - each connection has its own thread (at most [`MAX_CONNECTIONS`] at once; beyond that a
+//!   client gets 503 at once), with read and write timeouts, so an idle client blocks no one;
+//! - the request line and headers are read within [`MAX_HEAD_BYTES`];
+//! - a file is served only if its canonical path (links resolved) is a regular file directly
+//!   inside the folder's canonical path: traversal and links out of DIR get 404.
 
-use std::io::{BufRead, BufReader, Write};
+use std::io::{BufRead, BufReader, Read, Write};
 use std::net::{TcpListener, TcpStream};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+
+/// Connections served at once.
+const MAX_CONNECTIONS: usize = 256;
+/// Request line and headers together, bytes.
+const MAX_HEAD_BYTES: u64 = 16 * 1024;
+/// How long a client may take to send its request, or to read the answer.
+const TIMEOUT: Duration = Duration::from_secs(10);
 
 fn content_type(name: &str) -> &'static str {
     match name.rsplit('.').next().unwrap_or("") {
@@ -18,54 +36,173 @@ fn content_type(name: &str) -> &'static str {
     }
 }
 
-/// The file a request path names inside `folder`, if it is a plain file name there.
+/// The file a request path names inside `folder` (given canonical), if it is a plain file
+/// name there whose canonical path stays inside the folder.
 fn resolve(folder: &Path, request_path: &str) -> Option<PathBuf> {
     let name = request_path.trim_start_matches('/');
     let name = if name.is_empty() { "plan.html" } else { name };
     let plain = !name.contains('/') && !name.contains('\\') && !name.starts_with('.');
-    let path = folder.join(name);
-    (plain && path.is_file()).then_some(path)
+    if !plain {
+        return None;
+    }
+    let path = folder.join(name).canonicalize().ok()?;
+    (path.parent() == Some(folder) && path.is_file()).then_some(path)
 }
 
-fn answer(stream: &mut TcpStream, folder: &Path) -> std::io::Result<()> {
-    let mut request = String::new();
-    BufReader::new(stream.try_clone()?).read_line(&mut request)?;
-    let mut parts = request.split_whitespace();
-    let (method, path) = (parts.next().unwrap_or(""), parts.next().unwrap_or("/"));
-    let path = path.split('?').next().unwrap_or("/");
-    match resolve(folder, path).filter(|_| method == "GET") {
+/// A request's method, path and `Host`, read within the byte budget.
+struct Request {
+    method: String,
+    path: String,
+    host: Option<String>,
+}
+
+enum Refusal {
+    /// The head did not end within the budget, or was not HTTP.
+    Malformed,
+    /// The client went quiet or the connection broke: nothing to answer.
+    Gone,
+}
+
+fn read_request(stream: &TcpStream) -> Result<Request, Refusal> {
+    let mut reader = BufReader::new(
+        stream
+            .try_clone()
+            .map_err(|_| Refusal::Gone)?
+            .take(MAX_HEAD_BYTES),
+    );
+    let mut line = String::new();
+    let read_line = |reader: &mut BufReader<_>, line: &mut String| -> Result<(), Refusal> {
+        line.clear();
+        match reader.read_line(line) {
+            Ok(0) | Err(_) => Err(Refusal::Gone),
+            Ok(_) if !line.ends_with('\n') => Err(Refusal::Malformed),
+            Ok(_) => Ok(()),
+        }
+    };
+    read_line(&mut reader, &mut line)?;
+    let mut parts = line.split_whitespace();
+    let (Some(method), Some(target), Some(version)) = (parts.next(), parts.next(), parts.next())
+    else {
+        return Err(Refusal::Malformed);
+    };
+    if !version.starts_with("HTTP/") {
+        return Err(Refusal::Malformed);
+    }
+    let (method, path) = (
+        method.to_string(),
+        target.split('?').next().unwrap_or("/").to_string(),
+    );
+    let mut host = None;
+    loop {
+        read_line(&mut reader, &mut line)?;
+        let header = line.trim_end();
+        if header.is_empty() {
+            break;
+        }
+        if let Some((name, value)) = header.split_once(':') {
+            if name.eq_ignore_ascii_case("host") {
+                host = Some(value.trim().to_ascii_lowercase());
+            }
+        }
+    }
+    Ok(Request { method, path, host })
+}
+
+fn respond(
+    stream: &mut TcpStream,
+    status: &str,
+    content_type: &str,
+    body: &[u8],
+) -> std::io::Result<()> {
+    write!(
+        stream,
+        "HTTP/1.1 {status}\r\nContent-Type: {content_type}\r\nContent-Length: {}\r\nX-Content-Type-Options: nosniff\r\nConnection: close\r\n\r\n",
+        body.len()
+    )?;
+    stream.write_all(body)
+}
+
+/// Closes after an answer sent before the whole request was read: the rest the client sends
+/// is read and dropped (within a budget and a short timeout) so that the close does not reset
+/// the connection and lose the answer.
+fn linger(stream: &mut TcpStream) -> std::io::Result<()> {
+    stream.shutdown(std::net::Shutdown::Write)?;
+    stream.set_read_timeout(Some(Duration::from_secs(1)))?;
+    let _ = std::io::copy(&mut (&*stream).take(1 << 20), &mut std::io::sink());
+    Ok(())
+}
+
+fn answer(stream: &mut TcpStream, folder: &Path, port: u16) -> std::io::Result<()> {
+    stream.set_read_timeout(Some(TIMEOUT))?;
+    stream.set_write_timeout(Some(TIMEOUT))?;
+    let text = "text/plain; charset=utf-8";
+    let request = match read_request(stream) {
+        Ok(request) => request,
+        Err(Refusal::Malformed) => {
+            respond(stream, "400 Bad Request", text, b"bad request")?;
+            return linger(stream);
+        }
+        Err(Refusal::Gone) => return Ok(()),
+    };
+    let allowed_hosts = [format!("127.0.0.1:{port}"), format!("localhost:{port}")];
+    if !request
+        .host
+        .as_ref()
+        .is_some_and(|host| allowed_hosts.contains(host))
+    {
+        return respond(
+            stream,
+            "403 Forbidden",
+            text,
+            b"only 127.0.0.1 or localhost",
+        );
+    }
+    if request.method != "GET" {
+        return respond(stream, "405 Method Not Allowed", text, b"GET only");
+    }
+    match resolve(folder, &request.path) {
         Some(file) => {
             let body = std::fs::read(&file)?;
             let name = file
                 .file_name()
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default();
-            write!(
-                stream,
-                "HTTP/1.1 200 OK\r\nContent-Type: {}\r\nContent-Length: {}\r\nConnection: close\r\n\r\n",
-                content_type(&name),
-                body.len()
-            )?;
-            stream.write_all(&body)
+            respond(stream, "200 OK", content_type(&name), &body)
         }
-        None => stream.write_all(
-            b"HTTP/1.1 404 Not Found\r\nContent-Length: 9\r\nConnection: close\r\n\r\nnot found",
-        ),
+        None => respond(stream, "404 Not Found", text, b"not found"),
     }
 }
 
 /// Serves `folder` until the process is stopped; `on_ready` gets the URL once listening.
 pub fn serve(folder: &Path, port: u16, on_ready: impl FnOnce(&str)) -> std::io::Result<()> {
+    let folder: Arc<Path> = folder.canonicalize()?.into();
     let listener = TcpListener::bind(("127.0.0.1", port))?;
-    let url = format!(
-        "http://127.0.0.1:{}/plan.html",
-        listener.local_addr()?.port()
-    );
-    on_ready(&url);
+    let port = listener.local_addr()?.port();
+    on_ready(&format!("http://127.0.0.1:{port}/plan.html"));
+    let open = Arc::new(AtomicUsize::new(0));
     for stream in listener.incoming() {
         let Ok(mut stream) = stream else { continue };
-        // One bad request must not stop the viewer.
-        let _ = answer(&mut stream, folder);
+        if open.fetch_add(1, Ordering::SeqCst) >= MAX_CONNECTIONS {
+            open.fetch_sub(1, Ordering::SeqCst);
+            let _ = stream.set_write_timeout(Some(TIMEOUT));
+            let _ = respond(
+                &mut stream,
+                "503 Service Unavailable",
+                "text/plain",
+                b"busy",
+            );
+            continue;
+        }
+        let (folder, still_open) = (Arc::clone(&folder), Arc::clone(&open));
+        let spawned = std::thread::Builder::new().spawn(move || {
+            // One bad request must not stop the viewer.
+            let _ = answer(&mut stream, &folder, port);
+            still_open.fetch_sub(1, Ordering::SeqCst);
+        });
+        if spawned.is_err() {
+            // No thread to be had: the connection is dropped and the counter given back.
+            open.fetch_sub(1, Ordering::SeqCst);
+        }
     }
     Ok(())
 }
@@ -76,14 +213,25 @@ mod tests {
 
     #[test]
     fn only_plain_files_of_the_folder_are_served() {
-        let folder = std::env::temp_dir().join(format!("agripath-view-{}", std::process::id()));
+        let root = std::env::temp_dir().join(format!("agripath-view-{}", std::process::id()));
+        let folder = root.join("plan");
         std::fs::create_dir_all(&folder).unwrap();
         std::fs::write(folder.join("plan.html"), "x").unwrap();
+        std::fs::write(root.join("secret.txt"), "no").unwrap();
+        #[cfg(unix)]
+        {
+            std::os::unix::fs::symlink(root.join("secret.txt"), folder.join("link.txt")).unwrap();
+            std::os::unix::fs::symlink(&root, folder.join("up")).unwrap();
+        }
+        let folder = folder.canonicalize().unwrap();
         assert!(resolve(&folder, "/").is_some());
         assert!(resolve(&folder, "/plan.html").is_some());
-        assert!(resolve(&folder, "/../etc/passwd").is_none());
+        assert!(resolve(&folder, "/../secret.txt").is_none());
+        assert!(resolve(&folder, "/link.txt").is_none());
+        assert!(resolve(&folder, "/up").is_none());
+        assert!(resolve(&folder, "/up/secret.txt").is_none());
         assert!(resolve(&folder, "/missing.json").is_none());
         assert!(resolve(&folder, "/.hidden").is_none());
-        std::fs::remove_dir_all(&folder).unwrap();
+        std::fs::remove_dir_all(&root).unwrap();
     }
 }

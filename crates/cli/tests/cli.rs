@@ -373,14 +373,28 @@ fn view_serves_the_plan_folder_on_loopback_only() {
     use std::io::{BufRead, BufReader, Read, Write};
     let folder = scratch("view");
     stdout(&agripath(&["demo", "--out", "demo"], &folder));
-    let mut child = Command::new(env!("CARGO_BIN_EXE_agripath"))
-        .args(["view", "demo", "--port", "0"])
-        .current_dir(&folder)
-        .stdout(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
+    std::fs::write(folder.join("secret.txt"), "outside the plan folder").unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(folder.join("secret.txt"), folder.join("demo/link.txt")).unwrap();
+    /// The server, stopped however the test ends (a leaked server would hold the test
+    /// harness's output open).
+    struct Server(std::process::Child);
+    impl Drop for Server {
+        fn drop(&mut self) {
+            let _ = self.0.kill();
+            let _ = self.0.wait();
+        }
+    }
+    let mut server = Server(
+        Command::new(env!("CARGO_BIN_EXE_agripath"))
+            .args(["view", "demo", "--port", "0"])
+            .current_dir(&folder)
+            .stdout(std::process::Stdio::piped())
+            .spawn()
+            .unwrap(),
+    );
     let mut line = String::new();
-    BufReader::new(child.stdout.take().unwrap())
+    BufReader::new(server.0.stdout.take().unwrap())
         .read_line(&mut line)
         .unwrap();
     let address = line
@@ -392,21 +406,56 @@ fn view_serves_the_plan_folder_on_loopback_only() {
         .unwrap()
         .to_string();
     assert!(address.starts_with("127.0.0.1:"), "{line}");
-    let get = |path: &str| {
+    let send = |head: &str| {
         let mut stream = std::net::TcpStream::connect(&address).unwrap();
-        write!(stream, "GET {path} HTTP/1.1\r\nHost: x\r\n\r\n").unwrap();
+        stream.write_all(head.as_bytes()).unwrap();
         let mut response = String::new();
         stream.read_to_string(&mut response).unwrap();
         response
     };
+    let get = |path: &str| send(&format!("GET {path} HTTP/1.1\r\nHost: {address}\r\n\r\n"));
+    // A client that connects and says nothing holds its own thread, not the server.
+    let idle = std::net::TcpStream::connect(&address).unwrap();
     let page = get("/plan.html");
     let geojson = get("/plan.geojson");
-    let outside = get("/../Cargo.toml");
-    child.kill().unwrap();
-    let _ = child.wait();
+    let outside = get("/../secret.txt");
+    let linked_out = get("/link.txt");
+    let rebinding = send("GET /plan.html HTTP/1.1\r\nHost: evil.example:80\r\n\r\n");
+    let no_host = send("GET /plan.html HTTP/1.0\r\n\r\n");
+    let endless_line = send(&format!("GET /{} HTTP/1.1\r\n", "a".repeat(100_000)));
+    // 200 requests at once, each on its own connection, all while the idle client waits.
+    let clients: Vec<_> = (0..200)
+        .map(|index| {
+            let address = address.clone();
+            std::thread::spawn(move || {
+                let mut stream = std::net::TcpStream::connect(&address).unwrap();
+                let path = if index % 2 == 0 {
+                    "/report.json"
+                } else {
+                    "/plan.html"
+                };
+                write!(stream, "GET {path} HTTP/1.1\r\nHost: {address}\r\n\r\n").unwrap();
+                let mut response = String::new();
+                stream.read_to_string(&mut response).unwrap();
+                response.starts_with("HTTP/1.1 200")
+            })
+        })
+        .collect();
+    let served = clients
+        .into_iter()
+        .map(|client| client.join().unwrap_or(false))
+        .filter(|&answered| answered)
+        .count();
+    drop(idle);
+    drop(server);
     assert!(page.starts_with("HTTP/1.1 200") && page.contains("L.CRS.Simple"));
     assert!(geojson.contains("application/json") && geojson.contains("FeatureCollection"));
-    assert!(outside.starts_with("HTTP/1.1 404"));
+    assert!(outside.starts_with("HTTP/1.1 404"), "{outside}");
+    assert!(linked_out.starts_with("HTTP/1.1 404"), "{linked_out}");
+    assert!(rebinding.starts_with("HTTP/1.1 403"), "{rebinding}");
+    assert!(no_host.starts_with("HTTP/1.1 403"), "{no_host}");
+    assert!(endless_line.starts_with("HTTP/1.1 400"), "{endless_line}");
+    assert_eq!(served, 200, "concurrent requests answered 200");
     let missing = agripath(&["view", "nowhere"], &folder);
     assert_eq!(missing.status.code(), Some(2));
     std::fs::remove_dir_all(&folder).unwrap();
