@@ -61,6 +61,7 @@ fn main() {
     let island = Scenario::from_file(
         &Path::new(env!("CARGO_MANIFEST_DIR")).join("../../data/scenarios/christmas_island.toml"),
         VehicleOverrides::default(),
+        false,
     )
     .expect("the island scenario");
     settings.start = None;

@@ -49,10 +49,10 @@ fn random_farm(fields: usize, swaths: usize, seed: u64) -> Farm {
                 corner(-h, w),
                 corner(-h, -w),
             ];
-            Field {
-                name: format!("F{index}"),
-                polygon: Polygon::new(LineString::new(ring), vec![]),
-            }
+            Field::new(
+                format!("F{index}"),
+                Polygon::new(LineString::new(ring), vec![]),
+            )
         })
         .collect();
     Farm {

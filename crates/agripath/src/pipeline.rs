@@ -101,6 +101,24 @@ pub fn start_point(
     });
     position
         .map(|[x, y]| {
+            // Farther than a farm is wide is not a launch point but a typo (or a swapped
+            // lon/lat); the battery check would otherwise blame the vehicle.
+            let bounds = scenario.farm.bounds();
+            let away = (bounds.min().x - x)
+                .max(x - bounds.max().x)
+                .max(0.0)
+                .hypot((bounds.min().y - y).max(y - bounds.max().y).max(0.0));
+            if away.is_nan() || away > crate::model::limits::MAX_FARM_EXTENT_M {
+                return Err(Fault::InvalidValue {
+                    what: "the launch point".into(),
+                    value: format!("({x:.1}, {y:.1})"),
+                    why: format!(
+                        "it is {:.0} km from the fields (at most {:.0} km): is it in the fields' coordinates?",
+                        away / 1000.0,
+                        crate::model::limits::MAX_FARM_EXTENT_M / 1000.0
+                    ),
+                });
+            }
             Ok(GroundPoint {
                 x,
                 y,

@@ -196,6 +196,10 @@ pub struct Inputs {
     /// Safe transfer height h, metres (overrides the vehicle).
     #[arg(long, allow_negative_numbers = true)]
     pub safe_height: Option<f64>,
+    /// Keep fields that overlap and spray each overlap once, with the field that comes first
+    /// in the file (without it, overlapping fields are refused).
+    #[arg(long)]
+    pub allow_overlap: bool,
 }
 
 /// How coverage is laid out.

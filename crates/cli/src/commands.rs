@@ -284,26 +284,27 @@ fn coverage_settings(arguments: &CoverageArgs) -> Result<CoverageSettings, Input
 }
 
 fn sequencer(order: &OrderArgs) -> Result<Sequencer, InputError> {
+    // Checked whichever sequencer runs: a value no run could use is a mistake to report.
+    for (flag, value) in [("--ants", order.ants), ("--batches", order.batches)] {
+        if !(1..=100_000).contains(&value) {
+            return Err(InputError::new(
+                flag,
+                Fault::InvalidValue {
+                    what: flag.into(),
+                    value: value.to_string(),
+                    why: "must be 1..=100000".into(),
+                },
+            ));
+        }
+    }
     Ok(match order.sequencer.as_str() {
         "greedy" => Sequencer::Greedy,
-        "aco" => {
-            if order.ants == 0 || order.batches == 0 {
-                return Err(InputError::new(
-                    "--ants/--batches",
-                    Fault::InvalidValue {
-                        what: "--ants × --batches".into(),
-                        value: format!("{} × {}", order.ants, order.batches),
-                        why: "both must be at least 1".into(),
-                    },
-                ));
-            }
-            Sequencer::AntColony(AntColonySettings {
-                ants: order.ants,
-                batches: order.batches,
-                seed: order.seed,
-                ..AntColonySettings::default()
-            })
-        }
+        "aco" => Sequencer::AntColony(AntColonySettings {
+            ants: order.ants,
+            batches: order.batches,
+            seed: order.seed,
+            ..AntColonySettings::default()
+        }),
         _ => Sequencer::Best(LocalSearchSettings {
             seed: order.seed,
             ..LocalSearchSettings::default()
@@ -606,29 +607,13 @@ fn mission_settings(arguments: &MissionArgs) -> Result<MissionSettings, InputErr
             },
         )
     };
-    let mut settings = MissionSettings::default();
-    if arguments.sprayer != "do-sprayer" {
-        let parts: Vec<&str> = arguments.sprayer.split(':').collect();
-        let numbers: Option<Vec<u16>> = parts
-            .get(1..)
-            .map(|rest| rest.iter().filter_map(|p| p.parse().ok()).collect());
-        match (parts.first(), numbers) {
-            (Some(&"servo"), Some(numbers)) if parts.len() == 4 && numbers.len() == 3 => {
-                settings.sprayer = SprayerCommand::Servo {
-                    channel: numbers[0],
-                    on_pwm: numbers[1],
-                    off_pwm: numbers[2],
-                };
-            }
-            _ => {
-                return Err(invalid(
-                    "--sprayer",
-                    arguments.sprayer.clone(),
-                    "expected do-sprayer or servo:CHANNEL:ON_PWM:OFF_PWM",
-                ))
-            }
-        }
-    }
+    let mut settings = MissionSettings {
+        sprayer: arguments
+            .sprayer
+            .parse::<SprayerCommand>()
+            .map_err(|why| invalid("--sprayer", arguments.sprayer.clone(), &why))?,
+        ..MissionSettings::default()
+    };
     if !(arguments.terrain_tolerance.is_finite() && arguments.terrain_tolerance > 0.0) {
         return Err(invalid(
             "--terrain-tolerance",
@@ -879,7 +864,7 @@ fn load_scenario(inputs: &Inputs) -> Result<Scenario, InputError> {
                     ),
                 ));
             }
-            Scenario::from_file(path, overrides)
+            Scenario::from_file(path, overrides, inputs.allow_overlap)
         }
         (None, Some(fields)) => Scenario::load(ScenarioParts {
             name: None,
@@ -890,6 +875,7 @@ fn load_scenario(inputs: &Inputs) -> Result<Scenario, InputError> {
             vehicle_file: inputs.vehicle.clone(),
             vehicle_table: None,
             overrides,
+            allow_overlap: inputs.allow_overlap,
         }),
         (Some(path), Some(_)) => Err(InputError::new(
             path,

@@ -16,8 +16,11 @@ fn bad(name: &str) -> String {
     data(&format!("test/bad/{name}"))
 }
 
-/// (arguments, the file or flag the message must name, a fragment of the fault).
-fn corpus() -> Vec<(Vec<String>, String, &'static str)> {
+/// (arguments, the file or flag the message must name, a fragment of the fault). `special`
+/// holds what git cannot: a FIFO, links to `/dev/zero`, a folder named like a file, a file
+/// where a folder is wanted.
+fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
+    let special_file = |name: &str| special.join(name).display().to_string();
     let fields = |name: &str| vec!["validate".to_string(), "--fields".into(), bad(name)];
     let local_fields = |name: &str| {
         vec![
@@ -48,7 +51,549 @@ fn corpus() -> Vec<(Vec<String>, String, &'static str)> {
         arguments.extend(flags.iter().map(|flag| flag.to_string()));
         arguments
     };
-    vec![
+    let plan = |fields_file: &str, flags: &[&str]| {
+        let mut arguments = vec![
+            "plan".to_string(),
+            "--fields".into(),
+            fields_file.to_string(),
+            "--out".into(),
+            "out".into(),
+        ];
+        arguments.extend(flags.iter().map(|flag| flag.to_string()));
+        arguments
+    };
+    let plan_farm = |flags: &[&str]| plan(&data("seed001_farm.geojson"), flags);
+    let plan_into = |out: &str| {
+        vec![
+            "plan".to_string(),
+            "--fields".into(),
+            data("seed001_farm.geojson"),
+            "--out".into(),
+            out.to_string(),
+        ]
+    };
+    let terrain_of = |file: String| vec!["terrain".to_string(), "info".into(), file];
+    let track_file = |name: &str| track_with(&bad(name), &[]);
+    let track_special = |name: &str| track_with(&special_file(name), &[]);
+    let on = |name: &str, fragment: &'static str| (fields(name), bad(name), fragment);
+    let on_terrain = |name: &str, fragment: &'static str| (terrain_info(name), bad(name), fragment);
+    let on_vehicle = |name: &str, fragment: &'static str| (vehicle(name), bad(name), fragment);
+    let flag = |flags: &[&str], named: &str, fragment: &'static str| {
+        (plan_farm(flags), named.to_string(), fragment)
+    };
+    let mut cases: Vec<(Vec<String>, String, &'static str)> = vec![
+        // Special files: refused before they are opened or read past the budget.
+        (fields("nowhere.kml"), bad("nowhere.kml"), "no such file"),
+        (
+            vec![
+                "validate".into(),
+                "--fields".into(),
+                special_file("fifo.geojson"),
+            ],
+            special_file("fifo.geojson"),
+            "FIFO",
+        ),
+        (
+            vec![
+                "validate".into(),
+                "--fields".into(),
+                special_file("zero.geojson"),
+            ],
+            special_file("zero.geojson"),
+            "a device, not a regular file",
+        ),
+        (
+            vec![
+                "validate".into(),
+                "--fields".into(),
+                special_file("zero.kml"),
+            ],
+            special_file("zero.kml"),
+            "a device",
+        ),
+        (
+            vec![
+                "validate".into(),
+                "--fields".into(),
+                special_file("zero.kmz"),
+            ],
+            special_file("zero.kmz"),
+            "a device",
+        ),
+        (
+            vec![
+                "validate".into(),
+                "--fields".into(),
+                special_file("folder.geojson"),
+            ],
+            special_file("folder.geojson"),
+            "a folder, not a file",
+        ),
+        (
+            terrain_of(special_file("zero.asc")),
+            special_file("zero.asc"),
+            "a device",
+        ),
+        (
+            terrain_of(special_file("zero.tif")),
+            special_file("zero.tif"),
+            "a device",
+        ),
+        (
+            terrain_of(special_file("fifo.xyz")),
+            special_file("fifo.xyz"),
+            "FIFO",
+        ),
+        (
+            vec![
+                "validate".into(),
+                "--fields".into(),
+                data("seed001_farm.geojson"),
+                "--vehicle".into(),
+                special_file("zero.toml"),
+            ],
+            special_file("zero.toml"),
+            "a device",
+        ),
+        (
+            vec!["validate".into(), special_file("fifo.toml")],
+            special_file("fifo.toml"),
+            "FIFO",
+        ),
+        (
+            track_special("zero.json"),
+            special_file("zero.json"),
+            "a device",
+        ),
+        (
+            track_special("fifo.json"),
+            special_file("fifo.json"),
+            "FIFO",
+        ),
+        // --out that cannot be a plan folder: refused before any work or move.
+        (
+            plan_into(&special_file("notes.txt")),
+            "--out".into(),
+            "notes.txt is a file, not a folder",
+        ),
+        (
+            plan_into(&format!("{}/plan", special_file("notes.txt"))),
+            "--out".into(),
+            "notes.txt is a file, not a folder",
+        ),
+        (
+            vec!["demo".into(), "--out".into(), special_file("notes.txt")],
+            "--out".into(),
+            "is a file, not a folder",
+        ),
+        (
+            vec![
+                "track".into(),
+                data("seed000_orchard.json"),
+                "--out".into(),
+                special_file("notes.txt"),
+            ],
+            "--out".into(),
+            "is a file, not a folder",
+        ),
+        // Terrain: placement, no data, undeclared no-data values, sparse clouds.
+        on_terrain("nan_tiepoint.tif", "placement is not finite"),
+        on_terrain("all_nodata.tif", "every cell of the raster is no-data"),
+        on_terrain("huge_height.tif", "3.4028234663852886e38 m is invalid"),
+        on_terrain(
+            "undeclared_nodata.asc",
+            "-32767 m is invalid: terrain lies within -500..=9000 m",
+        ),
+        on_terrain("all_nodata.asc", "every cell of the raster is no-data"),
+        on_terrain("sparse.xyz", "too sparse for a terrain model"),
+        (
+            vec![
+                "terrain".into(),
+                "info".into(),
+                data("test/bad/short_line.xyz"),
+                "--cell".into(),
+                "-1".into(),
+            ],
+            "arguments".into(),
+            "'-1'",
+        ),
+        (
+            plan_farm(&["--terrain", &bad("huge_height.tif")]),
+            bad("huge_height.tif"),
+            "an undeclared no-data value?",
+        ),
+        // Where fields are on Earth, and how they relate.
+        on("polar.geojson", "polar region"),
+        on("wide_polar.geojson", "spans 7.00° of longitude"),
+        on(
+            "overlap.geojson",
+            "fields 'north' and 'south' overlap by 2000.0 m²",
+        ),
+        on(
+            "duplicate_field.geojson",
+            "fields 'A' and 'A again' overlap by 10000.0 m²",
+        ),
+        on("overlap.kml", "overlap by"),
+        on("polar.kml", "polar region"),
+        (
+            plan(&bad("covered_by_obstacle.geojson"), &[]),
+            bad("covered_by_obstacle.geojson"),
+            "field 'wood' has 0.00 m² left to spray",
+        ),
+        (
+            plan(&bad("speck.geojson"), &[]),
+            bad("speck.geojson"),
+            "field 'speck' is 1.00 m², smaller than one swath square",
+        ),
+        (
+            plan(&bad("huge_area.geojson"), &[]),
+            bad("huge_area.geojson"),
+            "the fields cover 14400 ha (limit 10000 ha",
+        ),
+        (
+            plan(&bad("many_swaths.geojson"), &["--swath-width", "0.5"]),
+            bad("many_swaths.geojson"),
+            "about 14142 swaths of 0.5 m (limit 10000",
+        ),
+        (
+            vec!["validate".into(), bad("scenario_overlapping_fields.toml")],
+            bad("overlap.geojson"),
+            "overlap by",
+        ),
+        // GeoJSON structure.
+        on("nan_string_coordinate.geojson", "not a number"),
+        on("null_geometry.geojson", "no field polygons found"),
+        on("empty_collection.geojson", "no field polygons"),
+        on("number_root.geojson", "the top level is not a JSON object"),
+        on("deep_nesting.geojson", "recursion limit"),
+        on(
+            "multipolygon_bad_part.geojson",
+            "boundary intersects itself",
+        ),
+        on("point_only.geojson", "no field polygons"),
+        (
+            plan(&bad("two_launches.geojson"), &[]),
+            bad("two_launches.geojson"),
+            "2 launch points ('one' and 'two')",
+        ),
+        // KML and KMZ.
+        on(
+            "wrong_namespace.kml",
+            "namespace 'http://example.com/not-kml'",
+        ),
+        on("entities.kml", "declares entities"),
+        on("unknown_entity.kml", "unknown entity '&nbsp;'"),
+        on("deep.kml", "nested deeper than 256"),
+        on(
+            "nan_coordinate.kml",
+            "Placemark 0 (A): coordinate is not a finite number",
+        ),
+        on("latitude_out_of_range.kml", "out of range"),
+        on("empty_coordinates.kml", "no field polygons found"),
+        on(
+            "wrong_namespace.kmz",
+            "namespace 'http://example.com/not-kml'",
+        ),
+        on("bomb.kmz", "inflates to 629145600 bytes"),
+        // Vehicles.
+        on_vehicle("vehicle_zero_speed.toml", "spray_speed_mps = 0 is invalid"),
+        on_vehicle(
+            "vehicle_huge_battery.toml",
+            "battery_endurance_s = 1e9 is invalid",
+        ),
+        on_vehicle("vehicle_tiny_tank.toml", "tank_l = 1e-4 is invalid"),
+        on_vehicle(
+            "vehicle_negative_swap.toml",
+            "battery_swap_s = -1 is invalid",
+        ),
+        on_vehicle(
+            "vehicle_huge_swath.toml",
+            "swath_width_m = 1e308 is invalid",
+        ),
+        on_vehicle(
+            "vehicle_fast_climb.toml",
+            "climb_speed_mps = 500 is invalid",
+        ),
+        on_vehicle("vehicle_huge_rate.toml", "application_rate_l_per_ha"),
+        // Scenario files.
+        (
+            vec!["validate".into(), bad("scenario_overlap_type.toml")],
+            bad("scenario_overlap_type.toml"),
+            "line 2, column 17: invalid type: string \"yes\", expected a boolean",
+        ),
+        (
+            vec!["validate".into(), bad("scenario_missing_vehicle.toml")],
+            data("test/bad/nowhere.toml"),
+            "no such file",
+        ),
+        // Planning flags.
+        flag(&["--ants", "0"], "--ants", "must be 1..=100000"),
+        flag(&["--batches", "0"], "--batches", "must be 1..=100000"),
+        flag(
+            &["--sprayer", "servo:99:1500:1000"],
+            "--sprayer",
+            "servo channel 99",
+        ),
+        flag(
+            &["--sprayer", "servo:9:1:1"],
+            "--sprayer",
+            "pulse width 1 µs",
+        ),
+        flag(
+            &["--sprayer", "servo:9:1500:1500"],
+            "--sprayer",
+            "would never switch",
+        ),
+        flag(
+            &["--sprayer", "pump"],
+            "--sprayer",
+            "expected do-sprayer or servo",
+        ),
+        flag(
+            &["--start", "1e9,1e9"],
+            &data("seed001_farm.geojson"),
+            "km from the fields",
+        ),
+        flag(
+            &["--start", "1,2,3"],
+            "--start",
+            "expected two finite numbers",
+        ),
+        flag(
+            &["--start", "nan,1"],
+            "--start",
+            "expected two finite numbers",
+        ),
+        flag(
+            &["--heading", "north"],
+            "--heading",
+            "expected auto, swaths, length",
+        ),
+        flag(
+            &["--heading", "inf"],
+            "--heading",
+            "expected auto, swaths, length",
+        ),
+        flag(&["--weights", "1"], "--weights", "expected two weights"),
+        flag(&["--weights", "a,b"], "arguments", "invalid value 'a'"),
+        flag(&["--weights", "0,0"], "arguments", "not both 0"),
+        flag(
+            &["--headland", "100000"],
+            "arguments",
+            "at most 20 edge passes",
+        ),
+        flag(&["--headland", "-1"], "arguments", "-1"),
+        flag(
+            &["--drape-spacing", "0"],
+            "arguments",
+            "must be a number above 0",
+        ),
+        flag(
+            &["--drape-spacing", "nan"],
+            "arguments",
+            "must be a number above 0",
+        ),
+        flag(
+            &["--boundary-margin", "-1"],
+            "arguments",
+            "must be 0 or more",
+        ),
+        flag(
+            &["--obstacle-margin", "nan"],
+            "arguments",
+            "must be 0 or more",
+        ),
+        flag(
+            &["--boundary-margin", "1e9"],
+            &data("seed001_farm.geojson"),
+            "left to spray",
+        ),
+        flag(
+            &["--sequencer", "nope"],
+            "arguments",
+            "possible values: best, greedy, aco",
+        ),
+        flag(
+            &["--sorties", "bogus"],
+            "arguments",
+            "possible values: exact, gsa",
+        ),
+        flag(
+            &["--altitude", "sea-level"],
+            "--altitude",
+            "need a terrain model",
+        ),
+        flag(&["--altitude", "moon"], "arguments", "moon"),
+        flag(
+            &["--terrain-tolerance", "-1"],
+            "arguments",
+            "must be a finite number above 0",
+        ),
+        flag(&["--origin", "1"], "arguments", "expected LON,LAT"),
+        flag(
+            &["--seed", "abc"],
+            "arguments",
+            "invalid value 'abc' for '--seed",
+        ),
+        flag(&["--seed", "-1"], "arguments", "-1"),
+        flag(
+            &["--swath-width", "201"],
+            "--swath-width",
+            "lies in 0.5..=200",
+        ),
+        flag(
+            &["--swath-width", "inf"],
+            "--swath-width",
+            "must be a finite number above 0",
+        ),
+        flag(
+            &["--spray-height", "-1"],
+            "--spray-height",
+            "must be a finite number, 0 or more",
+        ),
+        flag(
+            &["--safe-height", "nan"],
+            "--safe-height",
+            "must be a finite number, 0 or more",
+        ),
+        flag(
+            &["--spray-height", "501"],
+            "--spray-height",
+            "lies in 0..=500",
+        ),
+        flag(&["--crs", "utm"], "arguments", "utm"),
+        flag(
+            &["--frobnicate"],
+            "arguments",
+            "unexpected argument '--frobnicate'",
+        ),
+        // Track scenarios.
+        (
+            track_file("track_start_is_goal.json"),
+            bad("track_start_is_goal.json"),
+            "start and goal",
+        ),
+        (
+            track_file("track_too_many_threats.json"),
+            bad("track_too_many_threats.json"),
+            "threat cylinders = 1001 is invalid: at most 1000",
+        ),
+        (
+            track_file("track_infinite_goal.json"),
+            bad("track_infinite_goal.json"),
+            "number out of range",
+        ),
+        (
+            track_with(&data("seed000_orchard.json"), &["--evaluations", "0"]),
+            "--evaluations".into(),
+            "--evaluations = 0 is invalid: must be at least 1",
+        ),
+        (
+            track_with(&data("seed000_orchard.json"), &["--vehicle-radius", "nan"]),
+            "--vehicle-radius".into(),
+            "--vehicle-radius = NaN is invalid: must be 0..=1000 metres",
+        ),
+        (
+            track_with(&data("seed000_orchard.json"), &["--min-clearance=-1"]),
+            "--min-clearance".into(),
+            "--min-clearance = -1 is invalid: must be 0..=1000 metres",
+        ),
+        (
+            track_with(&data("seed000_orchard.json"), &["--seed", "x"]),
+            "arguments".into(),
+            "invalid value 'x' for '--seed",
+        ),
+        // Commands and their own arguments.
+        (
+            vec!["fly".into()],
+            "arguments".into(),
+            "unrecognized subcommand 'fly'",
+        ),
+        (vec!["plan".into()], "arguments".into(), "--out"),
+        (
+            vec!["view".into(), bad("empty.geojson")],
+            bad("empty.geojson"),
+            "no plan.html here",
+        ),
+        (
+            vec!["view".into(), data("test"), "--port".into(), "70000".into()],
+            "arguments".into(),
+            "70000",
+        ),
+        (
+            vec!["check".into(), data("test/bad")],
+            data("test/bad"),
+            "report.json: cannot read",
+        ),
+        (
+            vec![
+                "terrain".into(),
+                "sample".into(),
+                data("test/grid_small.asc"),
+                "1".into(),
+            ],
+            "arguments".into(),
+            "2 values required",
+        ),
+        (
+            vec![
+                "terrain".into(),
+                "hillshade".into(),
+                "flat".into(),
+                "--out".into(),
+                "out.png".into(),
+                "--size".into(),
+                "0".into(),
+            ],
+            "--size".into(),
+            "must be 2..16384 pixels",
+        ),
+        (
+            vec![
+                "terrain".into(),
+                "hillshade".into(),
+                "flat".into(),
+                "--out".into(),
+                "out.png".into(),
+                "--size".into(),
+                "100000000".into(),
+            ],
+            "--size".into(),
+            "must be 2..16384 pixels",
+        ),
+        (
+            vec![
+                "grid".into(),
+                data("seed001_farm.geojson"),
+                "--field".into(),
+                "nope".into(),
+                "--out".into(),
+                "out".into(),
+            ],
+            data("seed001_farm.geojson"),
+            "no field named 'nope'",
+        ),
+        (
+            vec![
+                "grid".into(),
+                data("seed001_farm.geojson"),
+                "--field".into(),
+                "S1".into(),
+                "--swath-width".into(),
+                "0.001".into(),
+                "--out".into(),
+                "out".into(),
+            ],
+            data("seed001_farm.geojson"),
+            "path points (grid coverage is for fields up to 40,000 points)",
+        ),
+        (
+            vec!["repro".into(), "seed000-table9".into()],
+            "arguments".into(),
+            "seed000-table9",
+        ),
+    ];
+    cases.extend(vec![
         (fields("empty.geojson"), bad("empty.geojson"), "empty"),
         (
             fields("whitespace.geojson"),
@@ -451,7 +996,8 @@ fn corpus() -> Vec<(Vec<String>, String, &'static str)> {
             bad("empty.geojson"),
             "empty",
         ),
-    ]
+    ]);
+    cases
 }
 
 /// `track` with a tiny budget, writing to `out` (which must never appear).
@@ -460,12 +1006,10 @@ fn track_with(scenario: &str, extra: &[&str]) -> Vec<String> {
     if !extra.contains(&"--runs") {
         arguments.extend(["--runs".to_string(), "1".into()]);
     }
-    arguments.extend([
-        "--evaluations".to_string(),
-        "200".into(),
-        "--out".into(),
-        "out".into(),
-    ]);
+    if !extra.contains(&"--evaluations") {
+        arguments.extend(["--evaluations".to_string(), "200".into()]);
+    }
+    arguments.extend(["--out".to_string(), "out".into()]);
     arguments.extend(extra.iter().map(|s| s.to_string()));
     arguments
 }
@@ -480,44 +1024,125 @@ fn bench_with(extra: &[&str]) -> Vec<String> {
     arguments
 }
 
+/// Makes what the corpus needs and git cannot hold (Unix only: FIFOs and device links).
+fn special_files(folder: &Path) {
+    std::fs::create_dir_all(folder.join("folder.geojson")).unwrap();
+    std::fs::write(folder.join("notes.txt"), "the operator's notes").unwrap();
+    for name in [
+        "zero.geojson",
+        "zero.kml",
+        "zero.kmz",
+        "zero.asc",
+        "zero.tif",
+        "zero.toml",
+        "zero.json",
+    ] {
+        std::os::unix::fs::symlink("/dev/zero", folder.join(name)).unwrap();
+    }
+    for name in ["fifo.geojson", "fifo.xyz", "fifo.toml", "fifo.json"] {
+        let made = Command::new("mkfifo")
+            .arg(folder.join(name))
+            .status()
+            .unwrap();
+        assert!(made.success(), "mkfifo {name}");
+    }
+}
+
+/// Largest resident set of any child process waited for so far, bytes.
+#[allow(unsafe_code)]
+fn children_peak_rss_bytes() -> u64 {
+    // SAFETY: getrusage only writes the struct it is given.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    let result = unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) };
+    assert_eq!(result, 0);
+    u64::try_from(usage.ru_maxrss).unwrap_or(0) * 1024
+}
+
+/// Each case's budget: a hostile input is refused at once, not after work proportional to
+/// its claims. Time is checked loosely here (debug builds on loaded machines); the figures
+/// the issue asks for (≤ 2 s, ≤ 200 MB) come from the release run recorded in
+/// docs/benchmarks.md.
+const CASE_MEMORY_BYTES: u64 = 200 * 1024 * 1024;
+const CASE_SECONDS_LOOSE: f64 = 20.0;
+
 #[test]
 fn every_bad_input_exits_2_with_one_line_naming_the_file_and_writes_nothing() {
     let workdir = std::env::temp_dir().join(format!("agripath-bad-input-{}", std::process::id()));
+    let special = std::env::temp_dir().join(format!("agripath-bad-special-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&special);
     std::fs::create_dir_all(&workdir).unwrap();
-    let cases = corpus();
-    assert!(cases.len() >= 40, "the corpus has {} cases", cases.len());
+    std::fs::create_dir_all(&special).unwrap();
+    special_files(&special);
+    let cases = corpus(&special);
+    assert!(cases.len() >= 150, "the corpus has {} cases", cases.len());
     let mut failures = Vec::new();
+    let (mut slowest, mut slowest_case) = (0.0f64, String::new());
+    let mut peak_before = children_peak_rss_bytes();
+    let mut heaviest_case = String::new();
     for (arguments, file, fragment) in &cases {
+        let started = std::time::Instant::now();
         let output = Command::new(env!("CARGO_BIN_EXE_agripath"))
             .args(arguments)
             .current_dir(&workdir)
+            .stdin(std::process::Stdio::null())
             .output()
             .unwrap();
+        let seconds = started.elapsed().as_secs_f64();
+        let peak = children_peak_rss_bytes();
+        if peak > peak_before {
+            heaviest_case = format!("{arguments:?}");
+            peak_before = peak;
+        }
+        if seconds > slowest {
+            slowest = seconds;
+            slowest_case = format!("{arguments:?}");
+        }
         let stderr = String::from_utf8_lossy(&output.stderr);
         let ok = output.status.code() == Some(2)
             && stderr.lines().count() == 1
             && stderr.starts_with("agripath: error: ")
             && stderr.contains(file.as_str())
             && stderr.contains(fragment)
-            && !stderr.contains("panicked");
+            && !stderr.contains("panicked")
+            && seconds <= CASE_SECONDS_LOOSE;
         if !ok {
             failures.push(format!(
-                "{arguments:?}\n  status {:?}, expected to name {file} and say '{fragment}'\n  stderr: {stderr}",
+                "{arguments:?}\n  status {:?} after {seconds:.1} s, expected to name {file} and say '{fragment}'\n  stderr: {stderr}",
                 output.status.code()
             ));
         }
     }
+    println!(
+        "{} cases; slowest {slowest:.2} s ({slowest_case}); peak RSS {:.0} MB ({heaviest_case})",
+        cases.len(),
+        peak_before as f64 / 1e6
+    );
     let left: Vec<PathBuf> = std::fs::read_dir(&workdir)
         .unwrap()
         .map(|entry| entry.unwrap().path())
         .collect();
+    let special_left: Vec<String> = std::fs::read_dir(&special)
+        .unwrap()
+        .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
     std::fs::remove_dir_all(&workdir).unwrap();
-    assert!(left.is_empty(), "bad input left files behind: {left:?}");
+    std::fs::remove_dir_all(&special).unwrap();
     assert!(
         failures.is_empty(),
         "{} of {} cases failed:\n{}",
         failures.len(),
         cases.len(),
         failures.join("\n")
+    );
+    assert!(left.is_empty(), "bad input left files behind: {left:?}");
+    assert_eq!(
+        special_left.len(),
+        13,
+        "the special files were changed: {special_left:?}"
+    );
+    assert!(
+        peak_before <= CASE_MEMORY_BYTES,
+        "a case took {:.0} MB: {heaviest_case}",
+        peak_before as f64 / 1e6
     );
 }

@@ -11,7 +11,7 @@ use geo::{Area, Coord, MapCoords, MultiPolygon};
 use serde::Serialize;
 
 use crate::error::Fault;
-use crate::model::limits::MAX_SCAN_LINES;
+use crate::model::limits::{MAX_PLAN_AREA_M2, MAX_PLAN_SWATHS, MAX_SCAN_LINES};
 use crate::model::{Farm, Vehicle};
 use crate::terrain::Terrain;
 use drape::{drape, draped_length, path_length_3d, GroundPoint};
@@ -160,6 +160,7 @@ pub fn plan_coverage(
     settings: &CoverageSettings,
 ) -> Result<CoveragePlan, Fault> {
     settings.validate()?;
+    check_work_size(farm, vehicle.swath_width_m)?;
     let fields = farm
         .fields
         .iter()
@@ -171,6 +172,7 @@ pub fn plan_coverage(
                 settings.boundary_margin_m,
                 settings.obstacle_margin_m,
             );
+            check_something_to_spray(field, &sprayable, vehicle.swath_width_m)?;
             cover_field(
                 index,
                 &field.name,
@@ -186,6 +188,58 @@ pub fn plan_coverage(
         swath_width_m: vehicle.swath_width_m,
         fields,
     })
+}
+
+/// Refuses, before any layout, a farm whose coverage would not finish in bounded time and
+/// memory: more sprayable area than [`MAX_PLAN_AREA_M2`], or more swaths (estimated as each
+/// field's diagonal over the swath width, an upper bound) than [`MAX_PLAN_SWATHS`].
+fn check_work_size(farm: &Farm, width_m: f64) -> Result<(), Fault> {
+    use geo::BoundingRect;
+    let area_m2: f64 = farm.fields.iter().map(|field| field.area_m2()).sum();
+    if area_m2 > MAX_PLAN_AREA_M2 {
+        return Err(Fault::TooLarge(format!(
+            "the fields cover {:.0} ha (limit {:.0} ha in one plan): plan the farm in parts",
+            area_m2 / 1e4,
+            MAX_PLAN_AREA_M2 / 1e4
+        )));
+    }
+    let swaths: f64 = farm
+        .fields
+        .iter()
+        .filter_map(|field| field.polygon.bounding_rect())
+        .map(|bounds| bounds.width().hypot(bounds.height()) / width_m)
+        .sum();
+    if swaths > MAX_PLAN_SWATHS as f64 {
+        return Err(Fault::TooLarge(format!(
+            "about {swaths:.0} swaths of {width_m} m (limit {MAX_PLAN_SWATHS} in one plan): use a wider swath or plan the farm in parts"
+        )));
+    }
+    Ok(())
+}
+
+/// Refuses a field with nothing a swath could spray: smaller than one swath square, or
+/// covered by obstacles and margins. A field wholly sprayed with overlapping ones
+/// (`--allow-overlap`) is not refused: it is done.
+fn check_something_to_spray(
+    field: &crate::model::Field,
+    sprayable: &MultiPolygon<f64>,
+    width_m: f64,
+) -> Result<(), Fault> {
+    let least = width_m * width_m;
+    let (field_area, sprayable_area) = (field.area_m2(), sprayable.unsigned_area());
+    if sprayable_area >= least || !field.sprayed_with_others.is_empty() {
+        return Ok(());
+    }
+    let name = &field.name;
+    Err(Fault::Structure(if field_area < least {
+        format!(
+            "field '{name}' is {field_area:.2} m², smaller than one swath square ({width_m} × {width_m} m): nothing to plan"
+        )
+    } else {
+        format!(
+            "field '{name}' has {sprayable_area:.2} m² left to spray after its obstacles and margins (less than one swath square, {least} m²): are the obstacles right?"
+        )
+    }))
 }
 
 /// Lays out one field's sprayable region.
@@ -395,10 +449,10 @@ mod tests {
                         star((40.0 * angle.cos(), 40.0 * angle.sin()), radii, phase)
                     })
                     .collect();
-                Field {
-                    name: "random".into(),
-                    polygon: Polygon::new(star((0.0, 0.0), &shell, phase), holes),
-                }
+                Field::new(
+                    "random",
+                    Polygon::new(star((0.0, 0.0), &shell, phase), holes),
+                )
             })
     }
 

@@ -56,6 +56,10 @@ pub fn sprayable_region(
         let grown = offset(&MultiPolygon::new(vec![polygon.clone()]), obstacle_margin_m);
         region = region.difference(&grown);
     }
+    if !field.sprayed_with_others.is_empty() {
+        // Not grown by the obstacle margin: they are crop, sprayed with the other field.
+        region = region.difference(&MultiPolygon::new(field.sprayed_with_others.clone()));
+    }
     offset(&region, -boundary_margin_m)
 }
 
@@ -102,10 +106,7 @@ mod tests {
 
     #[test]
     fn obstacles_and_margins_shrink_the_sprayable_area() {
-        let field = Field {
-            name: "f".into(),
-            polygon: square(0.0, 100.0),
-        };
+        let field = Field::new("f", square(0.0, 100.0));
         let obstacle = Obstacle {
             name: "o".into(),
             polygon: square(40.0, 60.0),

@@ -164,7 +164,12 @@ pub fn from_utm(easting_m: f64, northing_m: f64, zone: UtmZone) -> (f64, f64) {
 /// A longitude in degrees brought into [−180, 180): zone 60's central meridian plus 4° is
 /// −179°, not 181°.
 pub fn wrap_longitude(lon_deg: f64) -> f64 {
-    (lon_deg + 180.0).rem_euclid(360.0) - 180.0
+    // In range already: returned as it is, not re-rounded through the sum.
+    if (-180.0..180.0).contains(&lon_deg) {
+        lon_deg
+    } else {
+        (lon_deg + 180.0).rem_euclid(360.0) - 180.0
+    }
 }
 
 /// The mean of longitudes on the circle, in [−180, 180): the mean of 179.9° and −179.9° is

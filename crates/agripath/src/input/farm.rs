@@ -141,7 +141,7 @@ pub fn build(
                                 (Some(name), true) => format!("{name}.{}", part + 1),
                                 (None, _) => format!("field {number}"),
                             };
-                            fields.push(Field { name, polygon });
+                            fields.push(Field::new(name, polygon));
                         }
                         "obstacle" => {
                             let number = obstacles.len() + 1;

@@ -58,6 +58,17 @@ pub fn parse_kmz(
     let file = archive
         .by_name(&entry)
         .map_err(|error| fail(format!("cannot open {entry} in the archive: {error}")))?;
+    // The size the archive declares refuses an honest bomb at once; the bounded read below
+    // stops one that lies about it.
+    if file.size() > MAX_INFLATED_KML_BYTES {
+        return Err(InputError::new(
+            path,
+            Fault::TooLarge(format!(
+                "{entry} inflates to {} bytes (limit {MAX_INFLATED_KML_BYTES})",
+                file.size()
+            )),
+        ));
+    }
     let mut text = String::new();
     file.take(MAX_INFLATED_KML_BYTES + 1)
         .read_to_string(&mut text)
@@ -101,6 +112,38 @@ pub fn parse(path: &Path, text: &str, choice: CoordinateChoice) -> Result<Farm, 
 
 type Located = (Option<String>, Fault);
 
+/// KML's namespaces: OGC KML 2.2 and Google's earlier ones (2.0-2.2).
+const KML_NAMESPACES: [&str; 2] = [
+    "http://www.opengis.net/kml/",
+    "http://earth.google.com/kml/",
+];
+
+/// The root `kml` element must be in a KML namespace (or in none, as hand-written files
+/// are): a document of another vocabulary that happens to use the same names is not a field
+/// file.
+fn check_namespace(start: &quick_xml::events::BytesStart) -> Result<(), String> {
+    let prefix = start
+        .name()
+        .prefix()
+        .map(|prefix| String::from_utf8_lossy(prefix.as_ref()).into_owned());
+    let attribute_name = match &prefix {
+        Some(prefix) => format!("xmlns:{prefix}"),
+        None => "xmlns".to_string(),
+    };
+    let namespace = start
+        .try_get_attribute(attribute_name.as_str())
+        .ok()
+        .flatten()
+        .map(|attribute| String::from_utf8_lossy(&attribute.value).into_owned());
+    match namespace {
+        None => Ok(()),
+        Some(namespace) if KML_NAMESPACES.iter().any(|kml| namespace.starts_with(kml)) => Ok(()),
+        Some(namespace) => Err(format!(
+            "the root element is in namespace '{namespace}', not KML's (http://www.opengis.net/kml/2.2)"
+        )),
+    }
+}
+
 /// Elements nested deeper than this are refused (no real KML comes near it).
 const MAX_DEPTH: usize = 256;
 
@@ -136,6 +179,9 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
         match event {
             Event::Start(start) => {
                 let name = local_name(start.local_name().as_ref());
+                if name == "kml" && !saw_kml {
+                    check_namespace(&start).map_err(xml_fault)?;
+                }
                 saw_kml |= name == "kml";
                 match name.as_str() {
                     "Folder" => folders.push(folders.last().copied().unwrap_or(false)),
@@ -185,9 +231,22 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
                         _ => None,
                     },
                 };
-                if let Some(character) = resolved {
-                    text_buffer.push(character);
+                match resolved {
+                    Some(character) => text_buffer.push(character),
+                    None => {
+                        return Err(xml_fault(format!(
+                            "unknown entity '&{};' (at byte {position}): KML field files use only XML's five",
+                            String::from_utf8_lossy(&reference)
+                        )))
+                    }
                 }
+            }
+            // Entity declarations are how "billion laughs" documents grow; no ground station
+            // writes them.
+            Event::DocType(doctype) if String::from_utf8_lossy(&doctype).contains("<!ENTITY") => {
+                return Err(xml_fault(
+                    "the document declares entities (<!ENTITY> in its DOCTYPE): not accepted in a field file".into(),
+                ));
             }
             Event::End(_) => {
                 let name = stack.pop().unwrap_or_default();

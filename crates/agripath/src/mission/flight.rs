@@ -117,6 +117,61 @@ pub enum SprayerCommand {
     },
 }
 
+/// Servo outputs a `DO_SET_SERVO` may name (ArduPilot has 1-32; PX4 and most boards fewer).
+pub const SERVO_CHANNELS: std::ops::RangeInclusive<u16> = 1..=32;
+/// Pulse widths a servo output accepts, microseconds.
+pub const SERVO_PWM_US: std::ops::RangeInclusive<u16> = 800..=2200;
+
+impl std::str::FromStr for SprayerCommand {
+    type Err = String;
+
+    /// `do-sprayer`, or `servo:CHANNEL:ON_PWM:OFF_PWM` with a real channel and pulse widths
+    /// (on and off must differ, or the pump would never switch).
+    fn from_str(spec: &str) -> Result<Self, String> {
+        if spec == "do-sprayer" {
+            return Ok(Self::DoSprayer);
+        }
+        let expected = "expected do-sprayer or servo:CHANNEL:ON_PWM:OFF_PWM".to_string();
+        let parts: Vec<&str> = spec.split(':').collect();
+        let ["servo", channel, on, off] = parts.as_slice() else {
+            return Err(expected);
+        };
+        let (Ok(channel), Ok(on_pwm), Ok(off_pwm)) = (
+            channel.parse::<u16>(),
+            on.parse::<u16>(),
+            off.parse::<u16>(),
+        ) else {
+            return Err(expected);
+        };
+        if !SERVO_CHANNELS.contains(&channel) {
+            return Err(format!(
+                "servo channel {channel} is not one of {}..={}",
+                SERVO_CHANNELS.start(),
+                SERVO_CHANNELS.end()
+            ));
+        }
+        for pwm in [on_pwm, off_pwm] {
+            if !SERVO_PWM_US.contains(&pwm) {
+                return Err(format!(
+                    "pulse width {pwm} µs is outside {}..={} µs",
+                    SERVO_PWM_US.start(),
+                    SERVO_PWM_US.end()
+                ));
+            }
+        }
+        if on_pwm == off_pwm {
+            return Err(
+                "the on and off pulse widths are the same: the pump would never switch".into(),
+            );
+        }
+        Ok(Self::Servo {
+            channel,
+            on_pwm,
+            off_pwm,
+        })
+    }
+}
+
 /// What the mission files are asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MissionSettings {

@@ -47,16 +47,42 @@ impl CoordinateSystem {
     }
 }
 
+/// Shared area below which two fields count as touching, not overlapping, m²: digitising
+/// noise along a common boundary, not a double dose.
+pub const OVERLAP_TOLERANCE_M2: f64 = 1.0;
+
 /// One field to spray: an outer boundary with holes (not sprayed), in planning metres.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Field {
     pub name: String,
     /// Boundary and holes; rings closed, simple, holes strictly inside.
     pub polygon: Polygon<f64>,
+    /// Parts of earlier fields that overlap this one (kept with `--allow-overlap`): sprayed
+    /// with those fields, so left out of this one's sprayable region, and sprayed once.
+    pub sprayed_with_others: Vec<Polygon<f64>>,
 }
 
 impl Field {
+    pub fn new(name: impl Into<String>, polygon: Polygon<f64>) -> Self {
+        Self {
+            name: name.into(),
+            polygon,
+            sprayed_with_others: Vec::new(),
+        }
+    }
+
     /// Area inside the boundary less the holes, m².
+    /// The field less the parts sprayed with earlier, overlapping fields.
+    pub fn own_ground(&self) -> geo::MultiPolygon<f64> {
+        use geo::BooleanOps;
+        let whole = geo::MultiPolygon::new(vec![self.polygon.clone()]);
+        if self.sprayed_with_others.is_empty() {
+            whole
+        } else {
+            whole.difference(&geo::MultiPolygon::new(self.sprayed_with_others.clone()))
+        }
+    }
+
     pub fn area_m2(&self) -> f64 {
         self.polygon.unsigned_area()
     }
@@ -119,6 +145,73 @@ pub struct Farm {
 }
 
 impl Farm {
+    /// Pairs of fields that overlap by more than [`OVERLAP_TOLERANCE_M2`]: (earlier, later,
+    /// shared area m²). Bounding boxes are swept in x first, so a farm of thousands of fields
+    /// is checked in milliseconds.
+    pub fn overlaps(&self) -> Vec<(usize, usize, f64)> {
+        use geo::BooleanOps;
+        let boxes: Vec<Option<Rect<f64>>> = self
+            .fields
+            .iter()
+            .map(|field| field.polygon.bounding_rect())
+            .collect();
+        let mut order: Vec<usize> = (0..self.fields.len())
+            .filter(|&i| boxes[i].is_some())
+            .collect();
+        order.sort_by(|&a, &b| {
+            let (a, b) = (boxes[a].map(|r| r.min().x), boxes[b].map(|r| r.min().x));
+            a.partial_cmp(&b).unwrap_or(std::cmp::Ordering::Equal)
+        });
+        let mut pairs = Vec::new();
+        for (position, &first) in order.iter().enumerate() {
+            let Some(first_box) = boxes[first] else {
+                continue;
+            };
+            for &second in &order[position + 1..] {
+                let Some(second_box) = boxes[second] else {
+                    continue;
+                };
+                if second_box.min().x > first_box.max().x {
+                    break;
+                }
+                if second_box.min().y > first_box.max().y || second_box.max().y < first_box.min().y
+                {
+                    continue;
+                }
+                let shared = self.fields[first]
+                    .polygon
+                    .intersection(&self.fields[second].polygon)
+                    .unsigned_area();
+                if shared > OVERLAP_TOLERANCE_M2 {
+                    pairs.push((first.min(second), first.max(second), shared));
+                }
+            }
+        }
+        pairs.sort_by_key(|&(first, second, _)| (first, second));
+        pairs
+    }
+
+    /// Refuses overlapping fields (a field drawn twice, or two drawn across each other, would
+    /// be sprayed twice where they meet), or with `allow` keeps them and has each shared part
+    /// sprayed once, with the field that comes first in the file.
+    pub fn resolve_overlaps(&mut self, allow: bool) -> Result<(), crate::Fault> {
+        let pairs = self.overlaps();
+        if let (false, Some(&(first, second, shared))) = (allow, pairs.first()) {
+            return Err(crate::Fault::Structure(format!(
+                "fields '{}' and '{}' overlap by {shared:.1} m² ({} overlapping pair(s) in all): \
+                 correct the boundaries, or plan with --allow-overlap to spray each overlap once",
+                self.fields[first].name,
+                self.fields[second].name,
+                pairs.len()
+            )));
+        }
+        for (first, second, _) in pairs {
+            let earlier = self.fields[first].polygon.clone();
+            self.fields[second].sprayed_with_others.push(earlier);
+        }
+        Ok(())
+    }
+
     /// Bounding rectangle of all fields and obstacles, metres.
     pub fn bounds(&self) -> Rect<f64> {
         let mut rects = self

@@ -27,6 +27,12 @@ pub const MAX_GRIDDED_CELL_M: f64 = 100.0;
 pub const TERRAIN_HEIGHT_RANGE_M: (f64, f64) = (-500.0, 9_000.0);
 /// Input file size, bytes, for text formats read whole.
 pub const MAX_TEXT_FILE_BYTES: u64 = 2_000_000_000;
+/// Sprayable area in one plan, m² (10,000 ha: weeks of work for a spraying drone, which
+/// does 10-20 ha an hour). Coverage checks hold rasters of the area in memory.
+pub const MAX_PLAN_AREA_M2: f64 = 1.0e8;
+/// Swaths in one plan, estimated from each field's diagonal before any layout. 4,000 swaths
+/// plan in about 40 s on a laptop core; routing grows faster than linearly.
+pub const MAX_PLAN_SWATHS: usize = 10_000;
 /// Scan lines across one field (its diagonal over the swath width).
 pub const MAX_SCAN_LINES: usize = 200_000;
 

@@ -34,6 +34,9 @@ pub struct ScenarioParts {
     /// Vehicle keys given inline (a scenario's `[vehicle]` table), over the vehicle file.
     pub vehicle_table: Option<toml::Table>,
     pub overrides: VehicleOverrides,
+    /// Keep overlapping fields and spray each overlap once (`--allow-overlap`), instead of
+    /// refusing them.
+    pub allow_overlap: bool,
 }
 
 /// Everything a plan needs, validated.
@@ -57,11 +60,18 @@ struct ScenarioFile {
     vehicle_file: Option<PathBuf>,
     vehicle: Option<toml::Table>,
     terrain: Option<TerrainSpec>,
+    #[serde(default)]
+    allow_overlap: bool,
 }
 
 impl Scenario {
-    /// Reads a scenario TOML file; paths in it are relative to its folder.
-    pub fn from_file(path: &Path, overrides: VehicleOverrides) -> Result<Self, InputError> {
+    /// Reads a scenario TOML file; paths in it are relative to its folder. `allow_overlap`
+    /// (`--allow-overlap`) adds to the file's own `allow_overlap`.
+    pub fn from_file(
+        path: &Path,
+        overrides: VehicleOverrides,
+        allow_overlap: bool,
+    ) -> Result<Self, InputError> {
         let text = read_text(path)?;
         let file: ScenarioFile = toml::from_str(&text)
             .map_err(|error| InputError::new(path, Fault::Toml(one_line(&error, &text))))?;
@@ -89,6 +99,7 @@ impl Scenario {
             vehicle_file: file.vehicle_file.map(|vehicle| base.join(vehicle)),
             vehicle_table: file.vehicle,
             overrides,
+            allow_overlap: allow_overlap || file.allow_overlap,
         })
         .map_err(|error| {
             if error.file.as_os_str().is_empty() {
@@ -109,7 +120,9 @@ impl Scenario {
     }
 
     /// Completes a scenario around a farm already read (the embedded demo farm, for one).
-    pub fn with_farm(farm: Farm, parts: ScenarioParts) -> Result<Self, InputError> {
+    pub fn with_farm(mut farm: Farm, parts: ScenarioParts) -> Result<Self, InputError> {
+        farm.resolve_overlaps(parts.allow_overlap)
+            .map_err(|fault| InputError::new(&farm.source, fault))?;
         let vehicle = load_vehicle(&parts)?;
         let (terrain_spec, terrain_base) = match (&parts.terrain, &farm.embedded_terrain) {
             (Some(spec), _) => (spec.clone(), parts.terrain_base.clone()),
@@ -307,7 +320,7 @@ mod tests {
     fn every_example_scenario_loads() {
         for entry in std::fs::read_dir(data("scenarios")).unwrap() {
             let path = entry.unwrap().path();
-            Scenario::from_file(&path, VehicleOverrides::default())
+            Scenario::from_file(&path, VehicleOverrides::default(), false)
                 .unwrap_or_else(|error| panic!("{error}"));
         }
     }
@@ -320,6 +333,7 @@ mod tests {
                 swath_width_m: Some(6.5),
                 ..VehicleOverrides::default()
             },
+            false,
         )
         .unwrap();
         assert_eq!(scenario.vehicle.swath_width_m, 6.5);

@@ -655,12 +655,18 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             ))
         })
         .collect();
+    // Each field's own ground: with --allow-overlap a shared part belongs to the earlier
+    // field only (the rings are read even-odd, so a part in two fields would count as off).
+    let own_grounds: Vec<geo::MultiPolygon<f64>> = world
+        .farm
+        .fields
+        .iter()
+        .map(|field| field.own_ground())
+        .collect();
     let ground = Rings::new(
-        world
-            .farm
-            .fields
+        own_grounds
             .iter()
-            .flat_map(|field| rings(&field.polygon)),
+            .flat_map(|ground| ground.0.iter().flat_map(rings)),
     );
     let excluded: Vec<Rings> = world
         .farm

@@ -211,12 +211,28 @@ mod tests {
             [0.0, 0.0, 1.0],
             [0.0, 51.0, 3.0],
         ];
-        for cell in [Some(5.0), None] {
-            assert!(matches!(
-                grid_points(&points, cell),
-                Err(Fault::TooLarge(_))
-            ));
-        }
+        assert!(matches!(
+            grid_points(&points, Some(5.0)),
+            Err(Fault::TooLarge(_))
+        ));
+        // The automatic cell (the mean spacing) would be kilometres: too sparse a terrain.
+        assert!(matches!(
+            grid_points(&points, None),
+            Err(Fault::InvalidValue { .. })
+        ));
+    }
+
+    #[test]
+    fn a_cloud_too_sparse_for_terrain_is_refused() {
+        let corners = [
+            [0.0, 0.0, 1.0],
+            [1e6, 0.0, 1.0],
+            [0.0, 1e6, 1.0],
+            [1e6, 1e6, 1.0],
+        ];
+        let refused = grid_points(&corners, None).unwrap_err().to_string();
+        assert!(refused.contains("at most 100 m"), "{refused}");
+        assert!(grid_points(&corners, Some(150.0)).is_err());
     }
 
     use super::*;

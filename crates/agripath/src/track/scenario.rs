@@ -658,6 +658,22 @@ pub(super) fn validated(mut scenario: TrackScenario) -> Result<TrackScenario, Fa
             why: "at most 1000".into(),
         });
     }
+    // Within a metre of each other there is no track to plan (and the length term, which
+    // divides by the start-goal distance, would be meaningless).
+    let apart_m = (0..3)
+        .map(|axis| (scenario.goal[axis] - scenario.start[axis]).powi(2))
+        .sum::<f64>()
+        .sqrt()
+        * scenario.unit_m;
+    if apart_m.is_nan() || apart_m < 1.0 {
+        return Err(Fault::InvalidValue {
+            what: "start and goal".into(),
+            value: format!("{:?} and {:?}", scenario.start, scenario.goal),
+            why: format!(
+                "they are {apart_m:.2} m apart: a track needs two places at least 1 m apart"
+            ),
+        });
+    }
     let radius_units = scenario.limits.vehicle_radius_m / scenario.unit_m;
     let floor = scenario
         .height_band
