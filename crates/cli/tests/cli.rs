@@ -1456,3 +1456,127 @@ fn a_launch_placemark_is_the_supply_point_and_two_are_refused() {
     ));
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+#[test]
+fn overlapping_fields_are_refused_or_with_allow_overlap_sprayed_once() {
+    let folder = scratch("overlap");
+    let fields = data("test/bad/overlap.geojson");
+    let refused = agripath(
+        &[
+            "plan",
+            "--fields",
+            fields.to_str().unwrap(),
+            "--out",
+            "plan",
+        ],
+        &folder,
+    );
+    assert_eq!(refused.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&refused.stderr)
+        .contains("fields 'north' and 'south' overlap by 2000.0 m²"));
+    assert!(!folder.join("plan").exists());
+    stdout(&agripath(
+        &[
+            "plan",
+            "--fields",
+            fields.to_str().unwrap(),
+            "--allow-overlap",
+            "--out",
+            "plan",
+        ],
+        &folder,
+    ));
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("plan/report.json")).unwrap()).unwrap();
+    // North (100 × 100 m) keeps the shared 100 × 20 m; south sprays only its own 100 × 80 m.
+    let areas: Vec<f64> = report["fields"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|field| field["sprayable_area_m2"].as_f64().unwrap())
+        .collect();
+    assert_eq!(areas, vec![10_000.0, 8_000.0]);
+    let preflight = &report["preflight"];
+    assert_eq!(preflight["safe"], true, "{preflight}");
+    // Sprayed once: the two fields' 18,000 m² of own ground, not 20,000 m².
+    let sprayed = preflight["sprayed_area_m2"].as_f64().unwrap();
+    assert!(
+        (17_800.0..18_100.0).contains(&sprayed),
+        "{sprayed} m² sprayed"
+    );
+    std::fs::remove_dir_all(folder).unwrap();
+}
+
+#[test]
+fn a_farm_on_the_antimeridian_is_planned_in_its_own_zone_with_true_spacing() {
+    let folder = scratch("antimeridian");
+    std::fs::write(
+        folder.join("dateline.geojson"),
+        r#"{"type":"FeatureCollection","features":[{"type":"Feature","properties":{"name":"dateline"},
+        "geometry":{"type":"Polygon","coordinates":[[[179.999,-16.0],[-179.999,-16.0],[-179.999,-15.998],[179.999,-15.998],[179.999,-16.0]]]}}]}"#,
+    )
+    .unwrap();
+    stdout(&agripath(
+        &[
+            "plan",
+            "--fields",
+            "dateline.geojson",
+            "--swath-width",
+            "5",
+            "--out",
+            "plan",
+        ],
+        &folder,
+    ));
+    let geojson: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("plan/plan.geojson")).unwrap()).unwrap();
+    let swaths: Vec<Vec<(f64, f64)>> = geojson["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|feature| feature["properties"]["kind"] == "swath")
+        .map(|feature| {
+            feature["geometry"]["coordinates"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|point| (point[0].as_f64().unwrap(), point[1].as_f64().unwrap()))
+                .collect()
+        })
+        .collect();
+    assert!(swaths.len() > 30);
+    for point in swaths.iter().flatten() {
+        assert!((-180.0..=180.0).contains(&point.0), "longitude {}", point.0);
+        assert!(
+            point.0.abs() > 179.998,
+            "longitude {} is not at the dateline",
+            point.0
+        );
+    }
+    // Spacing of neighbouring swaths on the ground, from lon/lat alone: a local metric frame
+    // at 16°S on WGS84 (107,034 m per degree east, 110,659 north), each swath's midpoint
+    // projected on the normal of the first swath, sorted, differenced.
+    let metres = |(lon, lat): (f64, f64)| {
+        let from_dateline = (lon + 360.0) % 360.0 - 180.0;
+        (from_dateline * 107_034.0, (lat + 16.0) * 110_659.0)
+    };
+    let (first, last) = (metres(swaths[0][0]), metres(*swaths[0].last().unwrap()));
+    let length = (last.0 - first.0).hypot(last.1 - first.1);
+    let normal = (-(last.1 - first.1) / length, (last.0 - first.0) / length);
+    let mut offsets: Vec<f64> = swaths
+        .iter()
+        .map(|swath| {
+            let (a, b) = (metres(swath[0]), metres(*swath.last().unwrap()));
+            ((a.0 + b.0) / 2.0) * normal.0 + ((a.1 + b.1) / 2.0) * normal.1
+        })
+        .collect();
+    offsets.sort_by(f64::total_cmp);
+    let mut spacings: Vec<f64> = offsets.windows(2).map(|pair| pair[1] - pair[0]).collect();
+    spacings.sort_by(f64::total_cmp);
+    let median = spacings[spacings.len() / 2];
+    assert!(
+        (median - 5.0).abs() < 0.05,
+        "swaths {median:.3} m apart, not 5"
+    );
+    std::fs::remove_dir_all(folder).unwrap();
+}
