@@ -11,7 +11,8 @@
 use std::time::Instant;
 
 use agripath::coverage::{plan_coverage, CoverageSettings};
-use agripath::pipeline::{plan_mission, PlanSettings};
+use agripath::pipeline::plan_mission;
+use agripath::settings::PlanSettings;
 
 fn time<T>(runs: usize, mut work: impl FnMut() -> T) -> (f64, f64) {
     let mut times: Vec<f64> = (0..runs)

@@ -9,10 +9,11 @@ use std::path::Path;
 use std::time::Instant;
 
 use agripath::mission::flight::AltitudeReference;
-use agripath::model::scenario::VehicleOverrides;
-use agripath::model::Scenario;
-use agripath::pipeline::{plan_mission, preflight_settings, render, PlanSettings};
+use agripath::pipeline::{plan_mission, preflight_settings, render};
 use agripath::preflight::{check, World};
+use agripath::scenario::Scenario;
+use agripath::scenario::VehicleOverrides;
+use agripath::settings::PlanSettings;
 
 fn median(mut times: Vec<f64>) -> f64 {
     times.sort_by(f64::total_cmp);

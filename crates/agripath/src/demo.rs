@@ -5,8 +5,9 @@ use std::path::Path;
 
 use crate::error::InputError;
 use crate::input::{geojson, CoordinateChoice};
-use crate::model::scenario::ScenarioParts;
-use crate::model::{Scenario, Vehicle};
+use crate::model::Vehicle;
+use crate::scenario::Scenario;
+use crate::scenario::ScenarioParts;
 
 /// `data/seed001_farm.geojson`, compiled in.
 pub const FARM_GEOJSON: &str = include_str!("../../../data/seed001_farm.geojson");

@@ -4,74 +4,25 @@
 use std::time::Instant;
 
 use crate::coverage::drape::GroundPoint;
-use crate::coverage::{plan_coverage, CoveragePlan, CoverageSettings};
+use crate::coverage::{plan_coverage, CoveragePlan};
 use crate::error::Fault;
 use crate::mission::csv::waypoints_csv;
-use crate::mission::flight::{build_missions, MissionSettings};
+use crate::mission::flight::build_missions;
 use crate::mission::kml::mission_kml;
 use crate::mission::plan_geojson::plan_geojson;
 use crate::mission::{qgc_plan, wpl};
-use crate::model::{CoordinateSystem, Scenario};
+use crate::model::CoordinateSystem;
 use crate::plot::map_svg::{plan_svg, Underlay};
 use crate::plot::plan_html::{plan_html, Overlay};
 use crate::plot::raster::svg_to_png;
 use crate::report::Report;
-use crate::sequence::{route, Route, Sequencer, TransferModel};
+use crate::scenario::Scenario;
+use crate::sequence::{route, Route, TransferModel};
+use crate::settings::PlanSettings;
 use crate::sortie::route::{RoutePoint, Speeds, WorkRoute};
-use crate::sortie::{plan_sorties, SortieModel, SortiePlan, SortiePlanner};
+use crate::sortie::{plan_sorties, PlannedSorties, SortieModel, SortieSettings};
 use crate::terrain::hillshade::hillshade;
 use crate::terrain::Extent;
-
-/// Everything a coverage plan is asked for.
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
-pub struct PlanSettings {
-    pub coverage: CoverageSettings,
-    pub sequencer: Sequencer,
-    /// Launch point in planning metres; `None`: a `launch` or `supply` marker of the field
-    /// file, else a free start.
-    pub start: Option<[f64; 2]>,
-    pub sorties: SortieSettings,
-    pub mission: MissionSettings,
-}
-
-/// How the route is split into sorties (seed 003): the planner, or `None` for one flight
-/// whatever the tank and battery; `seed` drives GSA.
-#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
-pub struct SortieSettings {
-    pub planner: Option<SortiePlanner>,
-    pub seed: u64,
-}
-
-impl Default for SortieSettings {
-    fn default() -> Self {
-        Self {
-            planner: Some(SortiePlanner::Exact),
-            seed: 1,
-        }
-    }
-}
-
-/// A route split into sorties, with what the map and the mission need to draw it.
-#[derive(Debug, Clone)]
-pub struct PlannedSorties {
-    pub plan: SortiePlan,
-    /// Where the drone refills and swaps batteries: the launch point, else the first point
-    /// of the route.
-    pub supply: RoutePoint,
-    /// The costs and limits the split was made with (return legs, service times).
-    pub model: SortieModel,
-    /// The route as the planner saw it.
-    pub work_route: WorkRoute,
-    /// The index in `work_route` of each visit's first point.
-    pub visit_offsets: Vec<usize>,
-}
-
-impl PlannedSorties {
-    /// The sortie flying work-route point `index` (a return point belongs to the sortie it ends).
-    pub fn sortie_at(&self, index: usize) -> usize {
-        self.plan.breaks.partition_point(|&b| b < index)
-    }
-}
 
 /// The start point of the flight: the given one, else the field file's launch marker (a
 /// point named or typed launch, home, takeoff, supply, base or start), else none (free
@@ -108,14 +59,14 @@ pub fn start_point(
                 .max(x - bounds.max().x)
                 .max(0.0)
                 .hypot((bounds.min().y - y).max(y - bounds.max().y).max(0.0));
-            if away.is_nan() || away > crate::model::limits::MAX_FARM_EXTENT_M {
+            if away.is_nan() || away > crate::limits::MAX_FARM_EXTENT_M {
                 return Err(Fault::InvalidValue {
                     what: "the launch point".into(),
                     value: format!("({x:.1}, {y:.1})"),
                     why: format!(
                         "it is {:.0} km from the fields (at most {:.0} km): is it in the fields' coordinates?",
                         away / 1000.0,
-                        crate::model::limits::MAX_FARM_EXTENT_M / 1000.0
+                        crate::limits::MAX_FARM_EXTENT_M / 1000.0
                     ),
                 });
             }
@@ -204,7 +155,7 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
     let model = TransferModel::new(&scenario.farm, scenario.vehicle.safe_height_m);
     let route = route(&coverage, &model, start, &settings.sequencer);
     let sorties = split_into_sorties(scenario, &route, start, &settings.sorties)?;
-    let runtime_s = crate::report::round(started.elapsed().as_secs_f64(), 1e-4);
+    let runtime_s = crate::numbers::round(started.elapsed().as_secs_f64(), 1e-4);
     let report = Report::new(
         scenario,
         &coverage,
@@ -305,7 +256,7 @@ pub fn preflight_settings(mission: &PlannedMission) -> crate::preflight::Preflig
 pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered, Fault> {
     let vehicle = &scenario.vehicle;
     let settings = &mission.settings.mission;
-    let missions = build_missions(scenario, mission, settings)?;
+    let missions = build_missions(scenario, &mission.route, mission.sorties.as_ref(), settings)?;
     let mut mission_files = Vec::new();
     for sortie in &missions {
         let name = format!("sortie_{:02}", sortie.sortie + 1);

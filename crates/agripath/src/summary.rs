@@ -2,7 +2,7 @@
 
 use serde::Serialize;
 
-use crate::model::Scenario;
+use crate::scenario::Scenario;
 use crate::terrain::Extent;
 
 #[derive(Debug, Clone, Serialize)]

@@ -7,9 +7,10 @@ use std::path::{Path, PathBuf};
 
 use agripath::input::{geojson, CoordinateChoice};
 use agripath::mission::qgc_plan::check_plan;
-use agripath::model::scenario::ScenarioParts;
-use agripath::model::Scenario;
-use agripath::pipeline::{plan_mission, render, PlanSettings};
+use agripath::pipeline::{plan_mission, render};
+use agripath::scenario::Scenario;
+use agripath::scenario::ScenarioParts;
+use agripath::settings::PlanSettings;
 use agripath::terrain::TerrainSpec;
 
 const FARM: &str = r#"{"type": "FeatureCollection", "crs": "local", "features": [

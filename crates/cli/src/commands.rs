@@ -3,9 +3,9 @@
 use std::path::{Path, PathBuf};
 
 use agripath::input::CoordinateChoice;
-use agripath::model::scenario::{ScenarioParts, VehicleOverrides};
-use agripath::model::Scenario;
 use agripath::output::{write_file_atomically, StagedFolder};
+use agripath::scenario::Scenario;
+use agripath::scenario::{ScenarioParts, VehicleOverrides};
 use agripath::summary::ScenarioSummary;
 use agripath::terrain::hillshade::hillshade;
 use agripath::terrain::{Extent, Terrain, TerrainSpec};
@@ -14,10 +14,12 @@ use agripath::{Fault, InputError};
 use agripath::coverage::heading::HeadingObjective;
 use agripath::coverage::CoverageSettings;
 use agripath::mission::flight::{AltitudeReference, MissionSettings, SprayerCommand};
-use agripath::pipeline::{plan_mission, render, PlanSettings, SortieSettings};
+use agripath::pipeline::{plan_mission, render};
 use agripath::sequence::ant_colony::AntColonySettings;
 use agripath::sequence::local_search::LocalSearchSettings;
 use agripath::sequence::Sequencer;
+use agripath::settings::PlanSettings;
+use agripath::sortie::SortieSettings;
 
 use agripath::bench::functions::{FunctionBench, FunctionTable};
 

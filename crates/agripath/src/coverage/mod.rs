@@ -11,7 +11,7 @@ use geo::{Area, Coord, MapCoords, MultiPolygon};
 use serde::Serialize;
 
 use crate::error::Fault;
-use crate::model::limits::{MAX_PLAN_AREA_M2, MAX_PLAN_SWATHS, MAX_SCAN_LINES};
+use crate::limits::{MAX_PLAN_AREA_M2, MAX_PLAN_SWATHS, MAX_SCAN_LINES};
 use crate::model::{Farm, Vehicle};
 use crate::terrain::Terrain;
 use drape::{drape, draped_length, path_length_3d, GroundPoint};

@@ -498,8 +498,8 @@ pub fn render(
         .collect();
     features.push(json!({"type": "Feature",
         "properties": {"kind": "grid_route", "method": method, "seq": 0, "sortie": 0, "turns": measure.turns,
-                       "u_turns": measure.u_turns, "non_spray_m": crate::report::round(measure.non_spray_m, 1e-4),
-                       "length_m": crate::report::round(measure.length_m, 1e-4)},
+                       "u_turns": measure.u_turns, "non_spray_m": crate::numbers::round(measure.non_spray_m, 1e-4),
+                       "length_m": crate::numbers::round(measure.length_m, 1e-4)},
         "geometry": {"type": "LineString", "coordinates": line}}));
     for (seq, &visit) in route.visits.iter().enumerate() {
         let c = grid.centre(visit);
@@ -515,11 +515,11 @@ pub fn render(
     let report = json!({
         "field": name, "method": method, "swath_width_m": grid.cell_m,
         "points": grid.points.len(), "turns": measure.turns, "u_turns": measure.u_turns,
-        "non_spray_m": crate::report::round(measure.non_spray_m, 1e-4),
-        "length_m": crate::report::round(measure.length_m, 1e-4),
+        "non_spray_m": crate::numbers::round(measure.non_spray_m, 1e-4),
+        "length_m": crate::numbers::round(measure.length_m, 1e-4),
         "single_direction_turns": single_direction_turns(grid),
         "axis_lower_bound_turns": axis_lower_bound(grid),
-        "runtime_s": crate::report::round(runtime_s, 1e-4),
+        "runtime_s": crate::numbers::round(runtime_s, 1e-4),
     });
     let title = format!(
         "{name} {method}: {} turns, {} U-turns, {:.0} m non-spray",

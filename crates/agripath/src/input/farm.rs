@@ -8,7 +8,7 @@ use geo::{Coord, LineString, Polygon};
 use crate::error::{Fault, InputError};
 use crate::geometry::validate::{clean_ring, validate_polygon};
 use crate::geometry::{mean_longitude, to_utm, wrap_longitude, UtmZone};
-use crate::model::limits::{
+use crate::limits::{
     MAX_FARM_EXTENT_M, MAX_FARM_LONGITUDE_SPAN_DEG, MAX_LOCAL_COORDINATE_M, MAX_POLYGONS,
     MAX_VERTICES,
 };

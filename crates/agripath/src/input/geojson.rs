@@ -9,8 +9,9 @@ use std::path::Path;
 use serde_json::{Map, Value};
 
 use super::farm::{build, RawFeature, RawGeometry, RawRings};
-use super::{read_text, CoordinateChoice};
+use super::CoordinateChoice;
 use crate::error::{Fault, InputError};
+use crate::files::read_text;
 use crate::model::Farm;
 use crate::terrain::TerrainSpec;
 

@@ -13,8 +13,9 @@ use quick_xml::events::Event;
 use quick_xml::Reader;
 
 use super::farm::{build, RawFeature, RawGeometry, RawRings};
-use super::{read_bytes, read_text, CoordinateChoice};
+use super::CoordinateChoice;
 use crate::error::{Fault, InputError};
+use crate::files::{read_bytes, read_text};
 use crate::model::Farm;
 
 /// Biggest KML document inflated from a KMZ, bytes (a zip bomb stops here).

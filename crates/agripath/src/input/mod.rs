@@ -11,7 +11,7 @@ pub mod kml;
 use std::path::Path;
 
 use crate::error::{Fault, InputError};
-use crate::model::limits::MAX_TEXT_FILE_BYTES;
+use crate::files::extension_of;
 use crate::model::Farm;
 
 pub use farm::{RawFeature, RawGeometry};
@@ -26,14 +26,6 @@ pub enum CoordinateChoice {
     Local,
 }
 
-/// A file's extension in lower case ("" when it has none): what chooses its reader.
-pub fn extension_of(path: &Path) -> String {
-    path.extension()
-        .and_then(|extension| extension.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase()
-}
-
 /// Reads a field file of any supported kind, chosen by its extension.
 pub fn read_farm(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputError> {
     let extension = extension_of(path);
@@ -46,98 +38,4 @@ pub fn read_farm(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputErr
             Fault::UnknownExtension(other.to_string()),
         )),
     }
-}
-
-/// Reads a whole file as bytes, with the size limit and a clear message on failure.
-pub fn read_bytes(path: &Path) -> Result<Vec<u8>, InputError> {
-    read_bytes_within(path, MAX_TEXT_FILE_BYTES)
-}
-
-/// Reads a whole regular file of at most `budget` bytes. The budget bounds the read itself,
-/// not the size the file system reports: a link to `/dev/zero` or a file that grows while
-/// read stops at `budget + 1` bytes. FIFOs, devices and sockets are refused before they are
-/// opened (opening a FIFO with no writer blocks for ever).
-pub fn read_bytes_within(path: &Path, budget: u64) -> Result<Vec<u8>, InputError> {
-    use std::io::Read;
-    let metadata =
-        std::fs::metadata(path).map_err(|error| InputError::new(path, unreadable(&error)))?;
-    if metadata.is_dir() {
-        return Err(InputError::new(
-            path,
-            Fault::Unreadable("it is a folder, not a file".into()),
-        ));
-    }
-    if !metadata.is_file() {
-        return Err(InputError::new(
-            path,
-            Fault::Unreadable(format!(
-                "it is {}, not a regular file",
-                special_kind(&metadata)
-            )),
-        ));
-    }
-    let too_large = |size: String| {
-        InputError::new(
-            path,
-            Fault::TooLarge(format!("{size} bytes (limit {budget})")),
-        )
-    };
-    if metadata.len() > budget {
-        return Err(too_large(metadata.len().to_string()));
-    }
-    let file =
-        std::fs::File::open(path).map_err(|error| InputError::new(path, unreadable(&error)))?;
-    let mut bytes = Vec::with_capacity(metadata.len() as usize);
-    file.take(budget + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|error| InputError::new(path, unreadable(&error)))?;
-    if bytes.len() as u64 > budget {
-        return Err(too_large(format!("more than {budget}")));
-    }
-    if bytes.iter().all(u8::is_ascii_whitespace) {
-        return Err(InputError::new(path, Fault::Empty));
-    }
-    Ok(bytes)
-}
-
-/// What a file that is neither a folder nor a regular file is, for the message.
-fn special_kind(metadata: &std::fs::Metadata) -> &'static str {
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::FileTypeExt;
-        let kind = metadata.file_type();
-        if kind.is_fifo() {
-            return "a FIFO (named pipe)";
-        }
-        if kind.is_char_device() || kind.is_block_device() {
-            return "a device";
-        }
-        if kind.is_socket() {
-            return "a socket";
-        }
-    }
-    let _ = metadata;
-    "a special file"
-}
-
-/// Reads a whole text file (UTF-8).
-pub fn read_text(path: &Path) -> Result<String, InputError> {
-    let bytes = read_bytes(path)?;
-    String::from_utf8(bytes).map_err(|error| {
-        InputError::new(
-            path,
-            Fault::Unreadable(format!(
-                "not UTF-8 text (invalid byte at offset {})",
-                error.utf8_error().valid_up_to()
-            )),
-        )
-    })
-}
-
-pub(crate) fn unreadable(error: &std::io::Error) -> Fault {
-    Fault::Unreadable(match error.kind() {
-        std::io::ErrorKind::NotFound => "no such file".to_string(),
-        std::io::ErrorKind::PermissionDenied => "permission denied".to_string(),
-        _ => error.to_string(),
-    })
 }

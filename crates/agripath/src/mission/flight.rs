@@ -18,9 +18,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::Fault;
 use crate::geometry::{from_utm, to_utm, UtmZone};
-use crate::model::{CoordinateSystem, Scenario};
-use crate::pipeline::PlannedMission;
+use crate::model::CoordinateSystem;
+use crate::scenario::Scenario;
+use crate::sequence::Route;
 use crate::sortie::route::{RoutePoint, Segment};
+use crate::sortie::PlannedSorties;
 use crate::terrain::Terrain;
 
 /// How altitudes are written (decision 0012).
@@ -473,7 +475,8 @@ fn transit(
 /// and round the obstacles, which the geofence excludes at every altitude.
 pub fn build_missions(
     scenario: &Scenario,
-    mission: &PlannedMission,
+    route: &Route,
+    sorties: Option<&PlannedSorties>,
     settings: &MissionSettings,
 ) -> Result<Vec<SortieMission>, Fault> {
     let vehicle = &scenario.vehicle;
@@ -483,7 +486,7 @@ pub fn build_missions(
         turn_mps: vehicle.turn_speed_mps,
         transit_mps: vehicle.transit_speed_mps,
     };
-    let (work_route, supply, bounds) = match &mission.sorties {
+    let (work_route, supply, bounds) = match sorties {
         Some(split) => {
             let mut bounds: Vec<usize> = vec![0];
             bounds.extend(split.plan.breaks.iter().copied());
@@ -491,10 +494,9 @@ pub fn build_missions(
             (split.work_route.clone(), split.supply, bounds)
         }
         None => {
-            let route = crate::sortie::route::WorkRoute::from_route(&mission.route, speeds);
-            let supply = mission
-                .route
-                .launch
+            let launch = route.launch;
+            let route = crate::sortie::route::WorkRoute::from_route(route, speeds);
+            let supply = launch
                 .map(|leg| RoutePoint {
                     x: leg.from.x,
                     y: leg.from.y,

@@ -12,8 +12,8 @@ use serde_json::{json, Map, Value};
 use crate::coverage::drape::GroundPoint;
 use crate::coverage::CoveragePlan;
 use crate::model::{CoordinateSystem, Farm};
-use crate::pipeline::PlannedSorties;
 use crate::sequence::{Pass, Route};
+use crate::sortie::PlannedSorties;
 
 /// Decimal places kept: 1e-9° (0.1 mm) for lon/lat, 0.1 mm for metres, 1 mm in height.
 fn position(system: CoordinateSystem, x: f64, y: f64, z: Option<f64>) -> Value {
@@ -78,7 +78,7 @@ pub fn plan_geojson(
         if let Some(coverage) = plan.fields.get(index) {
             properties.insert(
                 "heading_deg".into(),
-                json!(crate::report::round(coverage.heading.heading_deg, 1e-9)),
+                json!(crate::numbers::round(coverage.heading.heading_deg, 1e-9)),
             );
         }
         features.push(feature(
@@ -113,7 +113,7 @@ pub fn plan_geojson(
             properties.insert("climbs".into(), json!(transfer.climbs));
             properties.insert(
                 "length_m".into(),
-                json!(crate::report::round(transfer.cost_m, 1e-4)),
+                json!(crate::numbers::round(transfer.cost_m, 1e-4)),
             );
             let lift = |point: GroundPoint, extra: f64| GroundPoint {
                 ground_m: point.ground_m + extra,
@@ -146,7 +146,7 @@ pub fn plan_geojson(
                 properties.insert("line".into(), json!(swath.line));
                 properties.insert(
                     "length_m".into(),
-                    json!(crate::report::round(swath.length_m, 1e-4)),
+                    json!(crate::numbers::round(swath.length_m, 1e-4)),
                 );
             }
             Pass::Edge { field, edge } => {
@@ -156,7 +156,7 @@ pub fn plan_geojson(
                 properties.insert("pass".into(), json!(edge.pass));
                 properties.insert(
                     "length_m".into(),
-                    json!(crate::report::round(edge.length_m, 1e-4)),
+                    json!(crate::numbers::round(edge.length_m, 1e-4)),
                 );
             }
         }
@@ -194,7 +194,7 @@ pub fn plan_geojson(
                 let one_way = split.model.leg_m(&point);
                 properties.insert(
                     "length_m".into(),
-                    json!(crate::report::round(2.0 * one_way, 1e-4)),
+                    json!(crate::numbers::round(2.0 * one_way, 1e-4)),
                 );
                 let at_height = |x: f64, y: f64, z: f64| position(system, x, y, Some(z));
                 let cruise =

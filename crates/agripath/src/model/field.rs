@@ -4,8 +4,8 @@ use std::path::PathBuf;
 
 use geo::{Area, BoundingRect, Coord, Polygon, Rect};
 
+use super::terrain_spec::TerrainSpec;
 use crate::geometry::{from_utm, UtmZone};
-use crate::terrain::TerrainSpec;
 
 /// The frame the plan is computed in, and the one outputs go back to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

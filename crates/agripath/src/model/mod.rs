@@ -1,10 +1,9 @@
-//! The validated inputs of a plan: the farm (fields, obstacles), the vehicle, the scenario.
+//! The validated inputs of a plan as data: the farm (fields, obstacles), the vehicle, the
+//! terrain as described. Reading them is `input`'s and `terrain`'s; `scenario` puts them together.
 
 pub mod field;
-pub mod limits;
-pub mod scenario;
+pub mod terrain_spec;
 pub mod vehicle;
 
 pub use field::{CoordinateSystem, Farm, Field, Marker, Obstacle};
-pub use scenario::Scenario;
 pub use vehicle::Vehicle;

@@ -6,7 +6,7 @@ use std::path::Path;
 use serde::Deserialize;
 
 use crate::error::{Fault, InputError};
-use crate::input::read_text;
+use crate::files::read_text;
 
 /// A spraying or survey drone. `Default` is the seed 001 sprayer (5 m swath, h = 18 m) with
 /// seed 003's speeds, tank and battery.
@@ -119,7 +119,7 @@ impl Vehicle {
                 }
             }
         }
-        for (what, low, high) in super::limits::VEHICLE_RANGES {
+        for (what, low, high) in crate::limits::VEHICLE_RANGES {
             let value = match what {
                 "swath_width_m" => Some(self.swath_width_m),
                 "spray_height_m" => Some(self.spray_height_m),
@@ -147,7 +147,7 @@ impl Vehicle {
             }
         }
         if let Some(rate) = self.application_rate_l_per_ha {
-            if rate > super::limits::MAX_APPLICATION_RATE_L_PER_HA {
+            if rate > crate::limits::MAX_APPLICATION_RATE_L_PER_HA {
                 return Err(invalid(
                     "application_rate_l_per_ha",
                     rate,

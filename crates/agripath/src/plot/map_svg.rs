@@ -12,8 +12,8 @@ use super::line_chart::escape;
 use crate::coverage::drape::GroundPoint;
 use crate::coverage::CoveragePlan;
 use crate::model::Farm;
-use crate::pipeline::PlannedSorties;
 use crate::sequence::{Pass, Route};
+use crate::sortie::PlannedSorties;
 
 /// Sortie colours (Okabe and Ito, then darker tones), repeating after ten.
 pub const SORTIE_COLOURS: [&str; 10] = [

@@ -4,4 +4,3 @@ pub mod line_chart;
 pub mod map_svg;
 pub mod plan_html;
 pub mod raster;
-pub mod track_svg;

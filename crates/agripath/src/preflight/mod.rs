@@ -737,7 +737,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
     ] {
         tally.finish(&mut checks, &mut failures);
     }
-    let round = |value: f64| crate::report::round(value, 1e-4);
+    let round = |value: f64| crate::numbers::round(value, 1e-4);
     for check in &mut checks {
         check.figure = round(check.figure);
     }
@@ -750,7 +750,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             .into_iter()
             .map(|field| FieldFlown {
                 sprayable_area_m2: round(field.sprayable_area_m2),
-                covered_fraction: crate::report::round(field.covered_fraction, 1e-6),
+                covered_fraction: crate::numbers::round(field.covered_fraction, 1e-6),
                 missed_m2: round(field.missed_m2),
                 double_sprayed_m2: round(field.double_sprayed_m2),
                 ..field
@@ -758,14 +758,14 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             .collect(),
         sprayed_area_m2: round(measured.sprayed_m2),
         sprayed_outside_m2: round(measured.outside_m2),
-        sprayed_outside_fraction: crate::report::round(outside_fraction, 1e-6),
+        sprayed_outside_fraction: crate::numbers::round(outside_fraction, 1e-6),
         sorties: sorties
             .into_iter()
             .map(|sortie| SortieFlown {
                 spray_m: round(sortie.spray_m),
-                tank_fraction: sortie.tank_fraction.map(|f| crate::report::round(f, 1e-6)),
+                tank_fraction: sortie.tank_fraction.map(|f| crate::numbers::round(f, 1e-6)),
                 flight_time_s: round(sortie.flight_time_s),
-                battery_fraction: crate::report::round(sortie.battery_fraction, 1e-6),
+                battery_fraction: crate::numbers::round(sortie.battery_fraction, 1e-6),
                 worst_spray_height_error_m: round(sortie.worst_spray_height_error_m),
                 least_transit_margin_m: sortie.least_transit_margin_m.map(round),
                 ..sortie
@@ -843,7 +843,7 @@ pub fn check_folder(world: &World, folder: &std::path::Path) -> Result<Verdict, 
         let name = entry.file_name().to_string_lossy().into_owned();
         if name.starts_with("sortie_") && (name.ends_with(".plan") || name.ends_with(".waypoints"))
         {
-            let bytes = crate::input::read_bytes(&entry.path())
+            let bytes = crate::files::read_bytes(&entry.path())
                 .map_err(|error| Fault::Structure(error.to_string()))?;
             files.push((name, bytes));
         }
@@ -859,9 +859,10 @@ mod tests {
 
     use super::*;
     use crate::input::{geojson, CoordinateChoice};
-    use crate::model::scenario::ScenarioParts;
-    use crate::model::Scenario;
-    use crate::pipeline::{plan_mission, preflight_settings, render, PlanSettings};
+    use crate::pipeline::{plan_mission, preflight_settings, render};
+    use crate::scenario::Scenario;
+    use crate::scenario::ScenarioParts;
+    use crate::settings::PlanSettings;
 
     /// A 120 m × 60 m field with a 20 m square hole, lon/lat near Harbin, flat ground.
     const FARM: &str = r#"{"type":"FeatureCollection","features":[

@@ -4,10 +4,13 @@ use serde::Serialize;
 
 use crate::coverage::heading::HeadingObjective;
 use crate::coverage::{CoveragePlan, CoverageSettings};
-use crate::model::{Scenario, Vehicle};
-use crate::pipeline::{PlanSettings, PlannedSorties};
+use crate::model::Vehicle;
+use crate::numbers::round;
+use crate::scenario::Scenario;
 use crate::sequence::ant_colony::AntColonySettings;
 use crate::sequence::{Route, Sequencer};
+use crate::settings::PlanSettings;
+use crate::sortie::PlannedSorties;
 use crate::sortie::SortiePlanner;
 
 #[derive(Debug, Clone, Serialize)]
@@ -340,12 +343,4 @@ impl Report {
         }
         text
     }
-}
-
-/// Rounds to a step so that reports are stable and readable (no 17-digit noise).
-pub fn round(value: f64, step: f64) -> f64 {
-    let rounded = (value / step).round() * step;
-    // Strip the binary noise the multiplication leaves by printing through a short decimal.
-    let decimals = (-step.log10()).ceil().max(0.0) as usize;
-    format!("{rounded:.decimals$}").parse().unwrap_or(rounded)
 }

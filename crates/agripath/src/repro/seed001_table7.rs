@@ -8,7 +8,7 @@ use serde_json::Value;
 
 use crate::coverage::{plan_coverage, CoverageSettings};
 use crate::error::Fault;
-use crate::model::Scenario;
+use crate::scenario::Scenario;
 
 #[derive(Debug, Clone, Serialize)]
 pub struct Row {

@@ -13,7 +13,7 @@ use crate::coverage::heading::HeadingObjective;
 use crate::coverage::region::sprayable_region;
 use crate::coverage::{cover_field, CoveragePlan, CoverageSettings};
 use crate::error::Fault;
-use crate::model::Scenario;
+use crate::scenario::Scenario;
 use crate::sequence::ant_colony::AntColonySettings;
 use crate::sequence::local_search::LocalSearchSettings;
 use crate::sequence::{route, Sequencer, TransferModel};

@@ -244,7 +244,7 @@ mod tests {
     use crate::coverage::{plan_coverage, CoverageSettings};
     use proptest::prelude::*;
 
-    fn demo_plan(headland: usize) -> (crate::model::Scenario, CoveragePlan) {
+    fn demo_plan(headland: usize) -> (crate::scenario::Scenario, CoveragePlan) {
         let scenario = crate::demo::scenario().unwrap();
         let settings = CoverageSettings {
             headland_passes: headland,

@@ -312,6 +312,45 @@ fn unreachable_points(route: &WorkRoute, model: &SortieModel) -> Result<(), Faul
     Ok(())
 }
 
+/// How the route is split into sorties (seed 003): the planner, or `None` for one flight
+/// whatever the tank and battery; `seed` drives GSA.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct SortieSettings {
+    pub planner: Option<SortiePlanner>,
+    pub seed: u64,
+}
+
+impl Default for SortieSettings {
+    fn default() -> Self {
+        Self {
+            planner: Some(SortiePlanner::Exact),
+            seed: 1,
+        }
+    }
+}
+
+/// A route split into sorties, with what the map and the mission need to draw it.
+#[derive(Debug, Clone)]
+pub struct PlannedSorties {
+    pub plan: SortiePlan,
+    /// Where the drone refills and swaps batteries: the launch point, else the first point
+    /// of the route.
+    pub supply: RoutePoint,
+    /// The costs and limits the split was made with (return legs, service times).
+    pub model: SortieModel,
+    /// The route as the planner saw it.
+    pub work_route: WorkRoute,
+    /// The index in `work_route` of each visit's first point.
+    pub visit_offsets: Vec<usize>,
+}
+
+impl PlannedSorties {
+    /// The sortie flying work-route point `index` (a return point belongs to the sortie it ends).
+    pub fn sortie_at(&self, index: usize) -> usize {
+        self.plan.breaks.partition_point(|&b| b < index)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use proptest::prelude::*;

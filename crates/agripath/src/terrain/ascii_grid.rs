@@ -6,8 +6,8 @@ use std::path::Path;
 
 use super::Grid;
 use crate::error::{Fault, InputError};
-use crate::input::read_text;
-use crate::model::limits::MAX_TERRAIN_CELLS;
+use crate::files::read_text;
+use crate::limits::MAX_TERRAIN_CELLS;
 
 pub fn read(path: &Path) -> Result<Grid, InputError> {
     let text = read_text(path)?;

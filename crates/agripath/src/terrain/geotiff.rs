@@ -15,8 +15,8 @@ use tiff::ColorType;
 
 use super::Grid;
 use crate::error::{Fault, InputError};
-use crate::input::read_bytes;
-use crate::model::limits::MAX_TERRAIN_CELLS;
+use crate::files::read_bytes;
+use crate::limits::MAX_TERRAIN_CELLS;
 
 const GT_MODEL_TYPE: u16 = 1024;
 const GT_RASTER_TYPE: u16 = 1025;

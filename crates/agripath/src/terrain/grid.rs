@@ -7,7 +7,7 @@
 
 use super::{Extent, Terrain};
 use crate::error::{Fault, TerrainError};
-use crate::model::limits::TERRAIN_HEIGHT_RANGE_M;
+use crate::limits::TERRAIN_HEIGHT_RANGE_M;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Grid {

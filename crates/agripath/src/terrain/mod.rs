@@ -14,13 +14,12 @@ pub mod hillshade;
 pub mod plateaus;
 pub mod xyz;
 
-use std::path::{Path, PathBuf};
-
-use serde::Deserialize;
+use std::path::Path;
 
 use crate::error::{Fault, InputError, TerrainError};
 use crate::model::CoordinateSystem;
 
+pub use crate::model::terrain_spec::TerrainSpec;
 pub use composite::Composite;
 pub use flat::Flat;
 pub use grid::Grid;
@@ -81,91 +80,7 @@ pub trait Terrain: Send + Sync {
     }
 }
 
-/// Which terrain to use, as written in a scenario file, a field file's `terrain` member or
-/// a `--terrain` argument. [`TerrainSpec::load`] turns it into a [`Terrain`].
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub enum TerrainSpec {
-    /// Level ground at `height_m`.
-    Flat {
-        #[serde(default)]
-        height_m: f64,
-    },
-    /// The composite terrain of seeds 000/002 (`preset` = `seed000` or `seed002`).
-    Composite {
-        #[serde(default = "default_preset")]
-        preset: String,
-    },
-    /// Level ground with circular plateaus (seed 001's S4).
-    #[serde(alias = "flat_with_plateaus")]
-    Plateaus {
-        #[serde(default)]
-        base_m: f64,
-        plateaus: Vec<Plateau>,
-        /// Spacing of the paper's DEM (informational; the model is analytic).
-        #[serde(default)]
-        dem_spacing_m: Option<f64>,
-        #[serde(default)]
-        note: Option<String>,
-    },
-    /// A DEM file: GeoTIFF (.tif/.tiff), ESRI ASCII grid (.asc) or XYZ points (.xyz/.csv).
-    File {
-        path: PathBuf,
-        /// Cell size for gridding an XYZ point cloud, metres (estimated when absent).
-        #[serde(default)]
-        cell_m: Option<f64>,
-    },
-}
-
-fn default_preset() -> String {
-    "seed000".to_string()
-}
-
 impl TerrainSpec {
-    /// Reads a `--terrain` argument: a DEM path, or `flat`, `flat:HEIGHT`, `seed000`, `seed002`.
-    pub fn from_argument(argument: &str) -> Result<Self, InputError> {
-        let fail = |why: &str| {
-            InputError::new(
-                "--terrain",
-                Fault::InvalidValue {
-                    what: "--terrain".into(),
-                    value: argument.into(),
-                    why: why.into(),
-                },
-            )
-        };
-        match argument {
-            "flat" => Ok(Self::Flat { height_m: 0.0 }),
-            "seed000" | "seed002" => Ok(Self::Composite {
-                preset: argument.to_string(),
-            }),
-            _ if argument.starts_with("flat:") => {
-                let height_m: f64 = argument[5..]
-                    .parse()
-                    .map_err(|_| fail("flat:HEIGHT needs a number of metres"))?;
-                if !height_m.is_finite() {
-                    return Err(fail("the height must be finite"));
-                }
-                Ok(Self::Flat { height_m })
-            }
-            _ => Ok(Self::File {
-                path: PathBuf::from(argument),
-                cell_m: None,
-            }),
-        }
-    }
-
-    /// The `terrain` member of a field file. A member of kind `note` only describes the
-    /// ground in words (seed 003's strip): there is no model in it, so `None`.
-    pub fn from_embedded(value: &serde_json::Value) -> Result<Option<Self>, Fault> {
-        if value.get("kind").and_then(|kind| kind.as_str()) == Some("note") {
-            return Ok(None);
-        }
-        serde_json::from_value(value.clone())
-            .map(Some)
-            .map_err(|error| Fault::Structure(error.to_string()))
-    }
-
     /// Loads the terrain. Relative paths are taken from `base`; `frame` is the planning frame
     /// of the farm, so that a DEM in another projection is sampled where the fields are.
     pub fn load(
@@ -212,7 +127,7 @@ impl TerrainSpec {
 
 /// Reads a DEM file into a grid, choosing the reader by extension.
 pub fn load_grid(path: &Path, cell_m: Option<f64>) -> Result<Grid, InputError> {
-    let extension = crate::input::extension_of(path);
+    let extension = crate::files::extension_of(path);
     let grid = match extension.as_str() {
         "tif" | "tiff" => geotiff::read(path),
         "asc" => ascii_grid::read(path),

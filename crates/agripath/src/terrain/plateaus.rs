@@ -2,24 +2,10 @@
 //! is sprayed over. The edge rises linearly over `edge_ramp_m` (our choice; the paper's DEM
 //! has 20 m spacing and does not say how steep the edge is).
 
-use serde::Deserialize;
-
 use super::{Extent, Terrain};
 use crate::error::{Fault, TerrainError};
 
-#[derive(Debug, Clone, PartialEq, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Plateau {
-    /// Centre [x, y], metres.
-    pub center: [f64; 2],
-    /// Radius of the flat top, metres.
-    pub radius_m: f64,
-    /// Height of the top above the base, metres.
-    pub height_m: f64,
-    /// Width of the sloping rim outside the top, metres.
-    #[serde(default)]
-    pub edge_ramp_m: f64,
-}
+pub use crate::model::terrain_spec::Plateau;
 
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plateaus {

@@ -7,8 +7,8 @@ use std::path::Path;
 
 use super::Grid;
 use crate::error::{Fault, InputError};
-use crate::input::read_text;
-use crate::model::limits::{MAX_GRIDDED_CELLS, MAX_GRIDDED_CELL_M, MAX_POINT_CLOUD_POINTS};
+use crate::files::read_text;
+use crate::limits::{MAX_GRIDDED_CELLS, MAX_GRIDDED_CELL_M, MAX_POINT_CLOUD_POINTS};
 
 /// Cells searched around a cell centre for its nearest point.
 const SEARCH_RADIUS_CELLS: i64 = 3;

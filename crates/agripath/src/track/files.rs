@@ -5,12 +5,12 @@ use std::fmt::Write;
 
 use serde_json::{json, Value};
 
+use super::picture as track_svg;
 use super::planner::{statistics, Planner, TrackRun};
 use super::scenario::TrackScenario;
 use crate::mission::flight::{Action, Item, MissionSettings, SortieMission};
 use crate::mission::wpl;
 use crate::plot::line_chart::{self, Chart, Series};
-use crate::plot::track_svg;
 
 /// The runs of one planner.
 pub struct PlannerRuns {

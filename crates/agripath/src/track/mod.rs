@@ -14,6 +14,7 @@ pub mod height_map;
 pub mod improved_genetic;
 pub mod lattice;
 pub mod operator;
+pub mod picture;
 pub mod planner;
 pub mod problem;
 pub mod random_scenario;

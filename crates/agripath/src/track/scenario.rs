@@ -302,8 +302,8 @@ impl TrackScenario {
 
     /// Reads a scenario file; `task` picks one of seed 000's tasks ("I", "II", "III").
     pub fn read(path: &Path, task: Option<&str>) -> Result<Self, InputError> {
-        let text = crate::input::read_text(path)?;
-        if crate::input::extension_of(path) == "toml" {
+        let text = crate::files::read_text(path)?;
+        if crate::files::extension_of(path) == "toml" {
             return super::operator::read(path, &text);
         }
         let value: Value = serde_json::from_str(&text)
@@ -311,7 +311,7 @@ impl TrackScenario {
         let directory = path.parent().unwrap_or(Path::new("."));
         Self::from_value(&value, task, &|name| {
             let dem = directory.join(name);
-            crate::input::read_bytes(&dem)
+            crate::files::read_bytes(&dem)
         })
         .map_err(|error| match error {
             Loaded::Input(error) => error,

@@ -6,11 +6,12 @@ use std::path::{Path, PathBuf};
 
 use serde::Deserialize;
 
-use super::vehicle::one_line;
-use super::{Farm, Vehicle};
 use crate::error::{Fault, InputError, TerrainError};
+use crate::files::read_text;
 use crate::geometry::validate::point_in_ring;
-use crate::input::{read_farm, read_text, CoordinateChoice};
+use crate::input::{read_farm, CoordinateChoice};
+use crate::model::vehicle::one_line;
+use crate::model::{Farm, Vehicle};
 use crate::terrain::{Terrain, TerrainSpec};
 
 /// Command-line figures that override the vehicle file.

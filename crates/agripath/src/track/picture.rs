@@ -11,9 +11,9 @@
 use std::fmt::Write;
 use std::io::BufWriter;
 
-use super::line_chart::{escape, tick_label, ticks};
+use super::scenario::TrackScenario;
+use crate::plot::line_chart::{escape, tick_label, ticks};
 use crate::terrain::{hillshade::hillshade, Extent};
-use crate::track::scenario::TrackScenario;
 
 /// One track to draw.
 pub struct DrawnTrack<'a> {
@@ -134,7 +134,7 @@ pub fn top_view(scenario: &TrackScenario, title: &str, tracks: &[DrawnTrack]) ->
     let _ = write!(
         svg,
         r#"<image x="{x0:.1}" y="{y0:.1}" width="{map_w:.1}" height="{map_h:.1}" preserveAspectRatio="none" href="data:image/png;base64,{}"/>"#,
-        super::plan_html::base64(&png)
+        crate::plot::plan_html::base64(&png)
     );
     // Axes in the scenario's units.
     let unit = if scenario.unit_m == 1.0 {
