@@ -394,6 +394,16 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "must be a number above 0",
         ),
         flag(
+            &["--drape-spacing", "0.001"],
+            "arguments",
+            "drape spacing (a) = 0.001 is invalid: lies in 0.5..=1000 m",
+        ),
+        flag(
+            &["--drape-spacing", "5000"],
+            "arguments",
+            "lies in 0.5..=1000 m",
+        ),
+        flag(
             &["--boundary-margin", "-1"],
             "arguments",
             "must be 0 or more",

@@ -11,7 +11,7 @@ use geo::{Area, Coord, MapCoords, MultiPolygon};
 use serde::Serialize;
 
 use crate::error::Fault;
-use crate::limits::{MAX_PLAN_AREA_M2, MAX_PLAN_SWATHS, MAX_SCAN_LINES};
+use crate::limits::{DRAPE_SPACING_RANGE_M, MAX_PLAN_AREA_M2, MAX_PLAN_SWATHS, MAX_SCAN_LINES};
 use crate::model::{Farm, Vehicle};
 use crate::terrain::Terrain;
 use drape::{drape, draped_length, path_length_3d, GroundPoint};
@@ -69,6 +69,14 @@ impl CoverageSettings {
             }
         };
         check("drape spacing (a)", self.drape_spacing_m, true)?;
+        let (finest, coarsest) = DRAPE_SPACING_RANGE_M;
+        if !(finest..=coarsest).contains(&self.drape_spacing_m) {
+            return Err(Fault::InvalidValue {
+                what: "drape spacing (a)".into(),
+                value: crate::error::figure(self.drape_spacing_m),
+                why: format!("lies in {finest}..={coarsest} m (docs/limits.md)"),
+            });
+        }
         check("boundary margin", self.boundary_margin_m, false)?;
         check("obstacle margin", self.obstacle_margin_m, false)?;
         if self.headland_passes > 20 {
