@@ -1234,6 +1234,7 @@ fn a_kill_at_any_point_of_the_commit_leaves_the_old_or_the_new_folder_whole() {
     ];
     let points: Vec<u64> = (1..=40).collect();
     let kills = killed_at_every_commit_point("kill-bench", &bench, &points);
+    println!("the bench folder's commit was killed at each of its {kills} fault points");
     assert!(kills >= 6, "only {kills} fault points reached");
     // The demo's 26 files, at points while staging, at the swap and while removing the old.
     let kills = killed_at_every_commit_point("kill-demo", &["demo"], &[20, 28, 40]);
