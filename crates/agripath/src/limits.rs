@@ -37,6 +37,11 @@ pub const MAX_PLAN_SWATHS: usize = 10_000;
 /// the DEMs a sprayer plans on, and the work grows as 1/a (0.5 m: 2.4 s on the seed 001
 /// farm, 0.01 m: over a minute); the terrain tolerance adds waypoints where the ground bends.
 pub const DRAPE_SPACING_RANGE_M: (f64, f64) = (0.5, 1000.0);
+/// Path points of one field's grid coverage (seed 004): its turn-minimising searches are
+/// for fields of a few hundred to a few thousand points.
+pub const MAX_GRID_COVER_POINTS: usize = 40_000;
+/// Cells of seed 003's grid model of a field (`sortie/grid.rs`, for its repro).
+pub const MAX_SORTIE_GRID_CELLS: usize = 4_000_000;
 /// Scan lines across one field (its diagonal over the swath width).
 pub const MAX_SCAN_LINES: usize = 200_000;
 

@@ -319,11 +319,20 @@ mod tests {
 
     #[test]
     fn every_example_scenario_loads() {
+        let mut loaded = 0;
         for entry in std::fs::read_dir(data("scenarios")).unwrap() {
             let path = entry.unwrap().path();
-            Scenario::from_file(&path, VehicleOverrides::default(), false)
-                .unwrap_or_else(|error| panic!("{error}"));
+            if path
+                .extension()
+                .is_some_and(|extension| extension == "toml")
+            {
+                Scenario::from_file(&path, VehicleOverrides::default(), false)
+                    .unwrap_or_else(|error| panic!("{error}"));
+                loaded += 1;
+            }
         }
+        // An empty or missing folder must not pass.
+        assert!(loaded >= 10, "{loaded} scenarios loaded");
     }
 
     #[test]

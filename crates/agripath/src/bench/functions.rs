@@ -435,6 +435,8 @@ mod tests {
     fn the_same_seed_gives_the_same_table() {
         let first = small().run(&|| {}).unwrap();
         let second = small().run(&|| {}).unwrap();
+        assert!(!first.cells.is_empty());
+        assert_eq!(first.cells.len(), second.cells.len());
         for (a, b) in first.cells.iter().zip(&second.cells) {
             assert_eq!(a.finals, b.finals);
         }

@@ -69,7 +69,7 @@ impl PointGrid {
         let bounds = geo::BoundingRect::bounding_rect(&polygon).ok_or(Fault::NoFields)?;
         let columns = ((bounds.width() / cell_m) - 1e-9).ceil().max(1.0) as usize;
         let rows = ((bounds.height() / cell_m) - 1e-9).ceil().max(1.0) as usize;
-        if columns.saturating_mul(rows) > 40_000 {
+        if columns.saturating_mul(rows) > crate::limits::MAX_GRID_COVER_POINTS {
             return Err(Fault::TooLarge(format!(
                 "{columns} × {rows} path points (grid coverage is for fields up to 40,000 points)"
             )));

@@ -68,7 +68,7 @@ impl Grid {
         let bounds = geo::BoundingRect::bounding_rect(polygon).ok_or(Fault::NoFields)?;
         let columns = ((bounds.width() / cell_m) - 1e-9).ceil().max(1.0) as usize;
         let rows = ((bounds.height() / cell_m) - 1e-9).ceil().max(1.0) as usize;
-        if columns.saturating_mul(rows) > 4_000_000 {
+        if columns.saturating_mul(rows) > crate::limits::MAX_SORTIE_GRID_CELLS {
             return Err(Fault::TooLarge(format!(
                 "a grid of {columns} × {rows} cells of {cell_m} m"
             )));

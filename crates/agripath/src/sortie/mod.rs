@@ -479,13 +479,30 @@ mod tests {
             let model = model(300.0, 600.0);
             // GSA with a small budget: the property is about its decoding, not its search.
             let small = gsa::GsaSettings { population: 10, iterations: 20, extra_returns: 1 };
+            let plan_with = |planner: SortiePlanner| match planner {
+                SortiePlanner::Gsa => gsa::search(&route, &model, &small, seed)
+                    .map(|found| model.evaluate(&route, planner, found.breaks)),
+                _ => plan_sorties(&route, &model, planner, seed),
+            };
+            // Where the exact planner finds no split (a point out of reach), none may.
+            let reachable = plan_with(SortiePlanner::Exact).is_ok();
+            if !reachable {
+                for planner in SortiePlanner::ALL {
+                    prop_assert!(plan_with(planner).is_err(), "{planner} planned the unreachable");
+                }
+            }
+            // Too many unreachable routes and proptest fails the test: it cannot pass vacuously.
+            prop_assume!(reachable);
             for planner in SortiePlanner::ALL {
-                let plan = match planner {
-                    SortiePlanner::Gsa => gsa::search(&route, &model, &small, seed)
-                        .map(|found| model.evaluate(&route, planner, found.breaks)),
-                    _ => plan_sorties(&route, &model, planner, seed),
+                // Every planner but GSA on its small budget must then find a plan.
+                let plan = match (plan_with(planner), planner) {
+                    (Ok(plan), _) => plan,
+                    (Err(_), SortiePlanner::Gsa) => continue,
+                    (Err(fault), _) => {
+                        return Err(TestCaseError::fail(format!("{planner}: {fault}")))
+                    }
                 };
-                if let Ok(plan) = plan {
+                {
                     prop_assert!(plan.feasible, "{planner}");
                     for sortie in &plan.sorties {
                         prop_assert!(sortie.spray_m <= 300.0 + 1e-6);

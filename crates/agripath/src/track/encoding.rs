@@ -195,6 +195,16 @@ mod tests {
         let x: Vec<f64> = bounds.upper().to_vec(); // longest steps at θ = π: due west
         let mut points = Vec::new();
         Encoding::Cylindrical.decode_into(&scenario, &x, &mut points);
-        assert!(points.iter().all(|p| p[0] >= 0.0 && p[2] <= 400.0));
+        let (min_x, min_y, max_x, max_y) = scenario.area;
+        let (low, high) = scenario.altitude_bounds;
+        assert!(!points.is_empty());
+        for point in &points {
+            assert!((min_x..=max_x).contains(&point[0]), "{point:?}");
+            assert!((min_y..=max_y).contains(&point[1]), "{point:?}");
+            assert!((low..=high).contains(&point[2]), "{point:?}");
+        }
+        // The steps west are long enough to reach the western edge: the clamp did its work
+        // (without it the test would pass on any track inside the area).
+        assert!(points.iter().any(|point| point[0] == min_x), "{points:?}");
     }
 }
