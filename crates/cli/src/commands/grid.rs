@@ -1,0 +1,82 @@
+//! `grid`: fewest-turn grid coverage of one field (seed 004).
+
+use super::*;
+
+pub(super) fn grid(
+    fields: &Path,
+    field: Option<&str>,
+    method: &str,
+    swath_width: Option<f64>,
+    local: bool,
+    seed: u64,
+    out: &Path,
+) -> Result<(), Failure> {
+    use agripath::grid_cover::{boustrophedon, fewest_turns, hybrid_pso, PointGrid};
+    let choice = if local {
+        CoordinateChoice::Local
+    } else {
+        CoordinateChoice::FromFile
+    };
+    let farm = agripath::input::read_farm(fields, choice)?;
+    let index = match field {
+        None => 0,
+        Some(name) => farm
+            .fields
+            .iter()
+            .position(|f| f.name == name)
+            .ok_or_else(|| {
+                InputError::new(fields, Fault::Structure(format!("no field named '{name}'")))
+            })?,
+    };
+    let from_file = std::fs::read_to_string(fields)
+        .ok()
+        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
+        .and_then(|json| json["swath_width_m"].as_f64());
+    let width = swath_width.or(from_file).unwrap_or(5.0);
+    if !(width.is_finite() && width > 0.0) {
+        return Err(InputError::new(
+            "arguments",
+            Fault::InvalidValue {
+                what: "--swath-width".into(),
+                value: width.to_string(),
+                why: "must be a finite number above 0".into(),
+            },
+        )
+        .into());
+    }
+    let grid =
+        PointGrid::new(&farm, index, width).map_err(|fault| InputError::new(fields, fault))?;
+    let started = std::time::Instant::now();
+    let route = match method {
+        "hpso" => {
+            let settings = hybrid_pso::HpsoSettings {
+                seed,
+                ..Default::default()
+            };
+            hybrid_pso::plan(&grid, &settings).0
+        }
+        "baseline" => boustrophedon::plan(&grid),
+        _ => fewest_turns::plan(&grid),
+    };
+    let runtime_s = started.elapsed().as_secs_f64();
+    // The grid route's preflight: a move that crosses an obstacle is not flown.
+    let crossings = route.measure(&grid).crossings;
+    if crossings > 0 {
+        return Err(Failure::Unsafe(vec![format!(
+            "{crossings} move(s) of the {method} route cross an obstacle and no clear way round was found"
+        )]));
+    }
+    let (files, title) =
+        agripath::grid_cover::render(&farm, index, &grid, &route, method, runtime_s);
+    let written = write_folder(out, &files)?;
+    emitln!(
+        "{title} ({} points, planned in {:.3} s)",
+        grid.points.len(),
+        runtime_s
+    );
+    emitln!(
+        "wrote {}/: plan.geojson, report.json, plan.svg",
+        written.display()
+    );
+    Ok(())
+}
