@@ -62,6 +62,7 @@ fn random_farm(fields: usize, swaths: usize, seed: u64) -> Farm {
         obstacles: vec![],
         markers: vec![],
         embedded_terrain: None,
+        stated_swath_width_m: None,
     }
 }
 

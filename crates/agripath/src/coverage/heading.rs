@@ -27,6 +27,27 @@ pub enum HeadingObjective {
     Fixed { heading_deg: f64 },
 }
 
+impl HeadingObjective {
+    /// Reads `auto` (seed 001's E with these weights ω_N, ω_L), `swaths` (alias `turns`),
+    /// `length`, or a heading in degrees from east, counter-clockwise (taken modulo 180°).
+    pub fn parse(spec: &str, weights: [f64; 2]) -> Result<Self, String> {
+        Ok(match spec {
+            "auto" => Self::Seed {
+                count_weight: weights[0],
+                length_weight: weights[1],
+            },
+            "swaths" | "turns" => Self::Swaths,
+            "length" => Self::Length,
+            degrees => match degrees.parse::<f64>() {
+                Ok(heading_deg) if heading_deg.is_finite() => Self::Fixed {
+                    heading_deg: heading_deg.rem_euclid(180.0),
+                },
+                _ => return Err("expected auto, swaths, length or a number of degrees".into()),
+            },
+        })
+    }
+}
+
 impl Default for HeadingObjective {
     fn default() -> Self {
         Self::Seed {

@@ -62,6 +62,26 @@ const NEIGHBOURS: [(i64, i64); 8] = [
     (-1, -1),
 ];
 
+/// The grid's cell, metres: the swath width asked for, else the one the field file states,
+/// else seed 004's 5 m; within a vehicle's plausible swath widths (`limits::VEHICLE_RANGES`).
+pub fn cell_width_m(requested: Option<f64>, farm: &Farm) -> Result<f64, Fault> {
+    let width = requested.or(farm.stated_swath_width_m).unwrap_or(5.0);
+    let (_, lowest, highest) = crate::limits::VEHICLE_RANGES
+        .iter()
+        .copied()
+        .find(|(name, _, _)| *name == "swath_width_m")
+        .expect("the swath width has a range");
+    if width.is_finite() && (lowest..=highest).contains(&width) {
+        Ok(width)
+    } else {
+        Err(Fault::InvalidValue {
+            what: "swath width".into(),
+            value: crate::error::figure(width),
+            why: format!("a grid cell (the swath width) lies in {lowest}..={highest} m"),
+        })
+    }
+}
+
 impl PointGrid {
     /// The grid of field `field` of `farm` (every obstacle of the farm counts).
     pub fn new(farm: &Farm, field: usize, cell_m: f64) -> Result<Self, Fault> {

@@ -170,6 +170,7 @@ pub fn build(
         obstacles,
         markers,
         embedded_terrain,
+        stated_swath_width_m: None,
     };
     let bounds = farm.bounds();
     let extent = bounds.width().max(bounds.height());

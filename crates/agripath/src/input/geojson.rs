@@ -73,7 +73,9 @@ pub fn parse(path: &Path, text: &str, choice: CoordinateChoice) -> Result<Farm, 
             geometry: read_geometry(object).map_err(|fault| fail(fault).at("geometry"))?,
         }],
     };
-    build(path, features, !local, embedded_terrain)
+    let mut farm = build(path, features, !local, embedded_terrain)?;
+    farm.stated_swath_width_m = object.get("swath_width_m").and_then(Value::as_f64);
+    Ok(farm)
 }
 
 /// `"crs": "local"` (this project's convention) or an old-style named CRS that is WGS84.

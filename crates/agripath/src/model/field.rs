@@ -142,6 +142,9 @@ pub struct Farm {
     /// A terrain described inside the field file itself (the `terrain` member of the data
     /// files), used when no other terrain is given.
     pub embedded_terrain: Option<TerrainSpec>,
+    /// A swath width the field file states (the top-level `swath_width_m` of seed 004's
+    /// files), for commands that plan without a vehicle.
+    pub stated_swath_width_m: Option<f64>,
 }
 
 impl Farm {

@@ -28,22 +28,14 @@ pub(super) fn grid(
                 InputError::new(fields, Fault::Structure(format!("no field named '{name}'")))
             })?,
     };
-    let from_file = std::fs::read_to_string(fields)
-        .ok()
-        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
-        .and_then(|json| json["swath_width_m"].as_f64());
-    let width = swath_width.or(from_file).unwrap_or(5.0);
-    if !(width.is_finite() && width > 0.0) {
-        return Err(InputError::new(
-            "arguments",
-            Fault::InvalidValue {
-                what: "--swath-width".into(),
-                value: width.to_string(),
-                why: "must be a finite number above 0".into(),
-            },
-        )
-        .into());
-    }
+    let width = agripath::grid_cover::cell_width_m(swath_width, &farm).map_err(|fault| {
+        let named = if swath_width.is_some() {
+            Path::new("--swath-width")
+        } else {
+            fields
+        };
+        InputError::new(named, fault)
+    })?;
     let grid =
         PointGrid::new(&farm, index, width).map_err(|fault| InputError::new(fields, fault))?;
     let started = std::time::Instant::now();

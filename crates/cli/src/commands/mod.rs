@@ -165,29 +165,20 @@ fn coverage_settings(arguments: &CoverageArgs) -> Result<CoverageSettings, Input
             Fault::Structure("expected two weights ω_N,ω_L".into()),
         ));
     }
-    let heading = match arguments.heading.as_str() {
-        "auto" => HeadingObjective::Seed {
-            count_weight: arguments.weights[0],
-            length_weight: arguments.weights[1],
-        },
-        "swaths" | "turns" => HeadingObjective::Swaths,
-        "length" => HeadingObjective::Length,
-        degrees => match degrees.parse::<f64>() {
-            Ok(heading_deg) if heading_deg.is_finite() => HeadingObjective::Fixed {
-                heading_deg: heading_deg.rem_euclid(180.0),
+    let heading = HeadingObjective::parse(
+        &arguments.heading,
+        [arguments.weights[0], arguments.weights[1]],
+    )
+    .map_err(|why| {
+        InputError::new(
+            "--heading",
+            Fault::InvalidValue {
+                what: "--heading".into(),
+                value: arguments.heading.clone(),
+                why,
             },
-            _ => {
-                return Err(InputError::new(
-                    "--heading",
-                    Fault::InvalidValue {
-                        what: "--heading".into(),
-                        value: degrees.into(),
-                        why: "expected auto, swaths, length or a number of degrees".into(),
-                    },
-                ))
-            }
-        },
-    };
+        )
+    })?;
     let settings = CoverageSettings {
         headland_passes: arguments.headland,
         boundary_margin_m: arguments.boundary_margin,
