@@ -5,7 +5,7 @@
 //! cost(0) = 0,
 //!
 //! cost(j) = min over i < j with (i..=j) flyable on one tank and battery of
-//!           cost(i) + [i > 0]·(max(T_e, T_p(spray(i, j))) + 2 (‖P_i, P0‖ + H_i) / v_off),
+//!           cost(i) + \[i > 0\]·(max(T_e, T_p(spray(i, j))) + 2 (‖P_i, P0‖ + H_i) / v_off),
 //!
 //! and the answer is cost(last point). Spray metres and route time only grow along the route,
 //! so the first i that one tank and battery can reach moves forward with j (two pointers):

@@ -11,7 +11,7 @@
 //!   differ, so children change length); children A₁B₂ and B₁A₂. Genes are duplicates when
 //!   they fall in the same cell of the space divided into m intervals per axis (eqs. 18-19,
 //!   x and y). While t ≤ β·T, *mapping before the cut*: genes before the cut stay, a duplicate
-//!   after it is replaced by the gene it was exchanged with (A₂[k] for B₂[k]), following the
+//!   after it is replaced by the gene it was exchanged with (A₂\[k\] for B₂\[k\]), following the
 //!   mapping until a gene is new (dropped if none is). Later, *order copy after the cut*:
 //!   genes after the cut stay, duplicates before it are filled, in order, with the other
 //!   parent's genes the child lacks.

@@ -4,8 +4,8 @@
 //! that users of such tools compare against (CEC 2014 winner); not in the seeds.
 //!
 //! Per generation, for each target x_i (algorithm 1 of the paper):
-//! - pick a memory slot r: CR_i ~ N(M_CR[r], 0.1) clipped to [0, 1] (0 when M_CR[r] is the
-//!   terminal value ⊥), F_i ~ Cauchy(M_F[r], 0.1) drawn again while ≤ 0, cut to 1
+//! - pick a memory slot r: CR_i ~ N(M_CR\[r\], 0.1) clipped to [0, 1] (0 when M_CR\[r\] is the
+//!   terminal value ⊥), F_i ~ Cauchy(M_F\[r\], 0.1) drawn again while ≤ 0, cut to 1
 //! - current-to-pbest/1: v = x_i + F_i·(x_pbest − x_i) + F_i·(x_r1 − x_r2), pbest among the
 //!   best max(2, round(p·N)) (p = 0.11), r1 from the population, r2 from population ∪ archive
 //! - a coordinate out of the box goes half way between the parent and the violated bound
