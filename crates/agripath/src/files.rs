@@ -85,8 +85,46 @@ fn special_kind(metadata: &std::fs::Metadata) -> &'static str {
     "a special file"
 }
 
+/// Refuses a file whose first bytes are not what its format starts with, before the whole
+/// file is read: a 2 GB sparse file (all zero bytes) is refused after 64 KB, not 2 GB.
+/// `text`: no NUL byte may appear; else one of `magics` must begin the file, which is then
+/// a `format` ("a TIFF", "a KMZ (zip) archive").
+pub fn check_start(
+    path: &Path,
+    text: bool,
+    magics: &[&[u8]],
+    format: &str,
+) -> Result<(), InputError> {
+    use std::io::Read;
+    let metadata =
+        std::fs::metadata(path).map_err(|error| InputError::new(path, unreadable(&error)))?;
+    if !metadata.is_file() {
+        // read_bytes_within gives the message for folders and special files.
+        return Ok(());
+    }
+    let mut head = Vec::with_capacity(64 * 1024);
+    std::fs::File::open(path)
+        .and_then(|file| file.take(64 * 1024).read_to_end(&mut head))
+        .map_err(|error| InputError::new(path, unreadable(&error)))?;
+    if text {
+        if let Some(offset) = head.iter().position(|&byte| byte == 0) {
+            return Err(InputError::new(
+                path,
+                Fault::Unreadable(format!("not UTF-8 text (a NUL byte at offset {offset})")),
+            ));
+        }
+    } else if !head.is_empty() && !magics.iter().any(|magic| head.starts_with(magic)) {
+        return Err(InputError::new(
+            path,
+            Fault::Unreadable(format!("not {format}: its first bytes are not its header")),
+        ));
+    }
+    Ok(())
+}
+
 /// Reads a whole text file (UTF-8).
 pub fn read_text(path: &Path) -> Result<String, InputError> {
+    check_start(path, true, &[], "text")?;
     let bytes = read_bytes(path)?;
     String::from_utf8(bytes).map_err(|error| {
         InputError::new(
@@ -100,9 +138,14 @@ pub fn read_text(path: &Path) -> Result<String, InputError> {
 }
 
 pub(crate) fn unreadable(error: &std::io::Error) -> Fault {
-    Fault::Unreadable(match error.kind() {
+    Fault::Unreadable(reason(error))
+}
+
+/// An I/O error in words (no "os error 13").
+pub fn reason(error: &std::io::Error) -> String {
+    match error.kind() {
         std::io::ErrorKind::NotFound => "no such file".to_string(),
         std::io::ErrorKind::PermissionDenied => "permission denied".to_string(),
         _ => error.to_string(),
-    })
+    }
 }

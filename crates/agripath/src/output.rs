@@ -76,7 +76,9 @@ impl StagedFolder {
                 // The old folder now sits where the staging was.
                 self.committed = true;
                 fault_point();
-                remove_folder(&self.staging)?;
+                // The new plan is in place; an old file that cannot be removed is left in
+                // the staging folder, and the next run removes it.
+                let _ = remove_folder(&self.staging);
             } else {
                 let old = parent_of(&self.target).join(format!(
                     ".{}.old-{}",
@@ -88,7 +90,7 @@ impl StagedFolder {
                 std::fs::rename(&self.staging, &self.target)?;
                 self.committed = true;
                 fault_point();
-                remove_folder(&old)?;
+                let _ = remove_folder(&old);
             }
         } else {
             std::fs::rename(&self.staging, &self.target)?;
@@ -103,27 +105,58 @@ impl StagedFolder {
 /// moved: an existing file (which a commit would otherwise move aside), or a path whose
 /// parent is a file.
 pub fn check_target(target: &Path) -> std::io::Result<()> {
+    let refused = |why: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, why);
     let not_a_folder = |path: &Path| {
-        std::io::Error::new(
-            std::io::ErrorKind::AlreadyExists,
-            format!(
-                "{} is a file, not a folder: give --out a folder to write the plan into",
-                path.display()
-            ),
-        )
+        refused(format!(
+            "{} is a file, not a folder: give --out a folder to write the plan into",
+            path.display()
+        ))
     };
-    if target.exists() && !target.is_dir() {
-        return Err(not_a_folder(target));
+    // `.`, `..` or a path ending in them would make the commit swap the working folder.
+    if !matches!(
+        target.components().next_back(),
+        Some(std::path::Component::Normal(_))
+    ) {
+        return Err(refused(format!(
+            "{} does not name a folder of its own: give --out a new or plan folder's name",
+            target.display()
+        )));
     }
-    if let Some(file) = target
+    // A link would be swapped as a link and the folder it points to emptied: refused, as
+    // is a dangling one.
+    if let Ok(metadata) = std::fs::symlink_metadata(target) {
+        if metadata.file_type().is_symlink() {
+            return Err(refused(format!(
+                "{} is a symbolic link: give --out the folder itself",
+                target.display()
+            )));
+        }
+        if !metadata.is_dir() {
+            return Err(not_a_folder(target));
+        }
+    }
+    let existing_parent = target
         .ancestors()
         .skip(1)
-        .find(|ancestor| !ancestor.as_os_str().is_empty() && ancestor.exists())
-        .filter(|ancestor| !ancestor.is_dir())
-    {
+        .find(|ancestor| !ancestor.as_os_str().is_empty() && ancestor.exists());
+    if let Some(file) = existing_parent.filter(|ancestor| !ancestor.is_dir()) {
         return Err(not_a_folder(file));
     }
-    Ok(())
+    // The staging folder is made beside the target: the nearest existing folder above it
+    // must take new entries (probed, not guessed from permission bits).
+    let parent = existing_parent.unwrap_or(Path::new("."));
+    let probe = parent.join(format!(".agripath-probe-{}", std::process::id()));
+    match std::fs::create_dir(&probe) {
+        Ok(()) => {
+            let _ = std::fs::remove_dir(&probe);
+            Ok(())
+        }
+        Err(error) => Err(refused(format!(
+            "cannot write in {}: {}",
+            parent.display(),
+            crate::files::reason(&error)
+        ))),
+    }
 }
 
 fn parent_of(target: &Path) -> &Path {
@@ -193,6 +226,10 @@ fn remove_folder(folder: &Path) -> std::io::Result<()> {
 /// (no destructor runs, as under `kill -9`) at the N-th fault point it reaches. Unset, it
 /// costs one environment lookup per call.
 fn fault_point() {
+    // Release builds carry no hook: a stray environment variable cannot abort a real run.
+    if !cfg!(debug_assertions) {
+        return;
+    }
     use std::sync::atomic::{AtomicU64, Ordering};
     static REACHED: AtomicU64 = AtomicU64::new(0);
     let Some(at) = std::env::var("AGRIPATH_FAULT_AT")
@@ -225,7 +262,10 @@ fn recover_abandoned(parent: &Path, name: &str, target: &Path) {
             continue;
         };
         if rest == "old" {
-            dead.push((entry.path(), true));
+            // Earlier versions' leftover: a folder holding a plan, nothing else.
+            if entry.path().join("report.json").is_file() {
+                dead.push((entry.path(), true));
+            }
             continue;
         }
         let (pid, is_old) = match (rest.strip_prefix("partial-"), rest.strip_prefix("old-")) {
@@ -298,6 +338,20 @@ mod tests {
         }
         assert_eq!(std::fs::read(&file).unwrap(), b"mine");
         assert_eq!(std::fs::read_dir(&root).unwrap().count(), 1);
+        // A link to a folder is refused, and the folder it points to keeps its files.
+        #[cfg(unix)]
+        {
+            let precious = root.join("precious");
+            std::fs::create_dir_all(&precious).unwrap();
+            std::fs::write(precious.join("keep.txt"), b"keep").unwrap();
+            std::os::unix::fs::symlink(&precious, root.join("link")).unwrap();
+            let error = StagedFolder::new(&root.join("link")).err().unwrap();
+            assert!(error.to_string().contains("symbolic link"), "{error}");
+            assert!(precious.join("keep.txt").exists());
+        }
+        for target in [Path::new("."), Path::new(".."), &root.join("..")] {
+            assert!(StagedFolder::new(target).is_err(), "{}", target.display());
+        }
         std::fs::remove_dir_all(&root).unwrap();
     }
 
@@ -311,6 +365,7 @@ mod tests {
         let legacy_old = root.join(".plan.old");
         std::fs::create_dir_all(&dead_old).unwrap();
         std::fs::create_dir_all(&legacy_old).unwrap();
+        std::fs::write(legacy_old.join("report.json"), b"{}").unwrap();
         std::fs::write(dead_old.join("report.json"), b"old").unwrap();
         std::fs::create_dir_all(&dead).unwrap();
         std::fs::create_dir_all(&alive).unwrap();

@@ -58,7 +58,7 @@ pub fn sprayable_region(
     }
     if !field.sprayed_with_others.is_empty() {
         // Not grown by the obstacle margin: they are crop, sprayed with the other field.
-        region = region.difference(&MultiPolygon::new(field.sprayed_with_others.clone()));
+        region = region.difference(&field.sprayed_by_others());
     }
     offset(&region, -boundary_margin_m)
 }

@@ -18,8 +18,9 @@ use crate::error::{Fault, InputError};
 use crate::files::{read_bytes, read_text};
 use crate::model::Farm;
 
-/// Biggest KML document inflated from a KMZ, bytes (a zip bomb stops here).
-const MAX_INFLATED_KML_BYTES: u64 = 512 * 1024 * 1024;
+/// Biggest KML document inflated from a KMZ, bytes (a zip bomb stops here): 128 MB of KML
+/// is some 4 million vertices, twice the most a field file may hold.
+const MAX_INFLATED_KML_BYTES: u64 = 128 * 1024 * 1024;
 
 pub fn read_kml(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputError> {
     let text = read_text(path)?;
@@ -28,6 +29,7 @@ pub fn read_kml(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputErro
 
 /// A KMZ is a zip holding `doc.kml` (or another `.kml` at its root).
 pub fn read_kmz(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputError> {
+    crate::files::check_start(path, false, &[b"PK\x03\x04"], "a KMZ (zip) archive")?;
     let bytes = read_bytes(path)?;
     parse_kmz(path, bytes, choice)
 }
@@ -70,7 +72,8 @@ pub fn parse_kmz(
             )),
         ));
     }
-    let mut text = String::new();
+    // Sized from the declaration (at most the limit): no doubling of the buffer past it.
+    let mut text = String::with_capacity(file.size().min(MAX_INFLATED_KML_BYTES) as usize);
     file.take(MAX_INFLATED_KML_BYTES + 1)
         .read_to_string(&mut text)
         .map_err(|error| fail(format!("cannot inflate {entry}: {error}")))?;

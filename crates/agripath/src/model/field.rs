@@ -71,7 +71,17 @@ impl Field {
         }
     }
 
-    /// Area inside the boundary less the holes, m².
+    /// The earlier fields this one overlaps, as one region: their union (a list of
+    /// overlapping polygons read even-odd would count a part in two of them as outside both).
+    pub fn sprayed_by_others(&self) -> geo::MultiPolygon<f64> {
+        use geo::BooleanOps;
+        self.sprayed_with_others
+            .iter()
+            .fold(geo::MultiPolygon::new(vec![]), |union, polygon| {
+                union.union(&geo::MultiPolygon::new(vec![polygon.clone()]))
+            })
+    }
+
     /// The field less the parts sprayed with earlier, overlapping fields.
     pub fn own_ground(&self) -> geo::MultiPolygon<f64> {
         use geo::BooleanOps;
@@ -79,10 +89,11 @@ impl Field {
         if self.sprayed_with_others.is_empty() {
             whole
         } else {
-            whole.difference(&geo::MultiPolygon::new(self.sprayed_with_others.clone()))
+            whole.difference(&self.sprayed_by_others())
         }
     }
 
+    /// Area inside the boundary less the holes, m².
     pub fn area_m2(&self) -> f64 {
         self.polygon.unsigned_area()
     }

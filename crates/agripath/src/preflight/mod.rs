@@ -785,8 +785,12 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
 pub fn check_folder(world: &World, folder: &std::path::Path) -> Result<Verdict, crate::Fault> {
     use crate::Fault;
     let report_path = folder.join("report.json");
-    let text = std::fs::read_to_string(&report_path).map_err(|error| {
-        Fault::Structure(format!("{}: cannot read: {error}", report_path.display()))
+    let text = crate::files::read_text(&report_path).map_err(|error| {
+        Fault::Structure(format!(
+            "{}: cannot read: {}",
+            report_path.display(),
+            error.fault
+        ))
     })?;
     let report: serde_json::Value = serde_json::from_str(&text).map_err(|error| {
         Fault::Structure(format!("{}: not JSON: {error}", report_path.display()))

@@ -30,6 +30,12 @@ const USER_DEFINED: u16 = 32767;
 
 /// Reads a GeoTIFF DEM.
 pub fn read(path: &Path) -> Result<Grid, InputError> {
+    crate::files::check_start(
+        path,
+        false,
+        &[b"II*\0", b"MM\0*", b"II+\0", b"MM\0+"],
+        "a readable GeoTIFF",
+    )?;
     let bytes = read_bytes(path)?;
     decode(&bytes).map_err(|fault| InputError::new(path, fault))
 }
@@ -85,6 +91,15 @@ pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
 
     let (first_center_x, first_center_y, cell_x, cell_y) =
         georeference(&mut decoder, pixel_is_point)?;
+    // A NaN tiepoint is refused before the pixels are decoded (a 20,000² raster is 1.6 GB).
+    if ![first_center_x, first_center_y, cell_x, cell_y]
+        .iter()
+        .all(|value| value.is_finite())
+    {
+        return Err(Fault::Structure(format!(
+            "the raster's placement is not finite: first cell centre ({first_center_x}, {first_center_y}), cell {cell_x} × {cell_y}"
+        )));
+    }
 
     let nodata: Option<f64> = decoder
         .find_tag(Tag::GdalNodata)
