@@ -70,7 +70,7 @@ pub enum Fault {
     Structure(String),
     #[error("coordinate is not a finite number")]
     NonFinite,
-    #[error("longitude/latitude ({lon}, {lat}) is out of range (UTM covers latitudes -80..84)")]
+    #[error("longitude/latitude ({lon}, {lat}) is out of range (longitudes lie in -180..180, latitudes in -90..90)")]
     OutOfRange { lon: f64, lat: f64 },
     #[error("ring has fewer than 3 distinct points")]
     DegenerateRing,

@@ -42,6 +42,12 @@ pub const DRAPE_SPACING_RANGE_M: (f64, f64) = (0.5, 1000.0);
 pub const MAX_GRID_COVER_POINTS: usize = 40_000;
 /// Cells of seed 003's grid model of a field (`sortie/grid.rs`, for its repro).
 pub const MAX_SORTIE_GRID_CELLS: usize = 4_000_000;
+/// Pairs of overlapping fields kept with `--allow-overlap`.
+pub const MAX_OVERLAP_PAIRS: usize = 1_000;
+/// Pairs of fields whose bounding boxes overlap, intersected one by one in the overlap check.
+/// A farm of 10,000 square fields in a grid has some 40,000 (its neighbours' boxes touch).
+pub const MAX_OVERLAP_CANDIDATES: usize = 200_000;
+
 /// Scan lines across one field (its diagonal over the swath width).
 pub const MAX_SCAN_LINES: usize = 200_000;
 

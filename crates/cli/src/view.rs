@@ -5,7 +5,8 @@
 //! - it listens on the loopback address only, and answers only requests whose `Host` is
 //!   `127.0.0.1:PORT` or `localhost:PORT` (a DNS-rebinding page sends its own host name);
 //! - each connection has its own thread (at most [`MAX_CONNECTIONS`] at once; beyond that a
-//!   client gets 503 at once), with read and write timeouts, so an idle client blocks no one;
+//!   client gets 503 at once), with one deadline for the whole request head and a write
+//!   timeout, so an idle or trickling client blocks no one; files are streamed;
 //! - the request line and headers are read within [`MAX_HEAD_BYTES`];
 //! - a file is served only if its canonical path (links resolved) is a regular file directly
 //!   inside the folder's canonical path: traversal and links out of DIR get 404.
@@ -64,6 +65,9 @@ enum Refusal {
 }
 
 fn read_request(stream: &TcpStream) -> Result<Request, Refusal> {
+    // One deadline for the whole head, not per read: a client trickling a header line every
+    // few seconds is cut off at TIMEOUT all the same.
+    let deadline = std::time::Instant::now() + TIMEOUT;
     let mut reader = BufReader::new(
         stream
             .try_clone()
@@ -73,6 +77,10 @@ fn read_request(stream: &TcpStream) -> Result<Request, Refusal> {
     let mut line = String::new();
     let read_line = |reader: &mut BufReader<_>, line: &mut String| -> Result<(), Refusal> {
         line.clear();
+        let left = deadline.saturating_duration_since(std::time::Instant::now());
+        if left.is_zero() || stream.set_read_timeout(Some(left)).is_err() {
+            return Err(Refusal::Gone);
+        }
         match reader.read_line(line) {
             Ok(0) | Err(_) => Err(Refusal::Gone),
             Ok(_) if !line.ends_with('\n') => Err(Refusal::Malformed),
@@ -101,6 +109,10 @@ fn read_request(stream: &TcpStream) -> Result<Request, Refusal> {
         }
         if let Some((name, value)) = header.split_once(':') {
             if name.eq_ignore_ascii_case("host") {
+                // Two Host headers are how a request smuggles a second name past a check.
+                if host.is_some() {
+                    return Err(Refusal::Malformed);
+                }
                 host = Some(value.trim().to_ascii_lowercase());
             }
         }
@@ -162,12 +174,20 @@ fn answer(stream: &mut TcpStream, folder: &Path, port: u16) -> std::io::Result<(
     }
     match resolve(folder, &request.path) {
         Some(file) => {
-            let body = std::fs::read(&file)?;
+            // Streamed, not read whole: a large file in DIR costs a buffer, not its size.
+            let mut body = std::fs::File::open(&file)?;
+            let length = body.metadata()?.len();
             let name = file
                 .file_name()
                 .map(|n| n.to_string_lossy().into_owned())
                 .unwrap_or_default();
-            respond(stream, "200 OK", content_type(&name), &body)
+            write!(
+                stream,
+                "HTTP/1.1 200 OK\r\nContent-Type: {}\r\nContent-Length: {length}\r\nX-Content-Type-Options: nosniff\r\nConnection: close\r\n\r\n",
+                content_type(&name)
+            )?;
+            std::io::copy(&mut (&mut body).take(length), stream)?;
+            Ok(())
         }
         None => respond(stream, "404 Not Found", text, b"not found"),
     }

@@ -196,6 +196,26 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "--out".into(),
             "is a file, not a folder",
         ),
+        (
+            plan_into(&special_file("folder_link")),
+            "--out".into(),
+            "is a symbolic link: give --out the folder itself",
+        ),
+        (
+            plan_into("."),
+            "--out".into(),
+            "does not name a folder of its own",
+        ),
+        (
+            plan(&bad("thin.geojson"), &[]),
+            bad("thin.geojson"),
+            "field 'thin' is narrower than one swath (5 m)",
+        ),
+        flag(
+            &["--terrain", "flat:9001"],
+            "--terrain",
+            "the height must lie within -500..=9000 m",
+        ),
         // Terrain: placement, no data, undeclared no-data values, sparse clouds.
         on_terrain("nan_tiepoint.tif", "placement is not finite"),
         on_terrain("all_nodata.tif", "every cell of the raster is no-data"),
@@ -1052,6 +1072,10 @@ fn bench_with(extra: &[&str]) -> Vec<String> {
 fn special_files(folder: &Path) {
     std::fs::create_dir_all(folder.join("folder.geojson")).unwrap();
     std::fs::write(folder.join("notes.txt"), "the operator's notes").unwrap();
+    // A link to a folder holding a file that must survive `--out LINK`.
+    std::fs::create_dir_all(folder.join("precious")).unwrap();
+    std::fs::write(folder.join("precious/keep.txt"), "keep").unwrap();
+    std::os::unix::fs::symlink(folder.join("precious"), folder.join("folder_link")).unwrap();
     for name in [
         "zero.geojson",
         "zero.kml",
@@ -1149,8 +1173,10 @@ fn every_bad_input_exits_2_with_one_line_naming_the_file_and_writes_nothing() {
         .unwrap()
         .map(|entry| entry.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
+    let kept = special.join("precious/keep.txt").is_file();
     std::fs::remove_dir_all(&workdir).unwrap();
     std::fs::remove_dir_all(&special).unwrap();
+    assert!(kept, "--out through a link emptied the folder it points to");
     assert!(
         failures.is_empty(),
         "{} of {} cases failed:\n{}",
@@ -1161,7 +1187,7 @@ fn every_bad_input_exits_2_with_one_line_naming_the_file_and_writes_nothing() {
     assert!(left.is_empty(), "bad input left files behind: {left:?}");
     assert_eq!(
         special_left.len(),
-        13,
+        15,
         "the special files were changed: {special_left:?}"
     );
     assert!(

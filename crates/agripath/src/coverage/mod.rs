@@ -181,14 +181,25 @@ pub fn plan_coverage(
                 settings.obstacle_margin_m,
             );
             check_something_to_spray(field, &sprayable, vehicle.swath_width_m)?;
-            cover_field(
+            let coverage = cover_field(
                 index,
                 &field.name,
                 &sprayable,
                 terrain,
                 vehicle.swath_width_m,
                 settings,
-            )
+            )?;
+            // A strip narrower than a swath has area but no line to fly.
+            if coverage.swaths.is_empty()
+                && coverage.edges.is_empty()
+                && sprayable.unsigned_area() >= vehicle.swath_width_m.powi(2)
+            {
+                return Err(Fault::Structure(format!(
+                    "field '{}' is narrower than one swath ({} m) wherever it can be sprayed: nothing to lay out",
+                    field.name, vehicle.swath_width_m
+                )));
+            }
+            Ok(coverage)
         })
         .collect::<Result<Vec<_>, _>>()?;
     Ok(CoveragePlan {
@@ -235,7 +246,11 @@ fn check_something_to_spray(
 ) -> Result<(), Fault> {
     let least = width_m * width_m;
     let (field_area, sprayable_area) = (field.area_m2(), sprayable.unsigned_area());
-    if sprayable_area >= least || !field.sprayed_with_others.is_empty() {
+    if sprayable_area >= least {
+        return Ok(());
+    }
+    // Done with the earlier fields it overlaps: its own ground is (nearly) nothing.
+    if !field.sprayed_with_others.is_empty() && field.own_ground().unsigned_area() < least {
         return Ok(());
     }
     let name = &field.name;

@@ -6,6 +6,7 @@ use geo::{Area, BoundingRect, Coord, Polygon, Rect};
 
 use super::terrain_spec::TerrainSpec;
 use crate::geometry::{from_utm, UtmZone};
+use crate::limits::{MAX_OVERLAP_CANDIDATES, MAX_OVERLAP_PAIRS};
 
 /// The frame the plan is computed in, and the one outputs go back to.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -160,9 +161,12 @@ pub struct Farm {
 
 impl Farm {
     /// Pairs of fields that overlap by more than [`OVERLAP_TOLERANCE_M2`]: (earlier, later,
-    /// shared area m²). Bounding boxes are swept in x first, so a farm of thousands of fields
-    /// is checked in milliseconds.
-    pub fn overlaps(&self) -> Vec<(usize, usize, f64)> {
+    /// shared area m²), at most `most` of them (the search stops there). Bounding boxes are
+    /// swept in x first, so a farm of thousands of fields is checked in milliseconds; a farm
+    /// with more than [`MAX_OVERLAP_CANDIDATES`] pairs of overlapping boxes (thousands of
+    /// copies of one field, fields nested in each other's holes) is refused instead of
+    /// intersected pair by pair.
+    pub fn overlaps(&self, most: usize) -> Result<Vec<(usize, usize, f64)>, crate::Fault> {
         use geo::BooleanOps;
         let boxes: Vec<Option<Rect<f64>>> = self
             .fields
@@ -177,6 +181,7 @@ impl Farm {
             a.partial_cmp(&b).unwrap_or(std::cmp::Ordering::Equal)
         });
         let mut pairs = Vec::new();
+        let mut candidates = 0usize;
         for (position, &first) in order.iter().enumerate() {
             let Some(first_box) = boxes[first] else {
                 continue;
@@ -192,31 +197,44 @@ impl Farm {
                 {
                     continue;
                 }
+                candidates += 1;
+                if candidates > MAX_OVERLAP_CANDIDATES {
+                    return Err(crate::Fault::TooLarge(format!(
+                        "more than {MAX_OVERLAP_CANDIDATES} pairs of fields lie over each other's boxes: are fields repeated?"
+                    )));
+                }
                 let shared = self.fields[first]
                     .polygon
                     .intersection(&self.fields[second].polygon)
                     .unsigned_area();
                 if shared > OVERLAP_TOLERANCE_M2 {
                     pairs.push((first.min(second), first.max(second), shared));
+                    if pairs.len() >= most {
+                        pairs.sort_by_key(|&(first, second, _)| (first, second));
+                        return Ok(pairs);
+                    }
                 }
             }
         }
         pairs.sort_by_key(|&(first, second, _)| (first, second));
-        pairs
+        Ok(pairs)
     }
 
     /// Refuses overlapping fields (a field drawn twice, or two drawn across each other, would
     /// be sprayed twice where they meet), or with `allow` keeps them and has each shared part
     /// sprayed once, with the field that comes first in the file.
     pub fn resolve_overlaps(&mut self, allow: bool) -> Result<(), crate::Fault> {
-        let pairs = self.overlaps();
+        let pairs = self.overlaps(if allow { MAX_OVERLAP_PAIRS + 1 } else { 1 })?;
         if let (false, Some(&(first, second, shared))) = (allow, pairs.first()) {
             return Err(crate::Fault::Structure(format!(
-                "fields '{}' and '{}' overlap by {shared:.1} m² ({} overlapping pair(s) in all): \
-                 correct the boundaries, or plan with --allow-overlap to spray each overlap once",
-                self.fields[first].name,
-                self.fields[second].name,
-                pairs.len()
+                "fields '{}' and '{}' overlap by {shared:.1} m²: correct the boundaries, or plan \
+                 with --allow-overlap to spray each overlap once",
+                self.fields[first].name, self.fields[second].name,
+            )));
+        }
+        if pairs.len() > MAX_OVERLAP_PAIRS {
+            return Err(crate::Fault::TooLarge(format!(
+                "more than {MAX_OVERLAP_PAIRS} pairs of overlapping fields: are fields repeated?"
             )));
         }
         for (first, second, _) in pairs {

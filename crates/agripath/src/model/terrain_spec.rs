@@ -70,8 +70,11 @@ impl TerrainSpec {
                 let height_m: f64 = argument[5..]
                     .parse()
                     .map_err(|_| fail("flat:HEIGHT needs a number of metres"))?;
-                if !height_m.is_finite() {
-                    return Err(fail("the height must be finite"));
+                let (lowest, highest) = crate::limits::TERRAIN_HEIGHT_RANGE_M;
+                if !(lowest..=highest).contains(&height_m) {
+                    return Err(fail(&format!(
+                        "the height must lie within {lowest}..={highest} m"
+                    )));
                 }
                 Ok(Self::Flat { height_m })
             }

@@ -150,11 +150,20 @@ impl Zones {
     }
 
     /// Whether spraying at `p` is in a hole or an obstacle (grown by the obstacle margin).
+    /// A hole of one field that is crop of another (a field drawn inside the hole, or one
+    /// overlapping it under `--allow-overlap`) is not a hole there.
     pub fn no_go(&self, p: Coord<f64>) -> bool {
-        self.field_cells.near(p).iter().any(|&k| {
-            let field = &self.fields[k as usize];
+        let near = self.field_cells.near(p);
+        let in_hole_of = |k: &u32| {
+            let field = &self.fields[*k as usize];
             field.boundary.contains(p) && field.holes.iter().any(|hole| enters(hole, p, 0.0))
-        }) || self.enters_obstacle(p, self.obstacle_margin_m)
+        };
+        let on_crop_of = |k: &u32| {
+            let field = &self.fields[*k as usize];
+            field.boundary.contains(p) && !field.holes.iter().any(|hole| enters(hole, p, 0.0))
+        };
+        (near.iter().any(in_hole_of) && !near.iter().any(on_crop_of))
+            || self.enters_obstacle(p, self.obstacle_margin_m)
     }
 
     /// Whether `p` is over a field (its boundary included), not over a hole or an obstacle.

@@ -93,6 +93,8 @@ impl TerrainSpec {
                 if !height_m.is_finite() {
                     return Err(InputError::new(base, Fault::NonFinite).at("terrain height_m"));
                 }
+                plausible_height(*height_m, "terrain height_m")
+                    .map_err(|fault| InputError::new(base, fault))?;
                 Ok(Box::new(Flat::new(*height_m)))
             }
             Self::Composite { preset } => match preset.as_str() {
@@ -109,9 +111,18 @@ impl TerrainSpec {
             },
             Self::Plateaus {
                 base_m, plateaus, ..
-            } => Plateaus::new(*base_m, plateaus.clone())
-                .map(|terrain| Box::new(terrain) as Box<dyn Terrain>)
-                .map_err(|fault| InputError::new(base, fault).at("terrain")),
+            } => {
+                plausible_height(*base_m, "terrain base_m")
+                    .and_then(|()| {
+                        plateaus.iter().try_for_each(|plateau| {
+                            plausible_height(base_m + plateau.height_m, "a plateau's top")
+                        })
+                    })
+                    .map_err(|fault| InputError::new(base, fault).at("terrain"))?;
+                Plateaus::new(*base_m, plateaus.clone())
+                    .map(|terrain| Box::new(terrain) as Box<dyn Terrain>)
+                    .map_err(|fault| InputError::new(base, fault).at("terrain"))
+            }
             Self::File { path, cell_m } => {
                 let path = if path.is_absolute() {
                     path.clone()
@@ -122,6 +133,20 @@ impl TerrainSpec {
                 frame::place(grid, frame).map_err(|fault| InputError::new(&path, fault))
             }
         }
+    }
+}
+
+/// A height an analytic terrain may have: within the range rasters are held to.
+fn plausible_height(height_m: f64, what: &str) -> Result<(), Fault> {
+    let (lowest, highest) = crate::limits::TERRAIN_HEIGHT_RANGE_M;
+    if (lowest..=highest).contains(&height_m) {
+        Ok(())
+    } else {
+        Err(Fault::InvalidValue {
+            what: what.into(),
+            value: format!("{} m", crate::error::figure(height_m)),
+            why: format!("terrain lies within {lowest}..={highest} m"),
+        })
     }
 }
 
