@@ -31,7 +31,7 @@ pub const MAX_TEXT_FILE_BYTES: u64 = 2_000_000_000;
 /// does 10-20 ha an hour). Coverage checks hold rasters of the area in memory.
 pub const MAX_PLAN_AREA_M2: f64 = 1.0e8;
 /// Swaths in one plan, estimated from each field's diagonal before any layout. 4,000 swaths
-/// plan in about 40 s on a laptop core; routing grows faster than linearly.
+/// plan in about 40 s on this project's 2-core machine; routing grows faster than linearly.
 pub const MAX_PLAN_SWATHS: usize = 10_000;
 /// Terrain samples along swaths (seed 001's a), metres: finer than half a metre is finer than
 /// the DEMs a sprayer plans on, and the work grows as 1/a (0.5 m: 2.4 s on the seed 001
@@ -51,11 +51,18 @@ pub const MAX_OVERLAP_CANDIDATES: usize = 200_000;
 /// Scan lines across one field (its diagonal over the swath width).
 pub const MAX_SCAN_LINES: usize = 200_000;
 
+/// A swath width, metres: a vehicle's, or a grid cell taken as one (seed 004).
+pub const SWATH_WIDTH_RANGE_M: (f64, f64) = (0.5, 200.0);
+
 /// Plausible ranges of a vehicle's figures (`Vehicle::validate`): beyond them a value is a
 /// typo or an attack (`1e308`), not an aircraft, and planning with it would overflow or run
 /// without end.
 pub const VEHICLE_RANGES: [(&str, f64, f64); 13] = [
-    ("swath_width_m", 0.5, 200.0),
+    (
+        "swath_width_m",
+        SWATH_WIDTH_RANGE_M.0,
+        SWATH_WIDTH_RANGE_M.1,
+    ),
     ("spray_height_m", 0.0, 500.0),
     ("safe_height_m", 0.0, 500.0),
     ("spray_speed_mps", 0.1, 100.0),

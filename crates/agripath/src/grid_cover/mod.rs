@@ -63,14 +63,10 @@ const NEIGHBOURS: [(i64, i64); 8] = [
 ];
 
 /// The grid's cell, metres: the swath width asked for, else the one the field file states,
-/// else seed 004's 5 m; within a vehicle's plausible swath widths (`limits::VEHICLE_RANGES`).
+/// else seed 004's 5 m; within a vehicle's plausible swath widths.
 pub fn cell_width_m(requested: Option<f64>, farm: &Farm) -> Result<f64, Fault> {
     let width = requested.or(farm.stated_swath_width_m).unwrap_or(5.0);
-    let (_, lowest, highest) = crate::limits::VEHICLE_RANGES
-        .iter()
-        .copied()
-        .find(|(name, _, _)| *name == "swath_width_m")
-        .expect("the swath width has a range");
+    let (lowest, highest) = crate::limits::SWATH_WIDTH_RANGE_M;
     if width.is_finite() && (lowest..=highest).contains(&width) {
         Ok(width)
     } else {
