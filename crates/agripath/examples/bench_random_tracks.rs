@@ -31,7 +31,7 @@ fn main() {
         let trials = [
             (Planner::Lattice, budget),
             (Planner::Lattice, budget / 5),
-            (Planner::Swarm(Algorithm::IbaFcs), budget),
+            (Planner::Swarm(Algorithm::IBA_FCS), budget),
         ];
         for (index, (planner, evaluations)) in trials.into_iter().enumerate() {
             let settings = TrackSettings {

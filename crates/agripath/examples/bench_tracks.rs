@@ -15,8 +15,8 @@ fn main() {
         .build_global()
         .unwrap();
     let cases = [
-        (Planner::Swarm(Algorithm::IbaFcs), 150_500),
-        (Planner::Swarm(Algorithm::Bat), 150_500),
+        (Planner::Swarm(Algorithm::IBA_FCS), 150_500),
+        (Planner::Swarm(Algorithm::BAT), 150_500),
         (Planner::Lattice, 150_500),
         (Planner::Lattice, 30_100),
     ];

@@ -20,7 +20,7 @@ fn main() {
     )
     .unwrap();
     let only = std::env::args().nth(3);
-    for algorithm in Algorithm::ALL {
+    for algorithm in Algorithm::ALL.iter().copied() {
         if only.as_deref().is_some_and(|o| o != algorithm.key()) {
             continue;
         }

@@ -14,9 +14,11 @@
 //! assert!(outcome.best_cost < 1e-6);
 //! ```
 //!
-//! - [`Problem`] / [`Bounds`]: what is minimised, over which box;
+//! - [`Problem`]: what is minimised, over a solution type it declares (a real vector, a
+//!   permutation, a grid route, …); [`BoxProblem`] / [`Bounds`]: the continuous case, a box;
 //! - [`Optimizer`]: an algorithm writes only `start` and `step` (one file each in
-//!   [`algorithms`], equations in its doc comment);
+//!   [`algorithms`], equations in its doc comment), for box problems or for any problem
+//!   ([`algorithms::RandomSearch`]);
 //! - [`Runner`]: the one loop: termination by iterations, evaluations, target or time;
 //!   evaluation counting; convergence history; one seeded stream per run (MISSION.md
 //!   decision 10); parallel runs equal to serial ones;
@@ -31,8 +33,9 @@ pub mod random;
 pub mod runner;
 
 pub use algorithms::Algorithm;
-pub use problem::{Bounds, BoundsError, FnProblem, Problem};
+pub use problem::{as_solution, Bounds, BoundsError, BoxProblem, FnProblem, Problem, SolutionOf};
 pub use random::{below, run_stream, uniform, RunStream};
 pub use runner::{
-    Observer, Optimizer, Outcome, Record, Runner, Search, StopReason, Termination, TerminationError,
+    Continuous, ContinuousOptimizer, Observer, Optimizer, Outcome, Record, Runner, Search,
+    StopReason, Termination, TerminationError,
 };

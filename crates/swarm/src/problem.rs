@@ -1,15 +1,70 @@
-//! What an optimizer minimises: a cost over a box of real vectors.
+//! What an optimizer minimises: a cost over a declared solution type.
+//!
+//! [`Problem`] is the general form: a problem names its `Solution` (a real vector, a
+//! permutation with flips, a grid route, …), costs one, and can draw one at random. Every
+//! optimizer is written against it (generic over the solution, like the random-search
+//! baseline) or against one kind of solution: the continuous algorithms of
+//! [`crate::algorithms`] take a [`BoxProblem`], a box of real vectors, which is a `Problem`
+//! whose solution is `[f64]` (the blanket implementation below).
+
+use std::borrow::Borrow;
 
 use thiserror::Error;
 
-/// A minimisation problem over the box `bounds`.
+use crate::random::{self, RunStream};
+
+/// A minimisation problem over solutions of type `Solution`.
 ///
 /// `Sync` because independent runs evaluate the same problem from several threads.
 pub trait Problem: Sync {
+    /// What is searched over, as the optimizer proposes it (`[f64]`, `[Step]`, …); the Runner
+    /// keeps the best one as its owned form (`Vec<f64>`, …).
+    type Solution: ?Sized + ToOwned<Owned: Clone + Send + Sync + std::fmt::Debug> + Sync;
+
+    /// The cost of `solution` (lower is better; NaN counts as worst).
+    fn evaluate(&self, solution: &Self::Solution) -> f64;
+
+    /// A valid solution to report before anything is evaluated (the lower corner of a box,
+    /// the identity order of a tour).
+    fn first_solution(&self) -> SolutionOf<Self>;
+
+    /// A solution drawn uniformly from the whole space, from the run's stream.
+    fn random_solution(&self, stream: &mut RunStream) -> SolutionOf<Self>;
+}
+
+/// The owned form of a problem's solution (what an [`crate::Outcome`] holds).
+pub type SolutionOf<P> = <<P as Problem>::Solution as ToOwned>::Owned;
+
+/// A continuous problem: a cost over the box `bounds` of real vectors.
+pub trait BoxProblem: Sync {
     /// The search box; its length is the dimension.
     fn bounds(&self) -> &Bounds;
     /// The cost of `x` (lower is better). `x` always lies inside `bounds()`.
     fn evaluate(&self, x: &[f64]) -> f64;
+}
+
+impl<B: BoxProblem + ?Sized> Problem for B {
+    type Solution = [f64];
+
+    fn evaluate(&self, solution: &[f64]) -> f64 {
+        BoxProblem::evaluate(self, solution)
+    }
+
+    fn first_solution(&self) -> Vec<f64> {
+        self.bounds().lower().to_vec()
+    }
+
+    fn random_solution(&self, stream: &mut RunStream) -> Vec<f64> {
+        let bounds = self.bounds();
+        (0..bounds.dimension())
+            .map(|d| random::uniform_in(stream, bounds.lower()[d], bounds.upper()[d]))
+            .collect()
+    }
+}
+
+/// Borrows an owned solution as the problem's solution type.
+pub fn as_solution<P: Problem + ?Sized>(owned: &SolutionOf<P>) -> &P::Solution {
+    owned.borrow()
 }
 
 /// A box `lower[d] ≤ x[d] ≤ upper[d]`, valid by construction (finite, lower < upper).
@@ -22,14 +77,25 @@ pub struct Bounds {
 /// Why a box was refused.
 #[derive(Debug, Error, PartialEq)]
 pub enum BoundsError {
+    /// No dimension at all.
     #[error("a search box needs at least one dimension")]
     Empty,
+    /// `lower` and `upper` differ in length.
     #[error("lower and upper bounds have different lengths ({lower} and {upper})")]
-    LengthMismatch { lower: usize, upper: usize },
+    LengthMismatch {
+        /// Length of the lower bounds.
+        lower: usize,
+        /// Length of the upper bounds.
+        upper: usize,
+    },
+    /// A dimension whose bounds are not finite with lower < upper.
     #[error("dimension {dimension}: bounds [{lower}, {upper}] are not finite with lower < upper")]
     Invalid {
+        /// The dimension, from 0.
         dimension: usize,
+        /// Its lower bound.
         lower: f64,
+        /// Its upper bound.
         upper: f64,
     },
 }
@@ -63,14 +129,17 @@ impl Bounds {
         Self::new(vec![low; dimension], vec![high; dimension])
     }
 
+    /// The number of coordinates.
     pub fn dimension(&self) -> usize {
         self.lower.len()
     }
 
+    /// The lower bound of every coordinate.
     pub fn lower(&self) -> &[f64] {
         &self.lower
     }
 
+    /// The upper bound of every coordinate.
     pub fn upper(&self) -> &[f64] {
         &self.upper
     }
@@ -104,12 +173,13 @@ pub struct FnProblem<F> {
 }
 
 impl<F: Fn(&[f64]) -> f64 + Sync> FnProblem<F> {
+    /// The problem of minimising `cost` over `bounds`.
     pub fn new(bounds: Bounds, cost: F) -> Self {
         Self { bounds, cost }
     }
 }
 
-impl<F: Fn(&[f64]) -> f64 + Sync> Problem for FnProblem<F> {
+impl<F: Fn(&[f64]) -> f64 + Sync> BoxProblem for FnProblem<F> {
     fn bounds(&self) -> &Bounds {
         &self.bounds
     }

@@ -4,6 +4,10 @@
 //! counting, the best-so-far, the convergence history and the random stream, so every
 //! algorithm is measured the same way (DESIGN.md principle 2).
 //!
+//! The loop is generic over the problem's solution type ([`Problem::Solution`]): the
+//! continuous algorithms, the swath-ordering ant colony, the grid routes' hybrid PSO and the
+//! routing local search all run here, under the same budgets, observers and seeding.
+//!
 //! An evaluation budget is honoured exactly: once it is spent, `Search::evaluate` returns
 //! `f64::INFINITY` without calling the problem, every algorithm treats that as "worse", and
 //! the Runner stops after the step. No algorithm needs budget code of its own.
@@ -13,14 +17,16 @@ use std::time::{Duration, Instant};
 use rayon::prelude::*;
 use thiserror::Error;
 
-use crate::problem::Problem;
+use crate::problem::{as_solution, BoxProblem, Problem, SolutionOf};
 use crate::random::{self, RunStream};
 
 /// When a run stops: at whichever configured limit comes first. At least one budget
 /// (iterations, evaluations or time) is required; a target alone might never be reached.
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Termination {
+    /// Stop after this many steps (iterations, generations).
     pub max_iterations: Option<usize>,
+    /// Stop once this many costs have been computed.
     pub max_evaluations: Option<u64>,
     /// Stop as soon as the best cost is at or below this value.
     pub target_cost: Option<f64>,
@@ -31,8 +37,10 @@ pub struct Termination {
 /// Why a termination was refused.
 #[derive(Debug, Error, PartialEq)]
 pub enum TerminationError {
+    /// No iteration, evaluation or time limit is set.
     #[error("a run needs a budget: iterations, evaluations or a time limit")]
     NoBudget,
+    /// A budget of zero.
     #[error("a budget of zero iterations or evaluations runs nothing")]
     ZeroBudget,
 }
@@ -66,6 +74,13 @@ impl Termination {
         self
     }
 
+    /// Also stop after `limit` of wall time (results then depend on the machine).
+    pub fn and_time_limit(mut self, limit: Duration) -> Self {
+        self.time_limit = Some(limit);
+        self
+    }
+
+    /// Refuses a termination without a budget, or with a zero budget.
     pub fn validate(&self) -> Result<(), TerminationError> {
         if self.max_iterations.is_none()
             && self.max_evaluations.is_none()
@@ -84,54 +99,72 @@ impl Termination {
 ///
 /// Parameters live in the implementing value (`Default` = its paper's settings); the
 /// state it keeps between steps is its own. Everything else comes from `Search`.
-pub trait Optimizer: Send {
+///
+/// `P` is the kind of problem it solves: continuous algorithms implement
+/// `Optimizer<Continuous<'p>>` for every `'p` (any [`BoxProblem`]); a permutation search
+/// implements `Optimizer<ItsProblem>`; a search that needs only [`Problem`]'s methods can
+/// implement `Optimizer<P>` for every `P` ([`crate::algorithms::RandomSearch`]).
+pub trait Optimizer<P: Problem + ?Sized>: Send {
+    /// The name in tables and reports.
     fn name(&self) -> &'static str;
     /// Builds and evaluates the initial population.
-    fn start(&mut self, search: &mut Search);
+    fn start(&mut self, search: &mut Search<P>);
     /// One iteration (generation).
-    fn step(&mut self, search: &mut Search);
+    fn step(&mut self, search: &mut Search<P>);
 }
 
+/// Any continuous problem, as a continuous optimizer sees it.
+pub type Continuous<'p> = dyn BoxProblem + 'p;
+
+/// A continuous optimizer: one that runs on every [`BoxProblem`], whatever it borrows.
+pub type ContinuousOptimizer<'o> = dyn for<'p> Optimizer<Continuous<'p>> + 'o;
+
 /// What an optimizer sees of a run: the problem, the run's random stream, the budget used
-/// so far and the best point found so far.
-pub struct Search<'a> {
-    problem: &'a dyn Problem,
+/// so far and the best solution found so far.
+pub struct Search<'a, P: Problem + ?Sized> {
+    problem: &'a P,
     termination: &'a Termination,
     stream: RunStream,
     started: Instant,
     iteration: usize,
     evaluations: u64,
     best_cost: f64,
-    best_position: Vec<f64>,
+    best_solution: SolutionOf<P>,
     converged: bool,
+    observer: &'a mut dyn Observer<P::Solution>,
+    history: Vec<Record>,
 }
 
-impl<'a> Search<'a> {
-    fn new(problem: &'a dyn Problem, termination: &'a Termination, stream: RunStream) -> Self {
+impl<'a, P: Problem + ?Sized> Search<'a, P> {
+    fn new(
+        problem: &'a P,
+        termination: &'a Termination,
+        stream: RunStream,
+        observer: &'a mut dyn Observer<P::Solution>,
+    ) -> Self {
         Self {
             problem,
             termination,
+            observer,
+            history: Vec::new(),
             stream,
             started: Instant::now(),
             iteration: 0,
             evaluations: 0,
             best_cost: f64::INFINITY,
-            best_position: problem.bounds().lower().to_vec(),
+            best_solution: problem.first_solution(),
             converged: false,
         }
     }
 
-    pub fn bounds(&self) -> &crate::Bounds {
-        self.problem.bounds()
+    /// The problem being solved (for its own tables: distances, grid cells, …).
+    pub fn problem(&self) -> &'a P {
+        self.problem
     }
 
-    pub fn dimension(&self) -> usize {
-        self.problem.bounds().dimension()
-    }
-
-    /// The cost of `x`, counted; `f64::INFINITY` once the evaluation budget is spent.
+    /// The cost of `solution`, counted; `f64::INFINITY` once the evaluation budget is spent.
     /// NaN costs count as `f64::INFINITY` so that comparisons stay total.
-    pub fn evaluate(&mut self, x: &[f64]) -> f64 {
+    pub fn evaluate(&mut self, solution: &P::Solution) -> f64 {
         if self
             .termination
             .max_evaluations
@@ -140,14 +173,24 @@ impl<'a> Search<'a> {
             return f64::INFINITY;
         }
         self.evaluations += 1;
-        let cost = self.problem.evaluate(x);
+        let cost = self.problem.evaluate(solution);
         let cost = if cost.is_nan() { f64::INFINITY } else { cost };
+        self.observer.evaluated(solution, cost);
         if cost < self.best_cost {
             self.best_cost = cost;
-            self.best_position.clear();
-            self.best_position.extend_from_slice(x);
+            solution.clone_into(&mut self.best_solution);
         }
         cost
+    }
+
+    /// A solution drawn uniformly from the problem's space, from the run's stream.
+    pub fn random_solution(&mut self) -> SolutionOf<P> {
+        self.problem.random_solution(&mut self.stream)
+    }
+
+    /// The best solution evaluated so far in this run.
+    pub fn best_solution(&self) -> &P::Solution {
+        as_solution::<P>(&self.best_solution)
     }
 
     /// The current iteration: 0 during `start`, then 1, 2, …
@@ -161,6 +204,7 @@ impl<'a> Search<'a> {
         self.converged = true;
     }
 
+    /// Costs computed so far in this run.
     pub fn evaluations(&self) -> u64 {
         self.evaluations
     }
@@ -185,10 +229,6 @@ impl<'a> Search<'a> {
     /// The best cost evaluated so far in this run.
     pub fn best_cost(&self) -> f64 {
         self.best_cost
-    }
-
-    pub fn best_position(&self) -> &[f64] {
-        &self.best_position
     }
 
     /// The run's random stream, for draws not covered by the helpers below.
@@ -216,17 +256,15 @@ impl<'a> Search<'a> {
         random::below(&mut self.stream, n)
     }
 
-    /// A uniform point of the search box.
-    pub fn random_position(&mut self) -> Vec<f64> {
-        let bounds = self.problem.bounds();
-        (0..bounds.dimension())
-            .map(|d| random::uniform_in(&mut self.stream, bounds.lower()[d], bounds.upper()[d]))
-            .collect()
-    }
-
-    /// Moves `x` into the search box (the nearest point).
-    pub fn clamp(&self, x: &mut [f64]) {
-        self.problem.bounds().clamp(x);
+    /// Notes the best cost after an iteration, for the history and the observer.
+    fn record(&mut self) {
+        let point = Record {
+            iteration: self.iteration,
+            evaluations: self.evaluations,
+            best_cost: self.best_cost,
+        };
+        self.observer.observe(&point);
+        self.history.push(point);
     }
 
     fn stop_reason(&self) -> Option<StopReason> {
@@ -262,12 +300,44 @@ impl<'a> Search<'a> {
     }
 }
 
+/// What continuous optimizers see besides: the box.
+impl<P: BoxProblem + ?Sized> Search<'_, P> {
+    /// The search box.
+    pub fn bounds(&self) -> &crate::Bounds {
+        self.problem.bounds()
+    }
+
+    /// The number of coordinates.
+    pub fn dimension(&self) -> usize {
+        self.problem.bounds().dimension()
+    }
+
+    /// A uniform point of the search box.
+    pub fn random_position(&mut self) -> Vec<f64> {
+        self.random_solution()
+    }
+
+    /// Moves `x` into the search box (the nearest point).
+    pub fn clamp(&self, x: &mut [f64]) {
+        self.problem.bounds().clamp(x);
+    }
+
+    /// The best point evaluated so far in this run.
+    pub fn best_position(&self) -> &[f64] {
+        self.best_solution()
+    }
+}
+
 /// Which limit ended a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum StopReason {
+    /// The iteration budget was spent.
     Iterations,
+    /// The evaluation budget was spent.
     Evaluations,
+    /// The target cost was reached.
     Target,
+    /// The time limit passed.
     Time,
     /// The optimizer declared itself converged ([`Search::declare_converged`]).
     Converged,
@@ -276,26 +346,41 @@ pub enum StopReason {
 /// One point of the convergence history: the best cost after an iteration.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Record {
+    /// The iteration just finished (0: the start).
     pub iteration: usize,
+    /// Costs computed up to then.
     pub evaluations: u64,
+    /// The best cost up to then.
     pub best_cost: f64,
 }
 
-/// Watches a run as it goes (progress display, custom logging).
-pub trait Observer {
+/// Watches a run as it goes (progress display, custom logging, conformance checks);
+/// `Solution` is the problem's solution type.
+pub trait Observer<Solution: ?Sized = [f64]> {
+    /// Called after the start and after every iteration.
     fn observe(&mut self, record: &Record);
+    /// Called for every solution costed, with its cost (by default, nothing).
+    fn evaluated(&mut self, _solution: &Solution, _cost: f64) {}
 }
 
-/// The result of one run.
+/// The result of one run; `Solution` is the problem's owned solution (`Vec<f64>` for a box).
 #[derive(Debug, Clone)]
-pub struct Outcome {
+pub struct Outcome<Solution = Vec<f64>> {
+    /// The optimizer's name.
     pub algorithm: &'static str,
+    /// The run number (its random stream).
     pub run: u64,
+    /// The best cost found.
     pub best_cost: f64,
-    pub best_position: Vec<f64>,
+    /// The solution of that cost.
+    pub best_solution: Solution,
+    /// Costs computed.
     pub evaluations: u64,
+    /// Iterations made after the start.
     pub iterations: usize,
+    /// Wall time of the run.
     pub elapsed: Duration,
+    /// The limit that ended it.
     pub stopped_by: StopReason,
     /// The best cost after the start (iteration 0) and after every iteration.
     pub history: Vec<Record>,
@@ -309,45 +394,55 @@ pub struct Runner {
 }
 
 impl Runner {
+    /// A runner for `termination` (refused without a budget) and the base `seed`.
     pub fn new(termination: Termination, seed: u64) -> Result<Self, TerminationError> {
         termination.validate()?;
         Ok(Self { termination, seed })
     }
 
+    /// When runs stop.
     pub fn termination(&self) -> &Termination {
         &self.termination
     }
 
-    /// Run number `run` (its own random stream, MISSION.md decision 10).
-    pub fn run(&self, optimizer: &mut dyn Optimizer, problem: &dyn Problem, run: u64) -> Outcome {
+    /// Run number `run` of a continuous optimizer (its own random stream, MISSION.md
+    /// decision 10).
+    pub fn run(
+        &self,
+        optimizer: &mut ContinuousOptimizer,
+        problem: &dyn BoxProblem,
+        run: u64,
+    ) -> Outcome {
         self.run_observed(optimizer, problem, run, &mut ())
     }
 
     /// `run`, telling `observer` the best cost after every iteration.
     pub fn run_observed(
         &self,
-        optimizer: &mut dyn Optimizer,
-        problem: &dyn Problem,
+        optimizer: &mut ContinuousOptimizer,
+        problem: &dyn BoxProblem,
         run: u64,
         observer: &mut dyn Observer,
     ) -> Outcome {
+        self.run_problem(optimizer, problem, run, observer)
+    }
+
+    /// Run number `run` of any optimizer on any problem: the one loop.
+    pub fn run_problem<P: Problem + ?Sized>(
+        &self,
+        optimizer: &mut dyn Optimizer<P>,
+        problem: &P,
+        run: u64,
+        observer: &mut dyn Observer<P::Solution>,
+    ) -> Outcome<SolutionOf<P>> {
         let mut search = Search::new(
             problem,
             &self.termination,
             random::run_stream(self.seed, run),
+            observer,
         );
-        let mut history = Vec::new();
-        let mut record = |search: &Search| {
-            let point = Record {
-                iteration: search.iteration,
-                evaluations: search.evaluations,
-                best_cost: search.best_cost,
-            };
-            observer.observe(&point);
-            history.push(point);
-        };
         optimizer.start(&mut search);
-        record(&search);
+        search.record();
         let stopped_by = loop {
             if let Some(reason) = search.stop_reason() {
                 break reason;
@@ -355,7 +450,7 @@ impl Runner {
             search.iteration += 1;
             let evaluations_before = search.evaluations;
             optimizer.step(&mut search);
-            record(&search);
+            search.record();
             if search.converged {
                 break StopReason::Converged;
             }
@@ -370,12 +465,12 @@ impl Runner {
             algorithm: optimizer.name(),
             run,
             best_cost: search.best_cost,
-            best_position: search.best_position,
+            best_solution: search.best_solution,
             evaluations: search.evaluations,
             iterations: search.iteration,
             elapsed: search.started.elapsed(),
             stopped_by,
-            history,
+            history: search.history,
         }
     }
 
@@ -385,12 +480,12 @@ impl Runner {
     pub fn run_many<O, Make>(
         &self,
         make: Make,
-        problem: &dyn Problem,
+        problem: &dyn BoxProblem,
         runs: u64,
         finished: &(dyn Fn(&Outcome) + Sync),
     ) -> Vec<Outcome>
     where
-        O: Optimizer,
+        O: for<'p> Optimizer<Continuous<'p>>,
         Make: Fn() -> O + Sync,
     {
         (0..runs)
@@ -405,20 +500,20 @@ impl Runner {
     }
 }
 
-impl Observer for () {
+impl<Solution: ?Sized> Observer<Solution> for () {
     fn observe(&mut self, _record: &Record) {}
 }
 
-impl Optimizer for Box<dyn Optimizer + '_> {
+impl<'p> Optimizer<Continuous<'p>> for Box<ContinuousOptimizer<'_>> {
     fn name(&self) -> &'static str {
         self.as_ref().name()
     }
 
-    fn start(&mut self, search: &mut Search) {
+    fn start(&mut self, search: &mut Search<Continuous<'p>>) {
         self.as_mut().start(search);
     }
 
-    fn step(&mut self, search: &mut Search) {
+    fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         self.as_mut().step(search);
     }
 }

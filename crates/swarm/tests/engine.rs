@@ -6,7 +6,7 @@ use swarm::{conformance, Runner, Termination};
 
 #[test]
 fn every_optimizer_passes_the_conformance_suite() {
-    for algorithm in Algorithm::ALL {
+    for algorithm in Algorithm::ALL.iter().copied() {
         conformance::check(|| algorithm.build(40)).unwrap_or_else(|fault| panic!("{fault}"));
     }
 }
@@ -15,7 +15,7 @@ fn every_optimizer_passes_the_conformance_suite() {
 fn parallel_runs_equal_serial_runs() {
     let problem = FunctionProblem::new(functions::by_key("f5").unwrap(), 10).unwrap();
     let runner = Runner::new(Termination::iterations(20), 99).unwrap();
-    for algorithm in [Algorithm::IbaFcs, Algorithm::Lshade] {
+    for algorithm in [Algorithm::IBA_FCS, Algorithm::LSHADE] {
         let parallel = runner.run_many(|| algorithm.build(30), &problem, 6, &|_| {});
         for (run, outcome) in parallel.iter().enumerate() {
             let serial = runner.run(&mut algorithm.build(30), &problem, run as u64);
@@ -60,7 +60,7 @@ fn f3_refuses_dimensions_without_a_rotation_matrix() {
 fn an_evaluation_budget_is_never_exceeded_and_a_target_stops_early() {
     let problem = FunctionProblem::new(functions::by_key("f1").unwrap(), 10).unwrap();
     let runner = Runner::new(Termination::evaluations(1_234), 1).unwrap();
-    for algorithm in Algorithm::ALL {
+    for algorithm in Algorithm::ALL.iter().copied() {
         let outcome = runner.run(&mut algorithm.build(50), &problem, 0);
         assert!(
             outcome.evaluations <= 1_234,
@@ -69,7 +69,7 @@ fn an_evaluation_budget_is_never_exceeded_and_a_target_stops_early() {
         );
     }
     let runner = Runner::new(Termination::iterations(10_000).and_target(-449.0), 1).unwrap();
-    let outcome = runner.run(&mut Algorithm::IbaFcs.build(50), &problem, 0);
+    let outcome = runner.run(&mut Algorithm::IBA_FCS.build(50), &problem, 0);
     assert_eq!(outcome.stopped_by, swarm::StopReason::Target);
     assert!(outcome.iterations < 10_000);
 }
@@ -77,15 +77,15 @@ fn an_evaluation_budget_is_never_exceeded_and_a_target_stops_early() {
 /// An optimizer that evaluates one point per step and declares itself converged at step 3.
 struct GivesUp;
 
-impl swarm::Optimizer for GivesUp {
+impl<'p> swarm::Optimizer<swarm::Continuous<'p>> for GivesUp {
     fn name(&self) -> &'static str {
         "gives up"
     }
-    fn start(&mut self, search: &mut swarm::Search) {
+    fn start(&mut self, search: &mut swarm::Search<swarm::Continuous<'p>>) {
         let x = search.random_position();
         search.evaluate(&x);
     }
-    fn step(&mut self, search: &mut swarm::Search) {
+    fn step(&mut self, search: &mut swarm::Search<swarm::Continuous<'p>>) {
         let x = search.random_position();
         search.evaluate(&x);
         if search.iteration() == 3 {

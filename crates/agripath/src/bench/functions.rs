@@ -402,7 +402,7 @@ mod tests {
             population: 20,
             iterations: 30,
             runs: 3,
-            algorithms: vec![Algorithm::IbaFcs, Algorithm::ParticleSwarm],
+            algorithms: vec![Algorithm::IBA_FCS, Algorithm::PARTICLE_SWARM],
             functions: vec![
                 swarm::functions::by_key("f1").unwrap(),
                 swarm::functions::by_key("f7").unwrap(),

@@ -98,7 +98,7 @@ pub fn settings(runs: u64, seed: u64) -> FunctionBench {
     let mut settings = FunctionBench::table_2();
     settings.runs = runs;
     settings.seed = seed;
-    settings.algorithms.push(Algorithm::Lshade);
+    settings.algorithms.push(Algorithm::LSHADE);
     settings
 }
 

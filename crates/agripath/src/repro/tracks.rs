@@ -116,36 +116,42 @@ fn row(text: &mut String, label: &str, result: &PlannerRuns, paper: Option<Paper
 
 /// The planners of Table 4 and ours, in the paper's column order.
 pub const TABLE4_PLANNERS: [Planner; 5] = [
-    Planner::Swarm(Algorithm::ParticleSwarm),
-    Planner::Swarm(Algorithm::Bat),
-    Planner::Swarm(Algorithm::Ilssiwba),
-    Planner::Swarm(Algorithm::IbaFcs),
+    Planner::Swarm(Algorithm::PARTICLE_SWARM),
+    Planner::Swarm(Algorithm::BAT),
+    Planner::Swarm(Algorithm::ILSSIWBA),
+    Planner::Swarm(Algorithm::IBA_FCS),
     Planner::Lattice,
 ];
 
 /// Table 5: IBA-FCS with each encoding.
 pub const TABLE5_PLANNERS: [(Planner, Option<Encoding>); 2] = [
     (
-        Planner::Swarm(Algorithm::IbaFcs),
+        Planner::Swarm(Algorithm::IBA_FCS),
         Some(Encoding::Cylindrical),
     ),
-    (Planner::Swarm(Algorithm::IbaFcs), Some(Encoding::Cartesian)),
+    (
+        Planner::Swarm(Algorithm::IBA_FCS),
+        Some(Encoding::Cartesian),
+    ),
 ];
 
 /// Seed 002's table: its three planners in the paper's order, IBA-FCS and ours.
 pub const SEED002_PLANNERS: [(Planner, Option<Encoding>); 5] = [
-    (Planner::Swarm(Algorithm::Genetic), None),
-    (Planner::Swarm(Algorithm::AntColony), None),
+    (Planner::Swarm(Algorithm::GENETIC), None),
+    (Planner::Swarm(Algorithm::ANT_COLONY), None),
     (Planner::ImprovedGenetic, None),
-    (Planner::Swarm(Algorithm::IbaFcs), None),
+    (Planner::Swarm(Algorithm::IBA_FCS), None),
     (Planner::Lattice, None),
 ];
 
 /// SPSO's scenario: SPSO, IBA-FCS on both encodings, ours.
 pub const SPSO_PLANNERS: [(Planner, Option<Encoding>); 4] = [
     (Planner::Spso, None),
-    (Planner::Swarm(Algorithm::IbaFcs), None),
-    (Planner::Swarm(Algorithm::IbaFcs), Some(Encoding::Cartesian)),
+    (Planner::Swarm(Algorithm::IBA_FCS), None),
+    (
+        Planner::Swarm(Algorithm::IBA_FCS),
+        Some(Encoding::Cartesian),
+    ),
     (Planner::Lattice, None),
 ];
 

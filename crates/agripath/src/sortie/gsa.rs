@@ -156,7 +156,7 @@ pub fn search(
             });
             let outcome = runner.run(&mut optimizer, &problem, returns as u64);
             evaluations += outcome.evaluations;
-            let thresholds = to_metres(&outcome.best_position);
+            let thresholds = to_metres(&outcome.best_solution);
             (outcome.best_cost, decode(route, &thresholds), thresholds)
         };
         tried.push((returns, cost));

@@ -33,7 +33,7 @@
 //! room for `max_length` waypoints: a chromosome shorter than that is evaluated with its
 //! remaining waypoints at the goal (zero-length legs, which seed 002's cost does not count).
 
-use swarm::{Optimizer, Search};
+use swarm::{Continuous, Optimizer, Search};
 
 use super::scenario::TrackScenario;
 
@@ -95,14 +95,14 @@ impl<'a> ImprovedGenetic<'a> {
             .collect()
     }
 
-    fn evaluate(&self, search: &mut Search, genes: Vec<[f64; 3]>) -> Chromosome {
+    fn evaluate(&self, search: &mut Search<Continuous<'_>>, genes: Vec<[f64; 3]>) -> Chromosome {
         let mut x = self.padded(&genes);
         search.clamp(&mut x);
         let cost = search.evaluate(&x);
         Chromosome { genes, cost }
     }
 
-    fn random_gene(&self, search: &mut Search) -> [f64; 3] {
+    fn random_gene(&self, search: &mut Search<Continuous<'_>>) -> [f64; 3] {
         let (min_x, min_y, max_x, max_y) = self.scenario.area;
         let (low, high) = self.scenario.altitude_bounds;
         [
@@ -122,7 +122,7 @@ impl<'a> ImprovedGenetic<'a> {
         (index(gene[0], min_x, max_x), index(gene[1], min_y, max_y))
     }
 
-    fn select(&self, search: &mut Search) -> Vec<Chromosome> {
+    fn select(&self, search: &mut Search<Continuous<'_>>) -> Vec<Chromosome> {
         let wanted = self.population.len();
         let tournaments = (self.parameters.tournament_share * wanted as f64).round() as usize;
         let inverse: Vec<f64> = self
@@ -283,7 +283,11 @@ impl<'a> ImprovedGenetic<'a> {
     }
 
     /// Steps (1)-(4) of the heuristic multi-mutation, once.
-    fn mutate_once(&self, search: &mut Search, mut genes: Vec<[f64; 3]>) -> Vec<[f64; 3]> {
+    fn mutate_once(
+        &self,
+        search: &mut Search<Continuous<'_>>,
+        mut genes: Vec<[f64; 3]>,
+    ) -> Vec<[f64; 3]> {
         let (start, goal) = (self.scenario.cruise_start, self.scenario.cruise_goal);
         let neighbour = |genes: &[[f64; 3]], index: isize| -> [f64; 3] {
             if index < 0 {
@@ -348,12 +352,12 @@ impl<'a> ImprovedGenetic<'a> {
     }
 }
 
-impl Optimizer for ImprovedGenetic<'_> {
+impl<'p> Optimizer<Continuous<'p>> for ImprovedGenetic<'_> {
     fn name(&self) -> &'static str {
         "improved GA"
     }
 
-    fn start(&mut self, search: &mut Search) {
+    fn start(&mut self, search: &mut Search<Continuous<'p>>) {
         let length = self
             .parameters
             .initial_length
@@ -366,7 +370,7 @@ impl Optimizer for ImprovedGenetic<'_> {
             .collect();
     }
 
-    fn step(&mut self, search: &mut Search) {
+    fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         let early = search.progress() <= self.parameters.phase_switch;
         let pool = self.select(search);
         let mut children = Vec::with_capacity(pool.len());

@@ -8,7 +8,7 @@
 use std::time::Duration;
 
 use swarm::algorithms::{ParticleSwarm, ParticleSwarmParameters};
-use swarm::{Algorithm, Optimizer, Record, Runner, Termination};
+use swarm::{Algorithm, ContinuousOptimizer, Record, Runner, Termination};
 
 use super::bspline;
 use super::cost::CostBreakdown;
@@ -67,7 +67,7 @@ impl Planner {
     }
 
     pub fn all() -> Vec<Planner> {
-        let mut all: Vec<Planner> = Algorithm::ALL.into_iter().map(Planner::Swarm).collect();
+        let mut all: Vec<Planner> = Algorithm::ALL.iter().copied().map(Planner::Swarm).collect();
         all.extend([Planner::Spso, Planner::ImprovedGenetic, Planner::Lattice]);
         all
     }
@@ -224,7 +224,7 @@ pub fn plan(
         _ => TrackProblem::new(scenario, encoding),
     };
     let population = scenario.population;
-    let make = || -> Box<dyn Optimizer + '_> {
+    let make = || -> Box<ContinuousOptimizer<'_>> {
         match settings.planner {
             Planner::Swarm(algorithm) => algorithm.build(population),
             Planner::Spso => Box::new(ParticleSwarm::new(ParticleSwarmParameters::spso(
@@ -238,7 +238,7 @@ pub fn plan(
     Ok(outcomes
         .into_iter()
         .map(|outcome| {
-            let mut points = problem.track(&outcome.best_position);
+            let mut points = problem.track(&outcome.best_solution);
             if settings.planner == Planner::ImprovedGenetic {
                 // Drop the padding: waypoints parked at the goal.
                 let goal = scenario.sea_level(scenario.cruise_goal);
@@ -381,7 +381,7 @@ mod tests {
         for scenario in scenarios() {
             for planner in [
                 Planner::Lattice,
-                Planner::Swarm(Algorithm::IbaFcs),
+                Planner::Swarm(Algorithm::IBA_FCS),
                 Planner::ImprovedGenetic,
             ] {
                 let runs = plan(&scenario, &settings(planner, 4000), &|| {}).unwrap();
@@ -413,13 +413,13 @@ mod tests {
         let scenario = TrackScenario::seed000("I").unwrap();
         let first = plan(
             &scenario,
-            &settings(Planner::Swarm(Algorithm::Bat), 3000),
+            &settings(Planner::Swarm(Algorithm::BAT), 3000),
             &|| {},
         )
         .unwrap();
         let again = plan(
             &scenario,
-            &settings(Planner::Swarm(Algorithm::Bat), 3000),
+            &settings(Planner::Swarm(Algorithm::BAT), 3000),
             &|| {},
         )
         .unwrap();

@@ -1,7 +1,7 @@
-//! A track scenario, an encoding and a cost model as one [`swarm::Problem`]: every planner on
+//! A track scenario, an encoding and a cost model as one [`swarm::BoxProblem`]: every planner on
 //! the swarm engine sees a box and a cost, nothing of terrain or threats.
 
-use swarm::{Bounds, Problem};
+use swarm::{Bounds, BoxProblem};
 
 use super::cost::CostBreakdown;
 use super::encoding::Encoding;
@@ -60,7 +60,7 @@ impl<'a> TrackProblem<'a> {
     }
 }
 
-impl Problem for TrackProblem<'_> {
+impl BoxProblem for TrackProblem<'_> {
     fn bounds(&self) -> &Bounds {
         &self.bounds
     }

@@ -17,7 +17,7 @@
 //! tenth of the budget has passed without its cost falling by a thousandth, it declares
 //! itself converged and hands the rest of the budget back.
 
-use swarm::{Optimizer, Search};
+use swarm::{Continuous, Optimizer, Search};
 
 use super::lattice;
 use super::scenario::TrackScenario;
@@ -70,12 +70,12 @@ impl<'a> LatticeRefine<'a> {
     }
 }
 
-impl Optimizer for LatticeRefine<'_> {
+impl<'p> Optimizer<Continuous<'p>> for LatticeRefine<'_> {
     fn name(&self) -> &'static str {
         "lattice + refine"
     }
 
-    fn start(&mut self, search: &mut Search) {
+    fn start(&mut self, search: &mut Search<Continuous<'p>>) {
         let encoding = super::encoding::Encoding::Cartesian;
         let mut starts: Vec<Vec<f64>> = lattice::corridors(self.scenario, LANES)
             .iter()
@@ -100,7 +100,7 @@ impl Optimizer for LatticeRefine<'_> {
             .collect();
     }
 
-    fn step(&mut self, search: &mut Search) {
+    fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         self.pass += 1;
         let best = search.best_cost();
         if !self.improved.0.is_finite() || best < self.improved.0 - STILL * self.improved.0.abs() {

@@ -13,7 +13,15 @@
 //! `ants` is m; the paper uses m = 2, the benches give it the population size so that every
 //! algorithm spends the same evaluations per iteration. Samples outside the box are clamped.
 
-use crate::runner::{Optimizer, Search};
+use crate::runner::{Continuous, Optimizer, Search};
+
+/// On the command line `aco-r`, in tables "ACO_R": `population` agents.
+pub const ALGORITHM: super::Algorithm = super::Algorithm::new("aco-r", "ACO_R", |population| {
+    Box::new(AntColony::new(AntColonyParameters {
+        ants: population,
+        ..Default::default()
+    }))
+});
 
 /// ACO_R's parameters.
 #[derive(Debug, Clone, PartialEq)]
@@ -54,7 +62,7 @@ impl AntColony {
         }
     }
 
-    fn pick_guide(&self, search: &mut Search) -> usize {
+    fn pick_guide(&self, search: &mut Search<Continuous<'_>>) -> usize {
         let total = *self.cumulative_weights.last().unwrap_or(&1.0);
         let draw = search.uniform() * total;
         self.cumulative_weights
@@ -63,12 +71,12 @@ impl AntColony {
     }
 }
 
-impl Optimizer for AntColony {
+impl<'p> Optimizer<Continuous<'p>> for AntColony {
     fn name(&self) -> &'static str {
         "ACO_R"
     }
 
-    fn start(&mut self, search: &mut Search) {
+    fn start(&mut self, search: &mut Search<Continuous<'p>>) {
         let size = self.parameters.archive.max(2);
         self.archive = (0..size)
             .map(|_| {
@@ -88,7 +96,7 @@ impl Optimizer for AntColony {
             .collect();
     }
 
-    fn step(&mut self, search: &mut Search) {
+    fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         let dimension = search.dimension();
         let size = self.archive.len();
         let mut spreads: Vec<Option<Vec<f64>>> = vec![None; size];

@@ -17,7 +17,15 @@
 //! the old position instead: not copied); the global best moves whenever a bat finds a better
 //! point, accepted or not (as in Yang's pseudo-code); t in eq. (6) is the iteration number.
 
-use crate::runner::{Optimizer, Search};
+use crate::runner::{Continuous, Optimizer, Search};
+
+/// On the command line `ba`, in tables "BA": `population` agents.
+pub const ALGORITHM: super::Algorithm = super::Algorithm::new("ba", "BA", |population| {
+    Box::new(Bat::new(BatParameters {
+        population,
+        ..Default::default()
+    }))
+});
 
 /// BA's parameters; `Default` is seed 000's baseline setting.
 #[derive(Debug, Clone, PartialEq)]
@@ -65,7 +73,7 @@ impl Colony {
     /// `population` bats at random, still, evaluated, with loudness and pulse rate drawn
     /// uniformly from the given ranges.
     pub fn new(
-        search: &mut Search,
+        search: &mut Search<Continuous<'_>>,
         population: usize,
         (loud_low, loud_high): (f64, f64),
         (rate_low, rate_high): (f64, f64),
@@ -98,7 +106,12 @@ impl Colony {
 
     /// The local walk of eq. (4) around the best, in place of `candidate`; `mean_loudness`
     /// is Ā^t, taken at the start of the iteration.
-    fn walk_near_best(&self, candidate: &mut [f64], mean_loudness: f64, search: &mut Search) {
+    fn walk_near_best(
+        &self,
+        candidate: &mut [f64],
+        mean_loudness: f64,
+        search: &mut Search<Continuous<'_>>,
+    ) {
         for (d, value) in candidate.iter_mut().enumerate() {
             *value = self.best[d] + search.uniform_in(-1.0, 1.0) * mean_loudness;
         }
@@ -111,8 +124,8 @@ impl Colony {
     /// loudness and pulse rate.
     pub fn fly(
         &mut self,
-        search: &mut Search,
-        mut velocity: impl FnMut(&mut Search, &mut [f64], &[f64], &[f64]),
+        search: &mut Search<Continuous<'_>>,
+        mut velocity: impl FnMut(&mut Search<Continuous<'_>>, &mut [f64], &[f64], &[f64]),
         mut accepted: impl FnMut(&mut f64, &mut f64),
     ) {
         let mean_loudness = self.mean_loudness();
@@ -166,12 +179,12 @@ impl Bat {
     }
 }
 
-impl Optimizer for Bat {
+impl<'p> Optimizer<Continuous<'p>> for Bat {
     fn name(&self) -> &'static str {
         "BA"
     }
 
-    fn start(&mut self, search: &mut Search) {
+    fn start(&mut self, search: &mut Search<Continuous<'p>>) {
         let p = &self.parameters;
         self.colony = Colony::new(
             search,
@@ -181,7 +194,7 @@ impl Optimizer for Bat {
         );
     }
 
-    fn step(&mut self, search: &mut Search) {
+    fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         let p = &self.parameters;
         let t = search.iteration() as f64;
         self.colony.fly(

@@ -15,7 +15,15 @@
 //! The seed gives the rates as ranges: here they fall linearly over the run,
 //! p_c from 1 to 0.4 and p_m from 0.5 to 0.01 (explore early, keep good genes late).
 
-use crate::runner::{Optimizer, Search};
+use crate::runner::{Continuous, Optimizer, Search};
+
+/// On the command line `ga`, in tables "GA": `population` agents.
+pub const ALGORITHM: super::Algorithm = super::Algorithm::new("ga", "GA", |population| {
+    Box::new(Genetic::new(GeneticParameters {
+        population,
+        ..Default::default()
+    }))
+});
 
 /// The GA's parameters; `Default` is seed 000's ranges.
 #[derive(Debug, Clone, PartialEq)]
@@ -61,7 +69,7 @@ impl Genetic {
         }
     }
 
-    fn tournament(&self, search: &mut Search) -> usize {
+    fn tournament(&self, search: &mut Search<Continuous<'_>>) -> usize {
         let a = search.below(self.individuals.len());
         let b = search.below(self.individuals.len());
         if self.costs[b] < self.costs[a] {
@@ -71,7 +79,7 @@ impl Genetic {
         }
     }
 
-    fn mutate(&self, child: &mut [f64], search: &mut Search) {
+    fn mutate(&self, child: &mut [f64], search: &mut Search<Continuous<'_>>) {
         let k = search.progress();
         let shape = (1.0 - k).powf(self.parameters.mutation_shape);
         for (d, gene) in child.iter_mut().enumerate() {
@@ -89,12 +97,12 @@ impl Genetic {
     }
 }
 
-impl Optimizer for Genetic {
+impl<'p> Optimizer<Continuous<'p>> for Genetic {
     fn name(&self) -> &'static str {
         "GA"
     }
 
-    fn start(&mut self, search: &mut Search) {
+    fn start(&mut self, search: &mut Search<Continuous<'p>>) {
         let population = self.parameters.population.max(2);
         self.individuals = (0..population).map(|_| search.random_position()).collect();
         self.costs = self
@@ -104,7 +112,7 @@ impl Optimizer for Genetic {
             .collect();
     }
 
-    fn step(&mut self, search: &mut Search) {
+    fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         let p = &self.parameters;
         let k = search.progress();
         let crossover = p.crossover_start + k * (p.crossover_end - p.crossover_start);

@@ -16,7 +16,15 @@
 //! Used on its own (the bench) and by seed 003's sortie planner (one search per number of
 //! returns).
 
-use crate::runner::{Optimizer, Search};
+use crate::runner::{Continuous, Optimizer, Search};
+
+/// On the command line `gsa`, in tables "GSA": `population` agents.
+pub const ALGORITHM: super::Algorithm = super::Algorithm::new("gsa", "GSA", |population| {
+    Box::new(GravitationalSearch::new(GravitationalSearchParameters {
+        population,
+        ..Default::default()
+    }))
+});
 
 /// GSA's parameters; `Default` is Rashedi 2009's (population: 50 in the demo, 500 here to
 /// match the other benchmarks; set it per use).
@@ -88,19 +96,19 @@ impl GravitationalSearch {
     }
 }
 
-impl Optimizer for GravitationalSearch {
+impl<'p> Optimizer<Continuous<'p>> for GravitationalSearch {
     fn name(&self) -> &'static str {
         "GSA"
     }
 
-    fn start(&mut self, search: &mut Search) {
+    fn start(&mut self, search: &mut Search<Continuous<'p>>) {
         let population = self.parameters.population.max(1);
         self.positions = (0..population).map(|_| search.random_position()).collect();
         self.velocities = vec![vec![0.0; search.dimension()]; population];
         self.costs = self.positions.iter().map(|x| search.evaluate(x)).collect();
     }
 
-    fn step(&mut self, search: &mut Search) {
+    fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         let p = &self.parameters;
         let k = search.progress();
         let population = self.positions.len();

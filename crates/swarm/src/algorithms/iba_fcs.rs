@@ -25,7 +25,15 @@
 //! clamped to the box.
 
 use super::bat::index_of_smallest;
-use crate::runner::{Optimizer, Search};
+use crate::runner::{Continuous, Optimizer, Search};
+
+/// On the command line `iba-fcs`, in tables "IBA-FCS": `population` agents.
+pub const ALGORITHM: super::Algorithm = super::Algorithm::new("iba-fcs", "IBA-FCS", |population| {
+    Box::new(IbaFcs::new(IbaFcsParameters {
+        population,
+        ..Default::default()
+    }))
+});
 
 /// IBA-FCS's parameters; `Default` is seed 000 §2.5.
 #[derive(Debug, Clone, PartialEq)]
@@ -107,12 +115,12 @@ impl IbaFcs {
     }
 }
 
-impl Optimizer for IbaFcs {
+impl<'p> Optimizer<Continuous<'p>> for IbaFcs {
     fn name(&self) -> &'static str {
         "IBA-FCS"
     }
 
-    fn start(&mut self, search: &mut Search) {
+    fn start(&mut self, search: &mut Search<Continuous<'p>>) {
         let population = self.parameters.population.max(1);
         self.positions = (0..population).map(|_| search.random_position()).collect();
         self.velocities = vec![vec![0.0; search.dimension()]; population];
@@ -124,7 +132,7 @@ impl Optimizer for IbaFcs {
         self.best_cost = self.costs[best];
     }
 
-    fn step(&mut self, search: &mut Search) {
+    fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         let p = &self.parameters;
         let k = search.progress();
         let finite: Vec<f64> = self

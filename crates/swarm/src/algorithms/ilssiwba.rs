@@ -20,7 +20,16 @@
 //! clamped to the box.
 
 use super::bat::Colony;
-use crate::runner::{Optimizer, Search};
+use crate::runner::{Continuous, Optimizer, Search};
+
+/// On the command line `ilssiwba`, in tables "ILSSIWBA": `population` agents.
+pub const ALGORITHM: super::Algorithm =
+    super::Algorithm::new("ilssiwba", "ILSSIWBA", |population| {
+        Box::new(Ilssiwba::new(IlssiwbaParameters {
+            population,
+            ..Default::default()
+        }))
+    });
 
 /// ILSSIWBA's parameters; `Default` is seed 000 §2.5 plus the documented ILS budget.
 #[derive(Debug, Clone, PartialEq)]
@@ -76,7 +85,7 @@ impl Ilssiwba {
     }
 
     /// The iterated local search around the global best.
-    fn iterated_local_search(&mut self, search: &mut Search) {
+    fn iterated_local_search(&mut self, search: &mut Search<Continuous<'_>>) {
         let evaluations = self.parameters.local_search_evaluations;
         if evaluations == 0 {
             return;
@@ -110,12 +119,12 @@ impl Ilssiwba {
     }
 }
 
-impl Optimizer for Ilssiwba {
+impl<'p> Optimizer<Continuous<'p>> for Ilssiwba {
     fn name(&self) -> &'static str {
         "ILSSIWBA"
     }
 
-    fn start(&mut self, search: &mut Search) {
+    fn start(&mut self, search: &mut Search<Continuous<'p>>) {
         let p = &self.parameters;
         self.colony = Colony::new(
             search,
@@ -125,7 +134,7 @@ impl Optimizer for Ilssiwba {
         );
     }
 
-    fn step(&mut self, search: &mut Search) {
+    fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         let p = self.parameters.clone();
         let t = search.iteration() as f64;
         self.colony.fly(

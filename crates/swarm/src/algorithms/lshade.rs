@@ -20,7 +20,16 @@
 //! `population`, when set, replaces N_init = 18·D.
 
 use crate::random::cauchy;
-use crate::runner::{Optimizer, Search};
+use crate::runner::{Continuous, Optimizer, Search};
+
+/// On the command line `lshade`, in tables "L-SHADE": `population` agents.
+pub const ALGORITHM: super::Algorithm = super::Algorithm::new("lshade", "L-SHADE", |population| {
+    {
+        // L-SHADE keeps its own initial population of 18·D, which it shrinks.
+        let _ = population;
+        Box::new(Lshade::new(LshadeParameters::default()))
+    }
+});
 
 /// L-SHADE's parameters; `Default` is the paper's.
 #[derive(Debug, Clone, PartialEq)]
@@ -79,12 +88,12 @@ fn lehmer_mean(values: &[f64], weights: &[f64]) -> f64 {
     }
 }
 
-impl Optimizer for Lshade {
+impl<'p> Optimizer<Continuous<'p>> for Lshade {
     fn name(&self) -> &'static str {
         "L-SHADE"
     }
 
-    fn start(&mut self, search: &mut Search) {
+    fn start(&mut self, search: &mut Search<Continuous<'p>>) {
         let p = &self.parameters;
         self.initial_population = p
             .population
@@ -105,7 +114,7 @@ impl Optimizer for Lshade {
         self.memory_slot = 0;
     }
 
-    fn step(&mut self, search: &mut Search) {
+    fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         let size = self.individuals.len();
         let dimension = search.dimension();
         let mut ranked: Vec<usize> = (0..size).collect();

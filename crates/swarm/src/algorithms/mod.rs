@@ -8,6 +8,7 @@ pub mod iba_fcs;
 pub mod ilssiwba;
 pub mod lshade;
 pub mod particle_swarm;
+pub mod random_search;
 
 use std::fmt;
 use std::str::FromStr;
@@ -20,108 +21,113 @@ pub use iba_fcs::{IbaFcs, IbaFcsParameters};
 pub use ilssiwba::{Ilssiwba, IlssiwbaParameters};
 pub use lshade::{Lshade, LshadeParameters};
 pub use particle_swarm::{ParticleSwarm, ParticleSwarmParameters};
+pub use random_search::RandomSearch;
 
-use crate::runner::Optimizer;
+use crate::runner::ContinuousOptimizer;
 
-/// The algorithms by name, for configuration files and the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub enum Algorithm {
-    ParticleSwarm,
-    Genetic,
-    Bat,
-    Ilssiwba,
-    IbaFcs,
-    GravitationalSearch,
-    AntColony,
-    Lshade,
+/// The optimizers, registered in one place: adding one is its file plus one line here.
+/// `--algorithm all` and the conformance suite take every one of them.
+pub const ALL: &[Algorithm] = &[
+    particle_swarm::ALGORITHM,
+    genetic::ALGORITHM,
+    bat::ALGORITHM,
+    ilssiwba::ALGORITHM,
+    iba_fcs::ALGORITHM,
+    gravitational_search::ALGORITHM,
+    ant_colony::ALGORITHM,
+    lshade::ALGORITHM,
+];
+
+/// Baselines: known by name, left out of `all` (they are what the optimizers must beat).
+pub const BASELINES: &[Algorithm] = &[random_search::ALGORITHM];
+
+/// An algorithm by name, for configuration files and the command line, with the builder
+/// that makes it with its paper's parameters. Each algorithm's file declares its own
+/// `ALGORITHM`.
+#[derive(Clone, Copy)]
+pub struct Algorithm {
+    key: &'static str,
+    label: &'static str,
+    build: fn(usize) -> Box<ContinuousOptimizer<'static>>,
 }
 
 impl Algorithm {
-    pub const ALL: [Algorithm; 8] = [
-        Algorithm::ParticleSwarm,
-        Algorithm::Genetic,
-        Algorithm::Bat,
-        Algorithm::Ilssiwba,
-        Algorithm::IbaFcs,
-        Algorithm::GravitationalSearch,
-        Algorithm::AntColony,
-        Algorithm::Lshade,
-    ];
+    /// An algorithm called `key` on the command line and `label` in tables, made by `build`
+    /// from a population size.
+    pub const fn new(
+        key: &'static str,
+        label: &'static str,
+        build: fn(usize) -> Box<ContinuousOptimizer<'static>>,
+    ) -> Self {
+        Self { key, label, build }
+    }
+
+    /// Every registered optimizer ([`ALL`]), in table order.
+    pub const ALL: &'static [Algorithm] = ALL;
 
     /// The five algorithms of seed 000's Table 2, in its column order.
     pub const SEED_000: [Algorithm; 5] = [
-        Algorithm::ParticleSwarm,
-        Algorithm::Genetic,
-        Algorithm::Bat,
-        Algorithm::Ilssiwba,
-        Algorithm::IbaFcs,
+        particle_swarm::ALGORITHM,
+        genetic::ALGORITHM,
+        bat::ALGORITHM,
+        ilssiwba::ALGORITHM,
+        iba_fcs::ALGORITHM,
     ];
+
+    /// PSO.
+    pub const PARTICLE_SWARM: Algorithm = particle_swarm::ALGORITHM;
+    /// GA.
+    pub const GENETIC: Algorithm = genetic::ALGORITHM;
+    /// BA.
+    pub const BAT: Algorithm = bat::ALGORITHM;
+    /// ILSSIWBA.
+    pub const ILSSIWBA: Algorithm = ilssiwba::ALGORITHM;
+    /// IBA-FCS, seed 000's algorithm.
+    pub const IBA_FCS: Algorithm = iba_fcs::ALGORITHM;
+    /// GSA.
+    pub const GRAVITATIONAL_SEARCH: Algorithm = gravitational_search::ALGORITHM;
+    /// ACO_R.
+    pub const ANT_COLONY: Algorithm = ant_colony::ALGORITHM;
+    /// L-SHADE.
+    pub const LSHADE: Algorithm = lshade::ALGORITHM;
+    /// The random-search baseline.
+    pub const RANDOM_SEARCH: Algorithm = random_search::ALGORITHM;
 
     /// The name used on the command line.
     pub fn key(self) -> &'static str {
-        match self {
-            Algorithm::ParticleSwarm => "pso",
-            Algorithm::Genetic => "ga",
-            Algorithm::Bat => "ba",
-            Algorithm::Ilssiwba => "ilssiwba",
-            Algorithm::IbaFcs => "iba-fcs",
-            Algorithm::GravitationalSearch => "gsa",
-            Algorithm::AntColony => "aco-r",
-            Algorithm::Lshade => "lshade",
-        }
+        self.key
     }
 
     /// The name used in tables (as the papers write it).
     pub fn label(self) -> &'static str {
-        match self {
-            Algorithm::ParticleSwarm => "PSO",
-            Algorithm::Genetic => "GA",
-            Algorithm::Bat => "BA",
-            Algorithm::Ilssiwba => "ILSSIWBA",
-            Algorithm::IbaFcs => "IBA-FCS",
-            Algorithm::GravitationalSearch => "GSA",
-            Algorithm::AntColony => "ACO_R",
-            Algorithm::Lshade => "L-SHADE",
-        }
+        self.label
     }
 
     /// The algorithm with its paper's parameters and `population` agents (evaluations per
     /// iteration). ACO_R keeps its archive of 50 and sends `population` ants; L-SHADE keeps
     /// its own initial population of 18·D, which it shrinks over the budget.
-    pub fn build(self, population: usize) -> Box<dyn Optimizer> {
-        match self {
-            Algorithm::ParticleSwarm => Box::new(ParticleSwarm::new(ParticleSwarmParameters {
-                population,
-                ..Default::default()
-            })),
-            Algorithm::Genetic => Box::new(Genetic::new(GeneticParameters {
-                population,
-                ..Default::default()
-            })),
-            Algorithm::Bat => Box::new(Bat::new(BatParameters {
-                population,
-                ..Default::default()
-            })),
-            Algorithm::Ilssiwba => Box::new(Ilssiwba::new(IlssiwbaParameters {
-                population,
-                ..Default::default()
-            })),
-            Algorithm::IbaFcs => Box::new(IbaFcs::new(IbaFcsParameters {
-                population,
-                ..Default::default()
-            })),
-            Algorithm::GravitationalSearch => {
-                Box::new(GravitationalSearch::new(GravitationalSearchParameters {
-                    population,
-                    ..Default::default()
-                }))
-            }
-            Algorithm::AntColony => Box::new(AntColony::new(AntColonyParameters {
-                ants: population,
-                ..Default::default()
-            })),
-            Algorithm::Lshade => Box::new(Lshade::new(LshadeParameters::default())),
-        }
+    pub fn build(self, population: usize) -> Box<ContinuousOptimizer<'static>> {
+        (self.build)(population)
+    }
+}
+
+impl PartialEq for Algorithm {
+    fn eq(&self, other: &Self) -> bool {
+        self.key == other.key
+    }
+}
+
+impl Eq for Algorithm {}
+
+impl std::hash::Hash for Algorithm {
+    fn hash<H: std::hash::Hasher>(&self, state: &mut H) {
+        self.key.hash(state);
+    }
+}
+
+impl fmt::Debug for Algorithm {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.label)
     }
 }
 
@@ -136,13 +142,14 @@ impl FromStr for Algorithm {
 
     fn from_str(text: &str) -> Result<Self, Self::Err> {
         let wanted = text.trim().to_ascii_lowercase().replace('_', "-");
-        Algorithm::ALL
-            .into_iter()
+        ALL.iter()
+            .chain(BASELINES)
+            .copied()
             .find(|a| {
                 a.key() == wanted || a.label().to_ascii_lowercase().replace('_', "-") == wanted
             })
             .ok_or_else(|| {
-                let names: Vec<&str> = Algorithm::ALL.iter().map(|a| a.key()).collect();
+                let names: Vec<&str> = ALL.iter().chain(BASELINES).map(|a| a.key()).collect();
                 format!("unknown algorithm '{text}' (known: {})", names.join(", "))
             })
     }

@@ -15,7 +15,15 @@
 //! reversed ("mirrored").
 
 use super::bat::index_of_smallest;
-use crate::runner::{Optimizer, Search};
+use crate::runner::{Continuous, Optimizer, Search};
+
+/// On the command line `pso`, in tables "PSO": `population` agents.
+pub const ALGORITHM: super::Algorithm = super::Algorithm::new("pso", "PSO", |population| {
+    Box::new(ParticleSwarm::new(ParticleSwarmParameters {
+        population,
+        ..Default::default()
+    }))
+});
 
 /// PSO's parameters; `Default` is seed 000's setting.
 #[derive(Debug, Clone, PartialEq)]
@@ -83,12 +91,12 @@ impl ParticleSwarm {
     }
 }
 
-impl Optimizer for ParticleSwarm {
+impl<'p> Optimizer<Continuous<'p>> for ParticleSwarm {
     fn name(&self) -> &'static str {
         "PSO"
     }
 
-    fn start(&mut self, search: &mut Search) {
+    fn start(&mut self, search: &mut Search<Continuous<'p>>) {
         let population = self.parameters.population.max(1);
         self.positions = (0..population).map(|_| search.random_position()).collect();
         self.velocities = vec![vec![0.0; search.dimension()]; population];
@@ -100,7 +108,7 @@ impl Optimizer for ParticleSwarm {
         self.inertia = self.parameters.inertia;
     }
 
-    fn step(&mut self, search: &mut Search) {
+    fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         let p = &self.parameters;
         let dimension = search.dimension();
         for particle in 0..self.positions.len() {

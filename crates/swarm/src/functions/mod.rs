@@ -7,7 +7,7 @@ use std::fmt;
 
 use thiserror::Error;
 
-use crate::problem::{Bounds, Problem};
+use crate::problem::{Bounds, BoxProblem};
 
 /// A benchmark function as Table 1 lists it.
 #[derive(Debug, Clone, Copy)]
@@ -198,7 +198,7 @@ impl FunctionProblem {
     }
 }
 
-impl Problem for FunctionProblem {
+impl BoxProblem for FunctionProblem {
     fn bounds(&self) -> &Bounds {
         &self.bounds
     }
