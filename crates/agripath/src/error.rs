@@ -29,6 +29,7 @@ impl fmt::Display for InputError {
 }
 
 impl InputError {
+    /// A fault in `file`, with no place yet (add one with [`InputError::at`]).
     pub fn new(file: impl AsRef<Path>, fault: Fault) -> Self {
         Self {
             file: file.as_ref().to_path_buf(),
@@ -51,51 +52,99 @@ impl InputError {
 /// What is wrong with an input.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum Fault {
+    /// The file cannot be read (missing, a folder, a special file, an I/O error); the reason.
     #[error("cannot read the file: {0}")]
     Unreadable(String),
+    /// The file is empty or holds only whitespace.
     #[error("the file is empty")]
     Empty,
+    /// The text is not JSON; the parser's message.
     #[error("not valid JSON: {0}")]
     Json(String),
+    /// The text is not TOML; the parser's message.
     #[error("not valid TOML: {0}")]
     Toml(String),
+    /// The text is not KML agripath can read; the reason.
     #[error("not valid KML: {0}")]
     Kml(String),
+    /// The file is not a GeoTIFF agripath can read; the reason.
     #[error("not a readable GeoTIFF: {0}")]
     Tiff(String),
+    /// The file's extension (lower case) chooses no reader.
     #[error("unsupported file type '{0}' (expected .geojson, .json, .kml or .kmz for fields; .tif, .tiff, .asc, .xyz or .csv for terrain)")]
     UnknownExtension(String),
     /// The file parses but its structure is not what the format requires.
     #[error("{0}")]
     Structure(String),
+    /// A coordinate is NaN or infinite.
     #[error("coordinate is not a finite number")]
     NonFinite,
     #[error("longitude/latitude ({lon}, {lat}) is out of range (longitudes lie in -180..180, latitudes in -90..90)")]
-    OutOfRange { lon: f64, lat: f64 },
+    /// A longitude/latitude position off the globe.
+    OutOfRange {
+        /// The longitude, degrees.
+        lon: f64,
+        /// The latitude, degrees.
+        lat: f64,
+    },
+    /// A ring with fewer than 3 distinct points.
     #[error("ring has fewer than 3 distinct points")]
     DegenerateRing,
+    /// A ring whose first and last positions differ.
     #[error("ring is not closed (first and last positions differ)")]
     UnclosedRing,
+    /// A ring that encloses no area (all its points on one line).
     #[error("ring has zero area")]
     ZeroArea,
     #[error("boundary intersects itself near ({x:.3}, {y:.3})")]
-    SelfIntersection { x: f64, y: f64 },
+    /// A ring that crosses or touches itself.
+    SelfIntersection {
+        /// Easting of the contact in the planning frame, metres.
+        x: f64,
+        /// Northing of the contact in the planning frame, metres.
+        y: f64,
+    },
     #[error("hole {hole} crosses the outer boundary near ({x:.3}, {y:.3})")]
-    HoleCrossesShell { hole: usize, x: f64, y: f64 },
+    /// A hole that crosses or touches the outer boundary.
+    HoleCrossesShell {
+        /// The hole's number, counted from 1 in file order.
+        hole: usize,
+        /// Easting of the contact in the planning frame, metres.
+        x: f64,
+        /// Northing of the contact in the planning frame, metres.
+        y: f64,
+    },
     #[error("hole {hole} lies outside the outer boundary")]
-    HoleOutsideShell { hole: usize },
+    /// A hole that lies wholly outside the outer boundary.
+    HoleOutsideShell {
+        /// The hole's number, counted from 1 in file order.
+        hole: usize,
+    },
     #[error("holes {first} and {second} overlap")]
-    HolesOverlap { first: usize, second: usize },
+    /// Two holes that touch, cross, or lie one inside the other.
+    HolesOverlap {
+        /// The first hole's number, counted from 1 in file order.
+        first: usize,
+        /// The second hole's number, counted from 1 in file order.
+        second: usize,
+    },
+    /// The file holds no field polygon.
     #[error("no field polygons found")]
     NoFields,
+    /// A value outside what agripath accepts.
     #[error("{what} = {value} is invalid: {why}")]
     InvalidValue {
+        /// The setting or key the value was given for.
         what: String,
+        /// The value as given.
         value: String,
+        /// Why it is refused (the accepted range, for example).
         why: String,
     },
+    /// The input exceeds one of agripath's size limits (see [`crate::limits`]); the sizes.
     #[error("too large: {0}")]
     TooLarge(String),
+    /// A terrain query that cannot be answered.
     #[error("{0}")]
     Terrain(#[from] TerrainError),
 }
@@ -113,7 +162,19 @@ pub fn figure(value: f64) -> String {
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]
 pub enum TerrainError {
     #[error("point ({x:.2}, {y:.2}) is outside the terrain model")]
-    Outside { x: f64, y: f64 },
+    /// The position is outside the terrain model's extent.
+    Outside {
+        /// Easting in the planning frame, metres.
+        x: f64,
+        /// Northing in the planning frame, metres.
+        y: f64,
+    },
     #[error("the terrain model has no data at ({x:.2}, {y:.2})")]
-    NoData { x: f64, y: f64 },
+    /// The position is inside the extent but the model holds no height there (a no-data cell).
+    NoData {
+        /// Easting in the planning frame, metres.
+        x: f64,
+        /// Northing in the planning frame, metres.
+        y: f64,
+    },
 }

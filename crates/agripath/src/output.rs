@@ -39,6 +39,7 @@ pub struct StagedFolder {
 }
 
 impl StagedFolder {
+    /// Starts staging a new `target` folder (cleaning up what dead runs left); errs when `target` cannot be a plan folder ([`check_target`]) or the staging folder cannot be made.
     pub fn new(target: &Path) -> std::io::Result<Self> {
         check_target(target)?;
         let parent = parent_of(target);
@@ -62,6 +63,7 @@ impl StagedFolder {
         self.staging.join(name)
     }
 
+    /// Writes `bytes` to the staged file `name`.
     pub fn write(&self, name: &str, bytes: &[u8]) -> std::io::Result<()> {
         std::fs::write(self.path(name), bytes)?;
         fault_point();

@@ -81,10 +81,15 @@ pub fn start_point(
 
 /// A planned coverage mission.
 pub struct PlannedMission {
+    /// The swaths and edge passes of every field.
     pub coverage: CoveragePlan,
+    /// The order the fields and passes are flown in, with the transfers between them.
     pub route: Route,
+    /// The route split into sorties; `None` when no sortie planner is chosen or the route is empty.
     pub sorties: Option<PlannedSorties>,
+    /// The figures of the plan, as `report.json` holds them.
     pub report: Report,
+    /// The settings the mission was planned with.
     pub settings: PlanSettings,
 }
 
@@ -205,8 +210,11 @@ pub fn is_mission_file(name: &str) -> bool {
 /// A plan folder's files with the preflight verdict on its mission files, and the report
 /// that carries it (as `report.json` holds it).
 pub struct Rendered {
+    /// Every file of the plan folder: its name and its bytes.
     pub files: Vec<(String, Vec<u8>)>,
+    /// The preflight verdict on the mission files.
     pub verdict: crate::preflight::Verdict,
+    /// The report, carrying the verdict.
     pub report: Report,
 }
 

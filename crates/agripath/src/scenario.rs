@@ -17,23 +17,32 @@ use crate::terrain::{Terrain, TerrainSpec};
 /// Command-line figures that override the vehicle file.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct VehicleOverrides {
+    /// Swath width, metres (`--swath-width`).
     pub swath_width_m: Option<f64>,
+    /// Height above the terrain while spraying, metres (`--spray-height`).
     pub spray_height_m: Option<f64>,
+    /// Seed 001's h, metres (`--safe-height`).
     pub safe_height_m: Option<f64>,
 }
 
 /// The parts of a scenario before loading.
 #[derive(Debug, Clone, Default)]
 pub struct ScenarioParts {
+    /// The scenario's name; the field file's stem when absent.
     pub name: Option<String>,
+    /// The field file (GeoJSON, KML or KMZ).
     pub fields: PathBuf,
+    /// How the field file's coordinates are read.
     pub coordinates: CoordinateChoice,
+    /// The terrain; when absent, the field file's own terrain, else flat ground at 0 m.
     pub terrain: Option<TerrainSpec>,
     /// Folder relative terrain paths are taken from.
     pub terrain_base: PathBuf,
+    /// The vehicle file (TOML); the default vehicle when absent.
     pub vehicle_file: Option<PathBuf>,
     /// Vehicle keys given inline (a scenario's `[vehicle]` table), over the vehicle file.
     pub vehicle_table: Option<toml::Table>,
+    /// Figures from the command line, over the vehicle file and table.
     pub overrides: VehicleOverrides,
     /// Keep overlapping fields and spray each overlap once (`--allow-overlap`), instead of
     /// refusing them.
@@ -42,13 +51,18 @@ pub struct ScenarioParts {
 
 /// Everything a plan needs, validated.
 pub struct Scenario {
+    /// The scenario's name.
     pub name: String,
+    /// The farm, validated (overlaps resolved or refused).
     pub farm: Farm,
+    /// The terrain the plan uses, as described.
     pub terrain_spec: TerrainSpec,
     /// Whether the terrain was given (a scenario's `[terrain]` or `--terrain`), not taken
     /// from the field file or assumed flat: a stated `flat:H` gives sea-level heights.
     pub terrain_stated: bool,
+    /// The terrain model the spec loaded, covering every field.
     pub terrain: Box<dyn Terrain>,
+    /// The vehicle, validated, with its overrides applied.
     pub vehicle: Vehicle,
 }
 

@@ -5,38 +5,58 @@ use serde::Serialize;
 use crate::scenario::Scenario;
 use crate::terrain::Extent;
 
+/// One field as read.
 #[derive(Debug, Clone, Serialize)]
 pub struct FieldSummary {
+    /// The field's name.
     pub name: String,
+    /// Area inside the boundary less the holes, m².
     pub area_m2: f64,
+    /// Number of holes.
     pub holes: usize,
+    /// Number of distinct vertices over all rings.
     pub vertices: usize,
     /// Lowest and highest terrain under the field's bounding box, metres.
     pub terrain_range_m: Option<[f64; 2]>,
 }
 
+/// What a scenario holds, as `agripath validate` shows it.
 #[derive(Debug, Clone, Serialize)]
 pub struct ScenarioSummary {
+    /// The scenario's name.
     pub name: String,
+    /// The field file, as given.
     pub fields_file: String,
+    /// The coordinate system, as [`crate::model::CoordinateSystem::describe`] words it.
     pub coordinate_system: String,
+    /// Each field, in file order.
     pub fields: Vec<FieldSummary>,
+    /// Number of obstacles (no-spray zones).
     pub obstacles: usize,
+    /// Each marker as "name (kind)".
     pub markers: Vec<String>,
+    /// Total area of the fields less their holes, m².
     pub total_area_m2: f64,
     /// [min_x, min_y, max_x, max_y] of the farm in planning metres.
     pub farm_bounds_m: [f64; 4],
+    /// The terrain model, as it describes itself.
     pub terrain: String,
     /// [min_x, min_y, max_x, max_y] of the terrain model, when it is bounded.
     pub terrain_extent: Option<[f64; 4]>,
+    /// Lowest and highest terrain over the terrain's extent (the farm's box when unbounded), metres.
     pub terrain_range_m: Option<[f64; 2]>,
+    /// The vehicle's name.
     pub vehicle: String,
+    /// Swath width, metres.
     pub swath_width_m: f64,
+    /// Height above the terrain while spraying, metres.
     pub spray_height_m: f64,
+    /// Seed 001's h: the climb above spray height for a transfer that leaves the work area, metres.
     pub safe_height_m: f64,
 }
 
 impl ScenarioSummary {
+    /// The summary of a loaded scenario.
     pub fn of(scenario: &Scenario) -> Self {
         let farm = &scenario.farm;
         let terrain = scenario.terrain.as_ref();

@@ -14,7 +14,9 @@ use crate::terrain::Terrain;
 /// A point of a draped path: planning-frame position and the terrain height under it.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct GroundPoint {
+    /// Easting in the planning frame, metres.
     pub x: f64,
+    /// Northing in the planning frame, metres.
     pub y: f64,
     /// Terrain height above sea level, metres.
     pub ground_m: f64,

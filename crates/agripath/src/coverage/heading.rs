@@ -16,7 +16,9 @@ use serde::Serialize;
 pub enum HeadingObjective {
     /// Seed 001's E with weights ω_N (swath count) and ω_L (length).
     Seed {
+        /// ω_N, the weight of the swath-count term; 0 or more.
         count_weight: f64,
+        /// ω_L, the weight of the length term; 0 or more (not both 0).
         length_weight: f64,
     },
     /// Fewest swaths (each one is a headland U-turn, so also fewest turns); ties: shorter.
@@ -24,7 +26,10 @@ pub enum HeadingObjective {
     /// Shortest total draped length.
     Length,
     /// A heading given by the user, degrees.
-    Fixed { heading_deg: f64 },
+    Fixed {
+        /// Degrees from east, counter-clockwise ([`HeadingObjective::parse`] takes it modulo 180°).
+        heading_deg: f64,
+    },
 }
 
 impl HeadingObjective {
@@ -60,21 +65,28 @@ impl Default for HeadingObjective {
 /// What one heading gives.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct HeadingSample {
+    /// Heading tried, degrees from east, counter-clockwise.
     pub heading_deg: f64,
+    /// Number of interior swaths at that heading (seed 001's N).
     pub swaths: usize,
+    /// Total draped length of those swaths, metres (seed 001's L).
     pub length_m: f64,
 }
 
 /// The chosen heading and how it was found.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct HeadingChoice {
+    /// The chosen heading, degrees from east, counter-clockwise, in 0..180.
     pub heading_deg: f64,
     /// Best of the 1° scan (the seed's answer).
     pub integer_heading_deg: f64,
     /// E at the integer heading and at the chosen one (both 0 for fixed headings).
     pub integer_objective: f64,
+    /// The objective at the chosen heading.
     pub objective: f64,
+    /// Number of interior swaths at the chosen heading.
     pub swaths: usize,
+    /// Total draped swath length at the chosen heading, metres.
     pub length_m: f64,
 }
 

@@ -8,6 +8,7 @@ use serde::Serialize;
 use super::region::offset;
 use super::scan_lines::Segment;
 
+/// How well a layout covers its field, by polygon overlay of the sprayed strips.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct CoverageMeasure {
     /// Sprayable area, m².

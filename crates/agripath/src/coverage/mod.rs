@@ -31,6 +31,7 @@ pub struct CoverageSettings {
     pub obstacle_margin_m: f64,
     /// Seed 001's a: spacing of the perpendicular lines that sample the terrain, metres.
     pub drape_spacing_m: f64,
+    /// What the swath heading is chosen for.
     pub heading: HeadingObjective,
     /// Refine the best 1° heading to 0.1° where that lowers the objective.
     pub refine_heading: bool,
@@ -50,6 +51,7 @@ impl Default for CoverageSettings {
 }
 
 impl CoverageSettings {
+    /// Checks every setting is finite and within range; errs with the first one that is not.
     pub fn validate(&self) -> Result<(), Fault> {
         let check = |what: &str, value: f64, positive: bool| {
             let ok = value.is_finite() && if positive { value > 0.0 } else { value >= 0.0 };
@@ -111,9 +113,11 @@ impl CoverageSettings {
 /// One interior swath, draped, in scan order (its direction of flight is set by the route).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Swath {
+    /// Index of the field in the farm's fields.
     pub field: usize,
     /// Scan line index within the field (0 at the low side of the rotated frame).
     pub line: usize,
+    /// The draped path, in order along the scan line.
     pub points: Vec<GroundPoint>,
     /// Draped length, metres.
     pub length_m: f64,
@@ -122,20 +126,28 @@ pub struct Swath {
 /// One closed edge pass around a boundary or a hole.
 #[derive(Debug, Clone, PartialEq)]
 pub struct EdgePass {
+    /// Index of the field in the farm's fields.
     pub field: usize,
     /// 0 for the outermost pass.
     pub pass: usize,
+    /// The draped path of the pass.
     pub points: Vec<GroundPoint>,
+    /// Draped length, metres.
     pub length_m: f64,
 }
 
 /// The coverage of one field.
 #[derive(Debug, Clone)]
 pub struct FieldCoverage {
+    /// The field's name.
     pub name: String,
+    /// The chosen swath heading.
     pub heading: HeadingChoice,
+    /// Interior swaths, in scan order.
     pub swaths: Vec<Swath>,
+    /// Edge passes around the rings of the sprayable region, outermost pass first.
     pub edges: Vec<EdgePass>,
+    /// How well the swaths and edge passes cover the sprayable region.
     pub measure: CoverageMeasure,
     /// The heading scan (0..179°), for plots.
     pub heading_samples: Vec<HeadingSample>,
@@ -147,6 +159,7 @@ impl FieldCoverage {
         self.swaths.iter().map(|swath| swath.length_m).sum()
     }
 
+    /// Edge pass length, metres.
     pub fn edge_length_m(&self) -> f64 {
         self.edges.iter().map(|edge| edge.length_m).sum()
     }
@@ -155,8 +168,11 @@ impl FieldCoverage {
 /// The coverage of a farm.
 #[derive(Debug, Clone)]
 pub struct CoveragePlan {
+    /// The settings the plan was laid out with.
     pub settings: CoverageSettings,
+    /// Swath width of the vehicle, metres.
     pub swath_width_m: f64,
+    /// The coverage of each field, in the farm's order.
     pub fields: Vec<FieldCoverage>,
 }
 

@@ -17,7 +17,9 @@ use geo::Coord;
 /// A heading as the unit vectors of the rotated frame.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Frame {
+    /// Cosine of the heading.
     pub cos: f64,
+    /// Sine of the heading.
     pub sin: f64,
 }
 
@@ -52,13 +54,18 @@ impl Frame {
 /// `end_x` (`start_x < end_x`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Segment {
+    /// Scan line index, 0 for the line nearest the region's smallest rotated y.
     pub line: usize,
+    /// Rotated y of the scan line, metres.
     pub y: f64,
+    /// Rotated x where the segment starts, metres.
     pub start_x: f64,
+    /// Rotated x where the segment ends, metres.
     pub end_x: f64,
 }
 
 impl Segment {
+    /// Length of the segment (flat, in the plane), metres.
     pub fn length(&self) -> f64 {
         self.end_x - self.start_x
     }
@@ -66,9 +73,13 @@ impl Segment {
 
 /// Rings already rotated into the frame, with their extent.
 pub struct RotatedRings {
+    /// The rotated rings, each closed (first point repeated last), metres.
     pub rings: Vec<Vec<Coord<f64>>>,
+    /// Smallest rotated y over all rings, metres.
     pub min_y: f64,
+    /// Largest rotated y over all rings, metres.
     pub max_y: f64,
+    /// Smallest rotated x over all rings, metres.
     pub min_x: f64,
 }
 

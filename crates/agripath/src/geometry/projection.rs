@@ -17,7 +17,9 @@ const FALSE_NORTHING_SOUTH_M: f64 = 10_000_000.0;
 /// A UTM zone: number 1..=60 and hemisphere.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct UtmZone {
+    /// Zone number, 1..=60.
     pub number: u8,
+    /// True in the southern hemisphere (false northing 10,000 km).
     pub south: bool,
 }
 

@@ -19,9 +19,12 @@ use crate::terrain::TerrainSpec;
 /// `[x, y]` or `[lon, lat]` as the file has them.
 pub type RawRings = Vec<Vec<[f64; 2]>>;
 
+/// The geometry of a raw feature.
 #[derive(Debug, Clone, PartialEq)]
 pub enum RawGeometry {
+    /// One or more polygons (a MultiPolygon has several), each as [`RawRings`].
     Polygons(Vec<RawRings>),
+    /// A single position, `[x, y]` or `[lon, lat]`: it becomes a [`Marker`].
     Point([f64; 2]),
 }
 
@@ -30,9 +33,11 @@ pub enum RawGeometry {
 pub struct RawFeature {
     /// "feature 3" or "Placemark 'North'": how an error message names it.
     pub place: String,
+    /// The feature's name, when the file gives one.
     pub name: Option<String>,
     /// `properties.kind`: `field` when absent, `obstacle` for no-spray zones.
     pub kind: Option<String>,
+    /// The feature's geometry.
     pub geometry: RawGeometry,
 }
 

@@ -22,6 +22,7 @@ use crate::model::Farm;
 /// is some 4 million vertices, twice the most a field file may hold.
 const MAX_INFLATED_KML_BYTES: u64 = 128 * 1024 * 1024;
 
+/// Reads a KML file into a validated farm; errs on an unreadable file, bad KML or an invalid polygon.
 pub fn read_kml(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputError> {
     let text = read_text(path)?;
     parse(path, &text, choice)

@@ -5,6 +5,7 @@ use std::fmt::Write;
 
 use super::flight::{Action, SortieMission};
 
+/// The CSV text, a header line then one line per mission item of each sortie in order.
 pub fn waypoints_csv(missions: &[SortieMission]) -> String {
     let mut text =
         String::from("sortie,index,action,value,lon,lat,ground_m,above_ground_m,sea_level_m\n");

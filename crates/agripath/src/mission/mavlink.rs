@@ -4,21 +4,33 @@
 
 use super::flight::{Action, AltitudeReference, Item, SprayerCommand};
 
+/// `MAV_FRAME_GLOBAL`: altitude above mean sea level.
 pub const FRAME_GLOBAL: u8 = 0;
+/// `MAV_FRAME_GLOBAL_RELATIVE_ALT`: altitude above the home position.
 pub const FRAME_GLOBAL_RELATIVE_ALT: u8 = 3;
+/// `MAV_FRAME_GLOBAL_TERRAIN_ALT`: altitude above the terrain under the vehicle.
 pub const FRAME_GLOBAL_TERRAIN_ALT: u8 = 10;
+/// `MAV_CMD_NAV_WAYPOINT`: fly to a position.
 pub const CMD_NAV_WAYPOINT: u16 = 16;
+/// `MAV_CMD_NAV_LAND`: land at a position.
 pub const CMD_NAV_LAND: u16 = 21;
+/// `MAV_CMD_NAV_TAKEOFF`: take off to an altitude.
 pub const CMD_NAV_TAKEOFF: u16 = 22;
+/// `MAV_CMD_DO_CHANGE_SPEED`: set the speed.
 pub const CMD_DO_CHANGE_SPEED: u16 = 178;
+/// `MAV_CMD_DO_SET_SERVO`: set a servo output's PWM.
 pub const CMD_DO_SET_SERVO: u16 = 183;
+/// `MAV_CMD_DO_SPRAYER`: turn the sprayer on or off.
 pub const CMD_DO_SPRAYER: u16 = 216;
 
 /// A command as mission files store it: number, frame, p1…p7 (`None` = NaN/null).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Command {
+    /// The MAVLink command number (`CMD_*`).
     pub command: u16,
+    /// The MAVLink frame (`FRAME_*`).
     pub frame: u8,
+    /// p1…p7; `None` is written as NaN or null.
     pub params: [Option<f64>; 7],
 }
 

@@ -35,6 +35,7 @@ impl CoordinateSystem {
         }
     }
 
+    /// A one-line description for reports, e.g. "local metres" or the UTM zone and its EPSG code.
     pub fn describe(self) -> String {
         match self {
             Self::Local => "local metres".to_string(),
@@ -55,6 +56,7 @@ pub const OVERLAP_TOLERANCE_M2: f64 = 1.0;
 /// One field to spray: an outer boundary with holes (not sprayed), in planning metres.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Field {
+    /// The field's name from the file, or "field N" when it has none (parts of a multipolygon get ".1", ".2", …).
     pub name: String,
     /// Boundary and holes; rings closed, simple, holes strictly inside.
     pub polygon: Polygon<f64>,
@@ -64,6 +66,7 @@ pub struct Field {
 }
 
 impl Field {
+    /// A field with no overlapping earlier fields.
     pub fn new(name: impl Into<String>, polygon: Polygon<f64>) -> Self {
         Self {
             name: name.into(),
@@ -99,10 +102,12 @@ impl Field {
         self.polygon.unsigned_area()
     }
 
+    /// Number of holes.
     pub fn holes(&self) -> usize {
         self.polygon.interiors().len()
     }
 
+    /// Number of distinct vertices over all rings (the closing repeat not counted).
     pub fn vertices(&self) -> usize {
         std::iter::once(self.polygon.exterior())
             .chain(self.polygon.interiors())
@@ -114,15 +119,20 @@ impl Field {
 /// A no-spray zone (a `kind: obstacle` feature): not sprayed, not crossed at spray height.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Obstacle {
+    /// The obstacle's name from the file, or "obstacle N".
     pub name: String,
+    /// Its outline in planning metres.
     pub polygon: Polygon<f64>,
 }
 
 /// A named point of the input (`kind`: `launch`, `supply`, … or anything the operator uses).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Marker {
+    /// The point's kind (`properties.kind`, "field" when absent).
     pub kind: String,
+    /// The point's name, or its kind when it has none.
     pub name: String,
+    /// Position in the planning frame, metres.
     pub position: Coord<f64>,
 }
 
@@ -146,10 +156,15 @@ impl Marker {
 /// Everything read from one field file, validated.
 #[derive(Debug, Clone)]
 pub struct Farm {
+    /// The field file read.
     pub source: PathBuf,
+    /// The frame the farm is planned in.
     pub coordinate_system: CoordinateSystem,
+    /// The fields to spray, in file order.
     pub fields: Vec<Field>,
+    /// The no-spray zones, in file order.
     pub obstacles: Vec<Obstacle>,
+    /// The named points, in file order.
     pub markers: Vec<Marker>,
     /// A terrain described inside the field file itself (the `terrain` member of the data
     /// files), used when no other terrain is given.
@@ -267,6 +282,7 @@ impl Farm {
         })
     }
 
+    /// Total area of the fields less their holes, m².
     pub fn total_area_m2(&self) -> f64 {
         self.fields.iter().map(Field::area_m2).sum()
     }

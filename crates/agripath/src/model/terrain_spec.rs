@@ -15,28 +15,34 @@ use crate::error::{Fault, InputError};
 pub enum TerrainSpec {
     /// Level ground at `height_m`.
     Flat {
+        /// Ground height above sea level, metres (default 0).
         #[serde(default)]
         height_m: f64,
     },
     /// The composite terrain of seeds 000/002 (`preset` = `seed000` or `seed002`).
     Composite {
+        /// The preset's name (default `seed000`).
         #[serde(default = "default_preset")]
         preset: String,
     },
     /// Level ground with circular plateaus (seed 001's S4).
     #[serde(alias = "flat_with_plateaus")]
     Plateaus {
+        /// Height of the ground around the plateaus above sea level, metres (default 0).
         #[serde(default)]
         base_m: f64,
+        /// The plateaus standing on that ground.
         plateaus: Vec<Plateau>,
         /// Spacing of the paper's DEM (informational; the model is analytic).
         #[serde(default)]
         dem_spacing_m: Option<f64>,
+        /// Free text describing the terrain (informational).
         #[serde(default)]
         note: Option<String>,
     },
     /// A DEM file: GeoTIFF (.tif/.tiff), ESRI ASCII grid (.asc) or XYZ points (.xyz/.csv).
     File {
+        /// Path of the DEM file; a relative path is taken from the base folder given to `load`.
         path: PathBuf,
         /// Cell size for gridding an XYZ point cloud, metres (estimated when absent).
         #[serde(default)]

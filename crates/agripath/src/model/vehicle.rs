@@ -13,6 +13,7 @@ use crate::files::read_text;
 #[derive(Debug, Clone, PartialEq, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Vehicle {
+    /// The vehicle's name, as reports show it.
     pub name: String,
     /// Width sprayed (or imaged) by one pass, metres; also the spacing of swaths.
     pub swath_width_m: f64,
@@ -73,6 +74,7 @@ impl Vehicle {
         Self::from_toml(&text).map_err(|fault| InputError::new(path, fault))
     }
 
+    /// Parses and validates a vehicle file's text; errs on bad TOML or an invalid value.
     pub fn from_toml(text: &str) -> Result<Self, Fault> {
         let vehicle: Self =
             toml::from_str(text).map_err(|error| Fault::Toml(one_line(&error, text)))?;

@@ -17,15 +17,21 @@ pub(crate) const COLOURS: [&str; 8] = [
 
 /// One line of a chart.
 pub struct Series {
+    /// The series' name, as the legend shows it.
     pub name: String,
+    /// The points, (x, y) in data units, in drawing order.
     pub points: Vec<(f64, f64)>,
 }
 
 /// A chart's titles and axes. With `log_y`, y values must be positive (others are dropped).
 pub struct Chart<'a> {
+    /// Title above the chart.
     pub title: &'a str,
+    /// Label of the x axis.
     pub x_label: &'a str,
+    /// Label of the y axis.
     pub y_label: &'a str,
+    /// Whether the y axis is logarithmic.
     pub log_y: bool,
 }
 

@@ -23,10 +23,15 @@ pub const SORTIE_COLOURS: [&str; 10] = [
 
 /// A picture under the map: PNG bytes and the plan-metre box it covers.
 pub struct Underlay<'a> {
+    /// The picture, PNG bytes.
     pub png: &'a [u8],
+    /// West edge of the box, plan metres.
     pub min_x: f64,
+    /// South edge of the box, plan metres.
     pub min_y: f64,
+    /// East edge of the box, plan metres.
     pub max_x: f64,
+    /// North edge of the box, plan metres.
     pub max_y: f64,
 }
 

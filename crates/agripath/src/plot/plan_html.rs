@@ -12,10 +12,15 @@ const LEAFLET_CSS: &str = include_str!("../../assets/leaflet/leaflet.css");
 
 /// The terrain picture under the plan: a PNG and the plan-metre box it covers.
 pub struct Overlay<'a> {
+    /// The picture, PNG bytes.
     pub png: &'a [u8],
+    /// West edge of the box, plan metres.
     pub min_x: f64,
+    /// South edge of the box, plan metres.
     pub min_y: f64,
+    /// East edge of the box, plan metres.
     pub max_x: f64,
+    /// North edge of the box, plan metres.
     pub max_y: f64,
 }
 

@@ -13,8 +13,10 @@ use crate::settings::PlanSettings;
 use crate::sortie::PlannedSorties;
 use crate::sortie::SortiePlanner;
 
+/// One field's figures in `report.json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct FieldReport {
+    /// The field's name.
     pub name: String,
     /// Chosen heading, degrees from east, counter-clockwise, 0..180.
     pub heading_deg: f64,
@@ -22,30 +24,48 @@ pub struct FieldReport {
     pub heading_integer_deg: f64,
     /// Objective at the chosen and at the integer heading (eq. 1 for the seed objective).
     pub objective: f64,
+    /// Objective at the integer heading.
     pub objective_integer: f64,
     /// Interior swaths (seed 001's N) and their draped length (its L), metres.
     pub swaths: usize,
+    /// Draped length of the interior swaths, metres.
     pub spray_length_m: f64,
+    /// Number of edge passes.
     pub edge_passes: usize,
+    /// Draped length of the edge passes, metres.
     pub edge_length_m: f64,
+    /// Sprayable area (the field less holes, obstacles and margins), m².
     pub sprayable_area_m2: f64,
+    /// Share of the sprayable area under at least one strip, 0..1.
     pub covered_fraction: f64,
+    /// Area sprayed more than once, m² (counted once per extra pass).
     pub overlap_m2: f64,
+    /// Strip area outside the sprayable region, m².
     pub outside_m2: f64,
 }
 
+/// The whole `report.json`: the plan's settings and figures per field and in total.
 #[derive(Debug, Clone, Serialize)]
 pub struct Report {
+    /// The scenario's name.
     pub scenario: String,
+    /// The coordinate system, as [`crate::model::CoordinateSystem::describe`] words it.
     pub coordinate_system: String,
+    /// The vehicle's name.
     pub vehicle: String,
+    /// Swath width, metres.
     pub swath_width_m: f64,
+    /// Height above the terrain while spraying, metres.
     pub spray_height_m: f64,
+    /// Seed 001's h: the climb above spray height for a transfer that leaves the work area, metres.
     pub safe_height_m: f64,
+    /// How coverage was laid out.
     pub settings: CoverageSettings,
+    /// How the passes were ordered.
     pub sequencer: Sequencer,
     /// Launch point in the input's coordinates, when the flight has one.
     pub start: Option<[f64; 2]>,
+    /// Each field's figures, in the farm's order.
     pub fields: Vec<FieldReport>,
     /// Interior swaths, metres.
     pub spray_length_m: f64,
@@ -57,10 +77,13 @@ pub struct Report {
     /// What the sequencer minimised: from the launch point through every pass (no leg home),
     /// or the closed tour for a free start (seed 001 Table 8's measure), metres.
     pub tour_cost_m: f64,
+    /// Number of legs flown: from the launch point, between passes, home.
     pub transfers: usize,
+    /// Legs among them that climb by h.
     pub climbing_transfers: usize,
     /// Changes of direction along the flight (every angle counts) and U-turns among them.
     pub turns: usize,
+    /// U-turns among the turns.
     pub u_turns: usize,
     /// Flights from the supply point and back (1 when the route is not split).
     pub sorties: usize,
@@ -73,11 +96,17 @@ pub struct Report {
     pub return_time_s: f64,
     /// Per sortie: spray metres, litres, flight time, tank and battery used (seed 003 Table 5).
     pub sortie_details: Vec<SortieReport>,
+    /// Sprayable area of all fields, m².
     pub sprayable_area_m2: f64,
+    /// Share of the sprayable area under at least one strip, 0..1 (area-weighted over the fields).
     pub covered_fraction: f64,
+    /// Area sprayed more than once over all fields, m².
     pub overlap_m2: f64,
+    /// Spraying time: interior swaths and edge passes at spray speed, seconds.
     pub spray_time_s: f64,
+    /// Transfers and returns to the supply point, seconds.
     pub non_spray_time_s: f64,
+    /// Spraying and non-spraying time, seconds.
     pub total_time_s: f64,
     /// Wall time of planning; the one figure that differs between identical runs.
     pub runtime_s: f64,
@@ -95,12 +124,17 @@ pub struct Report {
 /// One sortie in `report.json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct SortieReport {
+    /// Number of the sortie, from 0.
     pub sortie: usize,
+    /// Spray metres flown.
     pub spray_m: f64,
+    /// Litres sprayed (`null` when the application rate is not known).
     pub litres: Option<f64>,
+    /// Share of a tank used, percent (`null` when the tank does not limit a sortie).
     pub tank_percent: Option<f64>,
     /// Out from the supply point, along the route and back, seconds.
     pub flight_time_s: f64,
+    /// Share of the battery endurance used, percent.
     pub battery_percent: f64,
     /// Where it ends with a return (`null` for the last), in the input's coordinates.
     pub return_point: Option<[f64; 3]>,
@@ -123,6 +157,7 @@ pub fn transfer_time_s(route: &Route, vehicle: &Vehicle) -> f64 {
 }
 
 impl Report {
+    /// The report of a planned mission; `preflight` is left `None` for the check to fill in.
     pub fn new(
         scenario: &Scenario,
         plan: &CoveragePlan,
@@ -249,6 +284,7 @@ impl Report {
         }
     }
 
+    /// How the heading objective reads in the CLI's table.
     pub fn heading_label(settings: &CoverageSettings) -> String {
         match settings.heading {
             HeadingObjective::Seed {
@@ -263,6 +299,7 @@ impl Report {
         }
     }
 
+    /// How the sequencer reads in the CLI's table.
     pub fn sequencer_label(sequencer: &Sequencer) -> String {
         match sequencer {
             Sequencer::Greedy => "greedy".into(),

@@ -10,29 +10,43 @@ use crate::coverage::{plan_coverage, CoverageSettings};
 use crate::error::Fault;
 use crate::scenario::Scenario;
 
+/// One field of Table 7: the paper's figures beside ours.
 #[derive(Debug, Clone, Serialize)]
 pub struct Row {
+    /// The field's name.
     pub field: String,
+    /// The paper's heading, degrees (`None` where it gives none).
     pub paper_heading_deg: Option<f64>,
+    /// The paper's swath count.
     pub paper_swaths: Option<u64>,
+    /// The paper's swath length, metres.
     pub paper_length_m: Option<f64>,
     /// Our swaths and length at the paper's heading.
     pub at_paper_heading: Option<(usize, f64)>,
+    /// Our best heading of the 1° scan, degrees.
     pub heading_deg: f64,
+    /// Our swath count at that heading.
     pub swaths: usize,
+    /// Our draped swath length at that heading, metres.
     pub length_m: f64,
     /// The 0.1° refinement of our E, when it lowers E.
     pub refined_heading_deg: f64,
+    /// Draped swath length at the refined heading, metres.
     pub refined_length_m: f64,
     /// Coverage of the seed's layout and of ours (one edge pass, refined heading).
     pub seed_layout_covered: f64,
+    /// Covered fraction of ours (one edge pass, refined heading), 0..1.
     pub default_covered: f64,
+    /// Area sprayed more than once by ours, m².
     pub default_overlap_m2: f64,
 }
 
+/// Table 7 at one swath width.
 #[derive(Debug, Clone, Serialize)]
 pub struct Table {
+    /// The swath width the table was computed at, metres.
     pub swath_width_m: f64,
+    /// One row per field, in the farm's order.
     pub rows: Vec<Row>,
 }
 
@@ -105,6 +119,7 @@ pub fn table7(scenario: &Scenario, references: &Value, swath_width_m: f64) -> Re
 }
 
 impl Table {
+    /// The table as aligned text, for the terminal.
     pub fn to_text(&self) -> String {
         let optional = |value: Option<f64>, width: usize, decimals: usize| match value {
             Some(value) => format!("{value:>width$.decimals$}"),

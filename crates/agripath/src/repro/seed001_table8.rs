@@ -21,22 +21,33 @@ use crate::sequence::{route, Sequencer, TransferModel};
 /// Table 7's headings, the ones the seed ordered.
 pub const PAPER_HEADINGS_DEG: [f64; 5] = [98.0, 3.0, 93.0, 87.0, 90.0];
 
+/// One start point of Table 8: tour costs in metres.
 #[derive(Debug, Clone, Serialize)]
 pub struct Row {
+    /// The start point, as the table labels it.
     pub start: String,
+    /// The paper's ant colony figure, metres (`None` for the free start).
     pub paper_aco_m: Option<f64>,
+    /// The paper's greedy figure, metres (`None` for the free start).
     pub paper_greedy_m: Option<f64>,
+    /// Our greedy sequencer's tour, metres.
     pub greedy_m: f64,
-    /// Mean and best of the ant colony runs.
+    /// Mean of the ant colony runs, metres.
     pub aco_mean_m: f64,
+    /// Best of the ant colony runs, metres.
     pub aco_best_m: f64,
+    /// Our `best` sequencer's tour, metres.
     pub best_m: f64,
 }
 
+/// Table 8 over every start point.
 #[derive(Debug, Clone, Serialize)]
 pub struct Table {
+    /// Interior swaths in the instance.
     pub swaths: usize,
+    /// Seeded ant colony runs per start.
     pub aco_runs: usize,
+    /// One row per start point.
     pub rows: Vec<Row>,
 }
 
@@ -135,6 +146,7 @@ pub fn table8(scenario: &Scenario, aco_runs: usize) -> Result<Table, Fault> {
 }
 
 impl Table {
+    /// The table as aligned text, for the terminal.
     pub fn to_text(&self) -> String {
         let optional = |value: Option<f64>| match value {
             Some(value) => format!("{value:>7.0}"),

@@ -23,6 +23,7 @@ use crate::terrain::{Extent, Terrain};
 
 /// `data/seed003_strip.geojson`, compiled in.
 pub const STRIP_GEOJSON: &str = include_str!("../../../../data/seed003_strip.geojson");
+/// The name messages give the embedded strip file.
 pub const STRIP_LABEL: &str = "<embedded>/seed003_strip.geojson";
 /// `data/vehicles/seed003_sprayer.toml`, compiled in.
 pub const SPRAYER_TOML: &str = include_str!("../../../../data/vehicles/seed003_sprayer.toml");
@@ -68,7 +69,9 @@ impl Terrain for StripSlope {
 /// One planner's row.
 #[derive(Debug, Clone, Serialize)]
 pub struct PlannerRow {
+    /// The planner of the row.
     pub planner: SortiePlanner,
+    /// Its split of the grid route into sorties.
     pub plan: SortiePlan,
     /// Return points (x, y, z).
     pub returns: Vec<[f64; 3]>,
@@ -77,12 +80,19 @@ pub struct PlannerRow {
 /// One terrain's results.
 #[derive(Debug, Clone, Serialize)]
 pub struct Case {
+    /// The terrain, as it describes itself.
     pub terrain: String,
+    /// Cells in the grid route's flight order.
     pub cells: usize,
+    /// Workable cells the motion rule never reached.
     pub unvisited_cells: usize,
+    /// Spray metres of the whole route.
     pub spray_m: f64,
+    /// One row per planner.
     pub rows: Vec<PlannerRow>,
+    /// The thresholds d_n of GSA's best split.
     pub gsa_thresholds: Vec<f64>,
+    /// Evaluations GSA spent over all numbers of returns.
     pub gsa_evaluations: u64,
 }
 

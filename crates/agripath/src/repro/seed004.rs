@@ -48,9 +48,13 @@ pub const FIELDS: [(&str, &str); 6] = [
 /// One method on one field.
 #[derive(Debug, Clone, Serialize)]
 pub struct MethodResult {
+    /// Turns, U-turns, lengths and crossings of the route.
     pub measure: RouteMeasure,
+    /// Whether the route visits every valid point exactly once.
     pub valid: bool,
+    /// Planning time, milliseconds.
     pub milliseconds: f64,
+    /// The route planned.
     #[serde(skip)]
     pub route: GridRoute,
 }
@@ -58,15 +62,25 @@ pub struct MethodResult {
 /// One field's row.
 #[derive(Debug, Clone, Serialize)]
 pub struct FieldRow {
+    /// The field's name, e.g. `single_1`.
     pub name: String,
+    /// Number of grid points to visit.
     pub points: usize,
+    /// The paper's HPSO turn count, when the field file gives it.
     pub paper_hpso: Option<u64>,
+    /// The paper's Reeb-graph turn count, when the field file gives it.
     pub paper_reeb: Option<u64>,
+    /// Turns of the best single-direction boustrophedon.
     pub single_direction: usize,
+    /// Lower bound on the turns of any axis-parallel route.
     pub axis_lower_bound: usize,
+    /// Our HPSO.
     pub hpso: MethodResult,
+    /// The boustrophedon baseline.
     pub baseline: MethodResult,
+    /// Our constructive fewest-turn method.
     pub ours: MethodResult,
+    /// The grid of points the methods cover.
     #[serde(skip)]
     pub grid: PointGrid,
 }

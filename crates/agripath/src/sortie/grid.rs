@@ -35,9 +35,13 @@ pub const SIDE_REWARD: f64 = 2.0;
 /// The cells of one field.
 #[derive(Debug, Clone)]
 pub struct Grid {
+    /// Side of a square cell, metres.
     pub cell_m: f64,
+    /// Number of cells along x.
     pub columns: usize,
+    /// Number of cells along y.
     pub rows: usize,
+    /// The south-west corner of the grid (the field's bounding box), plan metres.
     pub origin: Coord<f64>,
     /// Row-major (row = y index): whether the cell can be worked.
     pub workable: Vec<bool>,
@@ -48,9 +52,11 @@ pub struct Grid {
 /// The route flown by the motion rule over a grid.
 #[derive(Debug, Clone)]
 pub struct GridRoute {
+    /// The grid the route was flown over.
     pub grid: Grid,
     /// Cell indices in flight order.
     pub cells: Vec<usize>,
+    /// The route through the visited cell centres.
     pub route: WorkRoute,
     /// Workable cells the rule never reached.
     pub unvisited: usize,

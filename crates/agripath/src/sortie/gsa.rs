@@ -26,7 +26,9 @@ use crate::error::Fault;
 /// The search budget per number of returns.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct GsaSettings {
+    /// Agents per search.
     pub population: usize,
+    /// Iterations per search.
     pub iterations: usize,
     /// How many numbers of returns above the fewest possible to try.
     pub extra_returns: usize,
@@ -52,6 +54,7 @@ impl GsaSettings {
 /// What the search found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GsaOutcome {
+    /// Route point indices where the drone returns in the best split.
     pub breaks: Vec<usize>,
     /// The thresholds d_n of the best split.
     pub thresholds: Vec<f64>,

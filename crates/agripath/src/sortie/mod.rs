@@ -42,13 +42,18 @@ const TOLERANCE: f64 = 1e-6;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum SortiePlanner {
+    /// Return only when the tank or the battery runs out.
     Unplanned,
+    /// Seed 003's rule: return at a swath end on the supply side before the tank runs out.
     Simple,
+    /// Seed 003's gravitational search over the per-sortie spray thresholds.
     Gsa,
+    /// Ours: the breaks that minimise E, by a shortest path over the route's points.
     Exact,
 }
 
 impl SortiePlanner {
+    /// Every planner: unplanned, simple, gsa, exact.
     pub const ALL: [SortiePlanner; 4] = [
         SortiePlanner::Unplanned,
         SortiePlanner::Simple,
@@ -56,6 +61,7 @@ impl SortiePlanner {
         SortiePlanner::Exact,
     ];
 
+    /// The planner's name on the command line and in `report.json`.
     pub fn key(self) -> &'static str {
         match self {
             SortiePlanner::Unplanned => "unplanned",
@@ -92,13 +98,18 @@ pub struct SortieModel {
     pub supply: RoutePoint,
     /// D_max: spray metres per tank; `None` when the tank does not limit a sortie.
     pub spray_per_tank_m: Option<f64>,
+    /// Battery endurance of one flight, seconds.
     pub endurance_s: f64,
     /// Battery seconds a sortie spends beyond what eq. 2 charges (its climbs and descents at
     /// climb speed): a sortie may fly at most `endurance_s − battery_reserve_s` of eq. 2's time.
     pub battery_reserve_s: f64,
+    /// T_e: time to swap the battery, seconds.
     pub battery_swap_s: f64,
+    /// t_b: refill time for an empty sortie, seconds.
     pub refill_base_s: f64,
+    /// T_pmax: refill time for a full tank, seconds.
     pub refill_max_s: f64,
+    /// v_off: speed of the return legs, metres per second.
     pub transit_mps: f64,
     /// Added to every one-way return leg: 2h where a safe transit height applies, metres.
     pub return_climb_m: f64,
@@ -230,8 +241,11 @@ impl SortieModel {
 pub struct Sortie {
     /// First and last route point flown.
     pub first: usize,
+    /// Last route point flown.
     pub last: usize,
+    /// Spray metres flown.
     pub spray_m: f64,
+    /// Litres sprayed (`None` when the application rate is not known).
     pub litres: Option<f64>,
     /// Share of a tank used.
     pub tank_fraction: Option<f64>,
@@ -239,21 +253,28 @@ pub struct Sortie {
     pub flight_s: f64,
     /// Share of the battery endurance used (seed 003 Table 5).
     pub battery_fraction: f64,
+    /// Whether one tank and one battery fly it.
     pub feasible: bool,
 }
 
 /// A route split into sorties, with seed 003 Table 4's figures.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SortiePlan {
+    /// The planner that chose the breaks.
     pub planner: SortiePlanner,
     /// Route point indices where the drone returns.
     pub breaks: Vec<usize>,
+    /// The sorties in flight order.
     pub sorties: Vec<Sortie>,
+    /// Whether every sortie is feasible.
     pub feasible: bool,
     /// Σ 2 (‖P_n, P0‖ + H_n): all return round trips, metres.
     pub round_trip_m: f64,
+    /// The return round trips at transit speed, seconds.
     pub round_trip_s: f64,
+    /// Battery swaps at the returns, seconds.
     pub battery_swap_s: f64,
+    /// Refills at the returns (eq. 5), seconds.
     pub refill_s: f64,
     /// Σ max(T_e, T_p,n).
     pub service_s: f64,
@@ -264,6 +285,7 @@ pub struct SortiePlan {
 }
 
 impl SortiePlan {
+    /// Number of returns to the supply point (one fewer than the sorties).
     pub fn returns(&self) -> usize {
         self.breaks.len()
     }
@@ -316,7 +338,9 @@ fn unreachable_points(route: &WorkRoute, model: &SortieModel) -> Result<(), Faul
 /// whatever the tank and battery; `seed` drives GSA.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct SortieSettings {
+    /// The planner, or `None` for one flight.
     pub planner: Option<SortiePlanner>,
+    /// Random seed of GSA.
     pub seed: u64,
 }
 
@@ -332,6 +356,7 @@ impl Default for SortieSettings {
 /// A route split into sorties, with what the map and the mission need to draw it.
 #[derive(Debug, Clone)]
 pub struct PlannedSorties {
+    /// The split.
     pub plan: SortiePlan,
     /// Where the drone refills and swaps batteries: the launch point, else the first point
     /// of the route.

@@ -22,8 +22,11 @@ pub enum Segment {
 /// A point of the route: plan coordinates and terrain height.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RoutePoint {
+    /// Easting in the planning frame, metres.
     pub x: f64,
+    /// Northing in the planning frame, metres.
     pub y: f64,
+    /// Terrain height above sea level, metres.
     pub ground_m: f64,
 }
 
@@ -46,8 +49,11 @@ pub struct WorkRoute {
 /// Speeds for timing a route, m/s.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Speeds {
+    /// Speed while spraying.
     pub spray_mps: f64,
+    /// Speed in headland turns.
     pub turn_mps: f64,
+    /// Speed of transfers.
     pub transit_mps: f64,
 }
 
@@ -144,18 +150,22 @@ impl WorkRoute {
         Self::new(points, segments, Some(extra), speeds)
     }
 
+    /// Number of points.
     pub fn len(&self) -> usize {
         self.points.len()
     }
 
+    /// Whether the route has no points.
     pub fn is_empty(&self) -> bool {
         self.points.is_empty()
     }
 
+    /// The points in flight order.
     pub fn points(&self) -> &[RoutePoint] {
         &self.points
     }
 
+    /// The segments: `segments[i]` leads from `points[i]` to `points[i + 1]`.
     pub fn segments(&self) -> &[Segment] {
         &self.segments
     }

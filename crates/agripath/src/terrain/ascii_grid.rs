@@ -9,6 +9,7 @@ use crate::error::{Fault, InputError};
 use crate::files::read_text;
 use crate::limits::MAX_TERRAIN_CELLS;
 
+/// Reads an ESRI ASCII grid file; errs on an unreadable file or a bad header or body, with its place.
 pub fn read(path: &Path) -> Result<Grid, InputError> {
     let text = read_text(path)?;
     parse(&text).map_err(|(place, fault)| {
@@ -22,6 +23,7 @@ pub fn read(path: &Path) -> Result<Grid, InputError> {
 
 type Located = (Option<String>, Fault);
 
+/// Parses an ESRI ASCII grid's text; errs with the place (when known) and the fault.
 pub fn parse(text: &str) -> Result<Grid, Located> {
     let structure = |message: String| (None, Fault::Structure(message));
     let mut tokens = text.split_ascii_whitespace().peekable();

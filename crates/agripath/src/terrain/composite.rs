@@ -15,20 +15,28 @@ use crate::error::TerrainError;
 /// One Gaussian hill of z2.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Hill {
+    /// hᵢ: height of the peak, metres.
     pub height_m: f64,
+    /// xᵢ: x of the peak, metres.
     pub x_m: f64,
+    /// yᵢ: y of the peak, metres.
     pub y_m: f64,
+    /// x_sᵢ: spread along x, metres.
     pub spread_x_m: f64,
+    /// y_sᵢ: spread along y, metres.
     pub spread_y_m: f64,
 }
 
+/// The composite terrain z = max(z1, z2), scaled.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Composite {
     /// Coefficients a..g of z1.
     pub coefficients: [f64; 7],
+    /// The Gaussian hills of z2.
     pub hills: Vec<Hill>,
     /// Factor applied to every height (1 for seed 000, 0.5 for seed 002).
     pub height_scale: f64,
+    /// Where the terrain is defined; queries outside it fail.
     pub extent: Extent,
 }
 

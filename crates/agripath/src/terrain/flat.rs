@@ -3,12 +3,14 @@
 use super::{Extent, Terrain};
 use crate::error::TerrainError;
 
+/// Level ground at one height everywhere.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Flat {
     height_m: f64,
 }
 
 impl Flat {
+    /// Level ground at `height_m` above sea level, metres.
     pub fn new(height_m: f64) -> Self {
         Self { height_m }
     }

@@ -9,9 +9,12 @@ use super::{Extent, Terrain};
 use crate::error::{Fault, TerrainError};
 use crate::limits::TERRAIN_HEIGHT_RANGE_M;
 
+/// A raster of heights, cell centres on a regular lattice.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Grid {
+    /// Number of columns (west to east).
     pub columns: usize,
+    /// Number of rows (north to south).
     pub rows: usize,
     /// x of the centre of column 0, metres (or degrees for a geographic DEM).
     pub first_center_x: f64,

@@ -9,10 +9,13 @@ use super::{Extent, Terrain};
 /// A grey-and-alpha picture of the terrain, north up.
 #[derive(Debug, Clone)]
 pub struct Shaded {
+    /// Width, pixels.
     pub width: usize,
+    /// Height, pixels.
     pub height: usize,
     /// Pairs of (grey, alpha) bytes, row-major from the north-west corner.
     pub pixels: Vec<u8>,
+    /// The plane rectangle the picture covers, metres.
     pub extent: Extent,
 }
 
@@ -109,6 +112,7 @@ impl Shaded {
         bytes
     }
 
+    /// Writes the picture as a PNG file, atomically.
     pub fn write_png(&self, path: &Path) -> std::io::Result<()> {
         crate::output::write_file_atomically(path, &self.to_png())
     }

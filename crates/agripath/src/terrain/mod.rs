@@ -28,21 +28,28 @@ pub use plateaus::{Plateau, Plateaus};
 /// A rectangle of the plane, metres.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Extent {
+    /// Smallest x (the west edge), metres.
     pub min_x: f64,
+    /// Smallest y (the south edge), metres.
     pub min_y: f64,
+    /// Largest x (the east edge), metres.
     pub max_x: f64,
+    /// Largest y (the north edge), metres.
     pub max_y: f64,
 }
 
 impl Extent {
+    /// East-west size, metres.
     pub fn width(&self) -> f64 {
         self.max_x - self.min_x
     }
 
+    /// North-south size, metres.
     pub fn height(&self) -> f64 {
         self.max_y - self.min_y
     }
 
+    /// Whether (x, y) lies inside or on the edge.
     pub fn contains(&self, x: f64, y: f64) -> bool {
         x >= self.min_x && x <= self.max_x && y >= self.min_y && y <= self.max_y
     }

@@ -7,6 +7,7 @@ use crate::error::{Fault, TerrainError};
 
 pub use crate::model::terrain_spec::Plateau;
 
+/// Level ground at `base_m` with circular plateaus standing on it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Plateaus {
     base_m: f64,
@@ -14,6 +15,7 @@ pub struct Plateaus {
 }
 
 impl Plateaus {
+    /// The terrain; errs when a number is not finite, a radius is not above 0 or a ramp is negative.
     pub fn new(base_m: f64, plateaus: Vec<Plateau>) -> Result<Self, Fault> {
         if !base_m.is_finite() {
             return Err(Fault::NonFinite);

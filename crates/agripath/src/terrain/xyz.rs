@@ -13,6 +13,7 @@ use crate::limits::{MAX_GRIDDED_CELLS, MAX_GRIDDED_CELL_M, MAX_POINT_CLOUD_POINT
 /// Cells searched around a cell centre for its nearest point.
 const SEARCH_RADIUS_CELLS: i64 = 3;
 
+/// Reads an XYZ file and grids it at `cell_m` metres (estimated when `None`); errs on an unreadable file, a bad line (with its number) or a cloud that cannot be gridded.
 pub fn read(path: &Path, cell_m: Option<f64>) -> Result<Grid, InputError> {
     let text = read_text(path)?;
     let points = parse_points(&text).map_err(|(line, fault)| {
@@ -25,6 +26,7 @@ pub fn read(path: &Path, cell_m: Option<f64>) -> Result<Grid, InputError> {
     grid_points(&points, cell_m).map_err(|fault| InputError::new(path, fault))
 }
 
+/// The points of an XYZ text, `[x, y, z]` in file order; errs with the 1-based line number (when one is at fault) and the fault.
 pub fn parse_points(text: &str) -> Result<Vec<[f64; 3]>, (Option<usize>, Fault)> {
     let mut points = Vec::new();
     for (index, line) in text.lines().enumerate() {

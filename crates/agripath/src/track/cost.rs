@@ -72,6 +72,7 @@ impl AlongLegs {
 /// A cost and its terms (named by the model).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CostBreakdown {
+    /// The cost: the terms, weighted, summed.
     pub total: f64,
     /// The model's terms before weighting, in its order (see [`CostModel::term_names`]).
     pub terms: [f64; 4],
@@ -89,8 +90,9 @@ pub struct Seed000Cost {
     pub threat_factor: f64,
     /// γ_h of eq. (20), per metre outside the height band.
     pub height_factor: f64,
-    /// a_1, a_2 of eq. (25), per radian of turn and of pitch change.
+    /// a_1 of eq. (25), per radian of turn.
     pub turn_factor: f64,
+    /// a_2 of eq. (25), per radian of pitch change.
     pub pitch_factor: f64,
 }
 
@@ -111,8 +113,11 @@ impl Default for Seed000Cost {
 /// distance D = 10·S; angle penalties only above 45°.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpsoCost {
+    /// Weights of the length, threat, altitude and smoothness terms.
     pub weights: [f64; 4],
+    /// S: the drone's size, added to each cylinder's radius, in the scenario's units.
     pub drone_size: f64,
+    /// D: the danger band beyond the drone size, in the scenario's units.
     pub danger: f64,
 }
 
@@ -135,10 +140,14 @@ impl Default for SpsoCost {
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Seed002Cost;
 
+/// Which cost a track planner minimises.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum CostModel {
+    /// Seed 000's F.
     Seed000(Seed000Cost),
+    /// SPSO's `MyCost.m`.
     Spso(SpsoCost),
+    /// Seed 002's W.
     Seed002(Seed002Cost),
 }
 
@@ -194,6 +203,7 @@ impl CostModel {
         }
     }
 
+    /// The model's name, for reports.
     pub fn label(&self) -> &'static str {
         match self {
             CostModel::Seed000(_) => "seed 000 F (eqs. 17-26)",

@@ -25,14 +25,19 @@ use swarm::Bounds;
 use super::cost::length_3d;
 use super::scenario::TrackScenario;
 
+/// How an optimizer's vector encodes the free waypoints.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Encoding {
+    /// (x, y, z) per waypoint, each in the scenario's box.
     Cartesian,
+    /// (ρ, θ, z') per waypoint, an increment from the previous point (seed 000 eqs. 27-30).
     Cylindrical,
+    /// (r, ψ, φ) per waypoint, an increment from the previous point (SPSO).
     Spherical,
 }
 
 impl Encoding {
+    /// The encoding's name on the command line and in outputs.
     pub fn key(self) -> &'static str {
         match self {
             Encoding::Cartesian => "cartesian",
@@ -41,6 +46,7 @@ impl Encoding {
         }
     }
 
+    /// The encoding named `text` (case-insensitive, trimmed), if any.
     pub fn parse(text: &str) -> Option<Self> {
         [
             Encoding::Cartesian,

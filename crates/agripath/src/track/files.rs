@@ -14,8 +14,11 @@ use crate::plot::line_chart::{self, Chart, Series};
 
 /// The runs of one planner.
 pub struct PlannerRuns {
+    /// The planner.
     pub planner: Planner,
+    /// The encoding its vectors used.
     pub encoding: super::Encoding,
+    /// Its runs, in run order.
     pub runs: Vec<TrackRun>,
 }
 

@@ -69,6 +69,7 @@ fn iterations() -> usize {
     300
 }
 
+/// Parses an operator's track scenario (`path` names it in messages) and builds the planning scenario; errs on bad TOML, an invalid value or a DEM that cannot be read.
 pub fn read(path: &Path, text: &str) -> Result<TrackScenario, InputError> {
     let fail = |fault: Fault| InputError::new(path, fault);
     let parsed: OperatorScenario = toml::from_str(text)

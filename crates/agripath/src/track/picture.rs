@@ -17,10 +17,13 @@ use crate::terrain::{hillshade::hillshade, Extent};
 
 /// One track to draw.
 pub struct DrawnTrack<'a> {
+    /// The legend's label.
     pub label: &'a str,
+    /// Stroke colour, as CSS (e.g. `#0072B2`).
     pub colour: &'a str,
     /// Points with altitudes above sea level.
     pub points: &'a [[f64; 3]],
+    /// Whether the track passed the safety check (drawn dashed when not).
     pub safe: bool,
 }
 

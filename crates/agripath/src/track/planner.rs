@@ -34,6 +34,7 @@ pub enum Planner {
 }
 
 impl Planner {
+    /// The planner's name on the command line and in file names.
     pub fn key(self) -> &'static str {
         match self {
             Planner::Swarm(algorithm) => algorithm.key(),
@@ -43,6 +44,7 @@ impl Planner {
         }
     }
 
+    /// The planner's name for tables and legends.
     pub fn label(self) -> &'static str {
         match self {
             Planner::Swarm(algorithm) => algorithm.label(),
@@ -66,12 +68,14 @@ impl Planner {
         PALETTE[index % PALETTE.len()]
     }
 
+    /// Every planner: the swarm engine's algorithms, then SPSO, the improved GA and ours.
     pub fn all() -> Vec<Planner> {
         let mut all: Vec<Planner> = Algorithm::ALL.iter().copied().map(Planner::Swarm).collect();
         all.extend([Planner::Spso, Planner::ImprovedGenetic, Planner::Lattice]);
         all
     }
 
+    /// The planner named `text` (case-insensitive; `ours` is the lattice); errs with the known names.
     pub fn parse(text: &str) -> Result<Planner, String> {
         let wanted = text.trim().to_ascii_lowercase();
         if let Some(planner) = [Planner::Spso, Planner::ImprovedGenetic, Planner::Lattice]
@@ -105,10 +109,13 @@ impl Planner {
 /// What to run.
 #[derive(Debug, Clone)]
 pub struct TrackSettings {
+    /// The planner to run.
     pub planner: Planner,
     /// For the swarm algorithms; `None`: the scenario's paper's encoding.
     pub encoding: Option<Encoding>,
+    /// Number of independent runs.
     pub runs: u64,
+    /// Seed of the runs: run k draws from stream k of this seed.
     pub seed: u64,
     /// `None`: the scenario's budget.
     pub evaluations: Option<u64>,
@@ -117,23 +124,32 @@ pub struct TrackSettings {
 /// A track smoothed by B-spline, with its own cost and check.
 #[derive(Debug, Clone)]
 pub struct Smoothed {
+    /// The smoothed track: start, waypoints and goal, altitudes above sea level.
     pub points: Vec<[f64; 3]>,
     /// Each planned leg was split in this many before smoothing (1: the paper's spline).
     pub splits: usize,
+    /// The smoothed track's cost.
     pub cost: CostBreakdown,
+    /// The smoothed track's safety check.
     pub verdict: Verdict,
 }
 
 /// One run's result.
 #[derive(Debug, Clone)]
 pub struct TrackRun {
+    /// Number of the run, from 0.
     pub run: u64,
     /// Start, waypoints and goal, altitudes above sea level.
     pub points: Vec<[f64; 3]>,
+    /// The planned track's cost.
     pub cost: CostBreakdown,
+    /// The planned track's safety check.
     pub verdict: Verdict,
+    /// Cost evaluations spent.
     pub evaluations: u64,
+    /// Wall time of the run.
     pub elapsed: Duration,
+    /// The best cost after each iteration.
     pub history: Vec<Record>,
     /// The improved GA's smoothed track (its cost is the run's `final_cost`).
     pub smoothed: Option<Smoothed>,
@@ -149,6 +165,7 @@ impl TrackRun {
         }
     }
 
+    /// The points of the track the planner hands over: the smoothed one when smoothing kept it safe, else the planned one.
     pub fn final_points(&self) -> &[[f64; 3]] {
         match &self.smoothed {
             Some(smoothed) if smoothed.verdict.is_safe() => &smoothed.points,
@@ -156,6 +173,7 @@ impl TrackRun {
         }
     }
 
+    /// Whether the track the planner hands over is safe.
     pub fn is_safe(&self) -> bool {
         match &self.smoothed {
             Some(smoothed) if smoothed.verdict.is_safe() => true,
@@ -307,12 +325,19 @@ fn smooth_safely(scenario: &TrackScenario, track: &[[f64; 3]]) -> Smoothed {
 /// Best, worst, mean and standard deviation of the runs' final costs, and how many are safe.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunStatistics {
+    /// Lowest final cost.
     pub best: f64,
+    /// Highest final cost.
     pub worst: f64,
+    /// Mean final cost.
     pub mean: f64,
+    /// Sample standard deviation of the final costs.
     pub standard_deviation: f64,
+    /// Runs whose handed-over track is safe.
     pub safe_runs: usize,
+    /// Number of runs.
     pub runs: usize,
+    /// Mean wall time per run, seconds.
     pub mean_seconds: f64,
 }
 
@@ -332,6 +357,7 @@ impl RunStatistics {
     }
 }
 
+/// The statistics of `runs` (final costs, as [`TrackRun::final_cost`] gives them).
 pub fn statistics(runs: &[TrackRun]) -> RunStatistics {
     let costs: Vec<f64> = runs.iter().map(TrackRun::final_cost).collect();
     let count = costs.len().max(1) as f64;

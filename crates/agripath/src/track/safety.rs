@@ -30,6 +30,7 @@ pub const SAMPLE_SPACING_M: f64 = crate::preflight::SAMPLE_M;
 pub struct Verdict {
     /// Lowest height above the terrain along the cruise (metres) and where (scenario x, y).
     pub lowest_clearance_m: f64,
+    /// Where the lowest clearance is, scenario (x, y).
     pub lowest_clearance_at: [f64; 2],
     /// Smallest distance from a threat cylinder's wall (metres; negative: inside), if any.
     pub threat_margin_m: Option<f64>,
@@ -40,6 +41,7 @@ pub struct Verdict {
 }
 
 impl Verdict {
+    /// Whether the check found no violation.
     pub fn is_safe(&self) -> bool {
         self.violations.is_empty()
     }
