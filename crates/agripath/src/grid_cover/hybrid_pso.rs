@@ -14,10 +14,11 @@
 //! always win. Initial routes are random permutations (step 1).
 //!
 //! Parameters the seed does not give: 40 particles, 1,000 iterations (the 1 s budget), the crossover variant
-//! drawn uniformly for every crossover, sub-paths of 2 to n/4 points. Permutations are not a
-//! box, so this search has its own loop rather than `swarm`'s Runner; it is seeded the same way.
+//! drawn uniformly for every crossover, sub-paths of 2 to n/4 points. The swarm runs on
+//! `swarm`'s Runner over [`TurnProblem`] (a permutation of the points): one iteration per step,
+//! run 0 of the settings' seed; the route returned is the Runner's best.
 
-use swarm::{below, run_stream, RunStream};
+use swarm::{below, Optimizer, RunStream, Runner, Search, Termination};
 
 use super::{GridRoute, PointGrid};
 
@@ -41,8 +42,9 @@ impl Default for HpsoSettings {
 
 const CROSSING_PENALTY: usize = 1_000;
 
-/// The turn count (plus penalties) of a permutation, on precomputed tables.
-struct Fitness {
+/// Seed 004's problem: the turn count (plus penalties) of a permutation of a grid's path
+/// points, on precomputed tables.
+pub struct TurnProblem {
     n: usize,
     cells: Vec<(i64, i64)>,
     clear: Vec<bool>,
@@ -60,13 +62,24 @@ fn reduced(dc: i64, dr: i64) -> (i64, i64) {
     (dc / g, dr / g)
 }
 
-impl Fitness {
+impl TurnProblem {
+    /// The problem of visiting every valid point of `grid`.
+    pub fn new(grid: &PointGrid) -> Self {
+        Self {
+            n: grid.points.len(),
+            cells: grid.points.iter().map(|&p| grid.cell(p)).collect(),
+            clear: grid.clear_table(),
+        }
+    }
+
     fn adjacent(&self, a: usize, b: usize) -> bool {
         let ((ca, ra), (cb, rb)) = (self.cells[a], self.cells[b]);
         (ca - cb).abs() + (ra - rb).abs() == 1
     }
 
-    fn cost(&self, order: &[usize]) -> usize {
+    /// Turns of the route visiting the points in `order`, plus 1,000 per move through an
+    /// obstacle.
+    pub fn cost(&self, order: &[usize]) -> usize {
         let mut turns = 0;
         let mut previous: Option<(i64, i64)> = None;
         for pair in order.windows(2) {
@@ -86,7 +99,45 @@ impl Fitness {
     }
 }
 
-fn mutate(order: &mut [usize], fitness: &Fitness, stream: &mut RunStream) {
+impl swarm::Problem for TurnProblem {
+    type Solution = [usize];
+
+    fn evaluate(&self, order: &[usize]) -> f64 {
+        self.cost(order) as f64
+    }
+
+    /// The points in grid order.
+    fn first_solution(&self) -> Vec<usize> {
+        (0..self.n).collect()
+    }
+
+    /// A uniform permutation (Fisher-Yates), seed 004's step 1.
+    fn random_solution(&self, stream: &mut RunStream) -> Vec<usize> {
+        let mut order = self.first_solution();
+        for i in (1..self.n).rev() {
+            order.swap(i, below(stream, i + 1));
+        }
+        order
+    }
+}
+
+/// The shared check of a point order: every one of `points` points exactly once.
+pub fn check_point_order(order: &[usize], points: usize) -> Result<(), String> {
+    if order.len() != points {
+        return Err(format!("{} visits for {points} points", order.len()));
+    }
+    let mut seen = vec![false; points];
+    for (index, &point) in order.iter().enumerate() {
+        if point >= points || std::mem::replace(&mut seen[point], true) {
+            return Err(format!(
+                "visit {index} (point {point}) is outside or repeated"
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn mutate(order: &mut [usize], fitness: &TurnProblem, stream: &mut RunStream) {
     let n = order.len();
     let loose: Vec<usize> = (0..n - 1)
         .filter(|&i| !fitness.adjacent(order[i], order[i + 1]))
@@ -123,62 +174,103 @@ fn crossover(order: &[usize], guide: &[usize], stream: &mut RunStream) -> Vec<us
     rest
 }
 
+/// HPSO as an optimizer of [`TurnProblem`]: particles, their bests and the swarm's best.
+#[derive(Debug, Clone, Default)]
+pub struct HybridPso {
+    particles: usize,
+    routes: Vec<Vec<usize>>,
+    costs: Vec<f64>,
+    personal: Vec<Vec<usize>>,
+    personal_costs: Vec<f64>,
+    global: Vec<usize>,
+    global_cost: f64,
+}
+
+impl HybridPso {
+    /// A swarm of `particles` routes (at least one).
+    pub fn new(particles: usize) -> Self {
+        Self {
+            particles: particles.max(1),
+            ..Self::default()
+        }
+    }
+
+    /// Keeps `candidate` for particle `k` if it is better (the seed's acceptance).
+    fn offer(&mut self, k: usize, candidate: Vec<usize>, search: &mut Search<TurnProblem>) {
+        let cost = search.evaluate(&candidate);
+        if cost < self.costs[k] {
+            (self.routes[k], self.costs[k]) = (candidate, cost);
+        }
+    }
+}
+
+impl Optimizer<TurnProblem> for HybridPso {
+    fn name(&self) -> &'static str {
+        "HPSO (seed 004)"
+    }
+
+    fn start(&mut self, search: &mut Search<TurnProblem>) {
+        self.routes = (0..self.particles)
+            .map(|_| search.random_solution())
+            .collect();
+        self.costs = self.routes.iter().map(|p| search.evaluate(p)).collect();
+        self.personal = self.routes.clone();
+        self.personal_costs = self.costs.clone();
+        let first_best = (0..self.routes.len())
+            .min_by(|&a, &b| self.costs[a].total_cmp(&self.costs[b]))
+            .expect("one particle");
+        self.global = self.routes[first_best].clone();
+        self.global_cost = self.costs[first_best];
+    }
+
+    fn step(&mut self, search: &mut Search<TurnProblem>) {
+        let problem = search.problem();
+        for k in 0..self.routes.len() {
+            // ω·v: the seed's mutation, kept if better.
+            let mut candidate = self.routes[k].clone();
+            mutate(&mut candidate, problem, search.stream());
+            self.offer(k, candidate, search);
+            // c1·r1·(pbest − x) and c2·r2·(gbest − x): crossovers, kept if better.
+            for guide in [self.personal[k].clone(), self.global.clone()] {
+                let candidate = crossover(&self.routes[k], &guide, search.stream());
+                self.offer(k, candidate, search);
+            }
+            if self.costs[k] < self.personal_costs[k] {
+                (self.personal[k], self.personal_costs[k]) =
+                    (self.routes[k].clone(), self.costs[k]);
+            }
+            if self.costs[k] < self.global_cost {
+                (self.global, self.global_cost) = (self.routes[k].clone(), self.costs[k]);
+            }
+        }
+    }
+}
+
 /// Runs HPSO on `grid`; returns the best route and its cost (turns, plus 1,000 per crossing).
 pub fn plan(grid: &PointGrid, settings: &HpsoSettings) -> (GridRoute, usize) {
     let n = grid.points.len();
     if n < 3 {
         return (GridRoute::direct(grid.points.clone()), 0);
     }
-    let fitness = Fitness {
-        n,
-        cells: grid.points.iter().map(|&p| grid.cell(p)).collect(),
-        clear: grid.clear_table(),
-    };
-    let mut stream = run_stream(settings.seed, 0);
-    let mut particles: Vec<Vec<usize>> = (0..settings.particles.max(1))
-        .map(|_| {
-            let mut order: Vec<usize> = (0..n).collect();
-            for i in (1..n).rev() {
-                order.swap(i, below(&mut stream, i + 1));
-            }
-            order
-        })
+    let problem = TurnProblem::new(grid);
+    let runner = Runner::new(
+        Termination::iterations(settings.iterations.max(1)),
+        settings.seed,
+    )
+    .expect("a budget of at least one iteration");
+    let outcome = runner.run_problem(
+        &mut HybridPso::new(settings.particles),
+        &problem,
+        0,
+        &mut (),
+    );
+    let visits = outcome
+        .best_solution
+        .iter()
+        .map(|&p| grid.points[p])
         .collect();
-    let mut costs: Vec<usize> = particles.iter().map(|p| fitness.cost(p)).collect();
-    let mut personal = particles.clone();
-    let mut personal_costs = costs.clone();
-    let first_best = (0..particles.len())
-        .min_by_key(|&k| costs[k])
-        .expect("one particle");
-    let (mut global, mut global_cost) = (particles[first_best].clone(), costs[first_best]);
-    for _ in 0..settings.iterations {
-        for k in 0..particles.len() {
-            // ω·v: the seed's mutation, kept if better.
-            let mut candidate = particles[k].clone();
-            mutate(&mut candidate, &fitness, &mut stream);
-            let cost = fitness.cost(&candidate);
-            if cost < costs[k] {
-                (particles[k], costs[k]) = (candidate, cost);
-            }
-            // c1·r1·(pbest − x) and c2·r2·(gbest − x): crossovers, kept if better.
-            for guide in [personal[k].clone(), global.clone()] {
-                let candidate = crossover(&particles[k], &guide, &mut stream);
-                let cost = fitness.cost(&candidate);
-                if cost < costs[k] {
-                    (particles[k], costs[k]) = (candidate, cost);
-                }
-            }
-            if costs[k] < personal_costs[k] {
-                (personal[k], personal_costs[k]) = (particles[k].clone(), costs[k]);
-            }
-            if costs[k] < global_cost {
-                (global, global_cost) = (particles[k].clone(), costs[k]);
-            }
-        }
-    }
-    let visits = global.iter().map(|&p| grid.points[p]).collect();
     (
         GridRoute::direct(visits).around_obstacles(grid),
-        global_cost,
+        outcome.best_cost as usize,
     )
 }

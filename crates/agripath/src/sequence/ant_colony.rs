@@ -15,10 +15,11 @@
 //! Deviations from the paper, all where it is silent: the initial pheromone is 1 on every
 //! pair; a fixed start point is node 0 of the pheromone matrix (so the first choice learns
 //! too); with a free start each ant starts at a random swath and end (the seed's option ②) and
-//! its tour is closed; d = 0 uses d = 1e-6 m; the best tour of all batches is returned.
+//! its tour is closed; d = 0 uses d = 1e-6 m; the best tour of all batches is returned (the
+//! Runner's best).
 
 use serde::Serialize;
-use swarm::random::{below, uniform};
+use swarm::{Optimizer, Runner, Search, Termination};
 
 use super::tour::{OrderingProblem, Start, Step};
 
@@ -53,125 +54,173 @@ impl Default for AntColonySettings {
 /// Smallest distance used in η = 1/d.
 const TINY_DISTANCE_M: f64 = 1e-6;
 
-/// Runs the colony; returns the best tour and the best cost after each batch.
+/// Runs the colony through `swarm`'s Runner (one batch per iteration, `settings.batches`
+/// iterations, run 0 of `settings.seed`); returns the best tour and the best cost after each
+/// batch. At least one ant and one batch are flown.
 pub fn ant_colony(
     problem: &OrderingProblem,
     settings: &AntColonySettings,
 ) -> (Vec<Step>, Vec<f64>) {
-    let passes = problem.passes();
-    if passes == 0 {
+    if problem.passes() == 0 {
         return (Vec::new(), Vec::new());
     }
-    let ends = 2 * passes;
-    // Eqs. (6)-(10): every end to every end; row `ends` is the fixed start point.
-    let mut distance = vec![0.0; (ends + 1) * ends];
-    for from in 0..ends {
-        for to in 0..ends {
-            if from / 2 != to / 2 {
-                distance[from * ends + to] = problem.cost(from, to);
-            }
+    let runner = Runner::new(
+        Termination::iterations(settings.batches.max(1)),
+        settings.seed,
+    )
+    .expect("a budget of at least one batch");
+    let mut colony = SwathAntColony::new(*settings);
+    let outcome = runner.run_problem(&mut colony, problem, 0, &mut ());
+    let history = outcome.history[1..]
+        .iter()
+        .map(|record| record.best_cost)
+        .collect();
+    (outcome.best_solution, history)
+}
+
+/// The colony as an optimizer of [`OrderingProblem`]: `start` builds eqs. (6)-(12)'s tables and
+/// the pheromone; each `step` is one batch of ants and eq. (13)'s update.
+#[derive(Debug, Clone)]
+pub struct SwathAntColony {
+    settings: AntColonySettings,
+    passes: usize,
+    /// η^β between every pair of ends; row `2·passes` is the fixed start point.
+    visibility: Vec<f64>,
+    /// τ between passes; node `passes` is the start point.
+    pheromone: Vec<f64>,
+    weights: Vec<f64>,
+}
+
+impl SwathAntColony {
+    /// A colony with `settings` (its seed is the Runner's, not this value's).
+    pub fn new(settings: AntColonySettings) -> Self {
+        Self {
+            settings,
+            passes: 0,
+            visibility: Vec::new(),
+            pheromone: Vec::new(),
+            weights: Vec::new(),
         }
     }
-    for to in 0..ends {
-        distance[ends * ends + to] = problem.cost_from_start(to);
-    }
-    // η^β precomputed per end pair.
-    let visibility: Vec<f64> = distance
-        .iter()
-        .map(|d| (1.0 / d.max(TINY_DISTANCE_M)).powf(settings.beta))
-        .collect();
-    // Pheromone between passes; node `passes` is the start point.
-    let nodes = passes + 1;
-    let mut pheromone = vec![settings.initial_pheromone; nodes * nodes];
-    let mut stream = swarm::run_stream(settings.seed, 0);
-    let mut best: Option<(f64, Vec<Step>)> = None;
-    let mut history = Vec::with_capacity(settings.batches);
-    let mut weights = vec![0.0; ends];
-    for _ in 0..settings.batches {
-        let mut batch: Vec<(f64, Vec<Step>)> = Vec::with_capacity(settings.ants);
-        for _ in 0..settings.ants {
-            let mut visited = vec![false; passes];
-            let mut tour: Vec<Step> = Vec::with_capacity(passes);
-            if problem.start == Start::Free {
-                let pass = below(&mut stream, passes);
-                let step = Step {
-                    pass,
-                    reversed: below(&mut stream, 2) == 1,
-                };
-                visited[pass] = true;
-                tour.push(step);
-            }
-            while tour.len() < passes {
-                let (from_node, from_end) = match tour.last() {
-                    Some(step) => (step.pass, step.exit()),
-                    None => (passes, ends),
-                };
-                let mut total = 0.0;
-                for pass in 0..passes {
-                    for side in 0..2 {
-                        let end = 2 * pass + side;
-                        weights[end] = if visited[pass] {
-                            0.0
+
+    /// One ant's tour, eqs. (2)-(5).
+    fn walk(&mut self, free_start: bool, search: &mut Search<OrderingProblem<'_>>) -> Vec<Step> {
+        let (passes, settings) = (self.passes, &self.settings);
+        let ends = 2 * passes;
+        let nodes = passes + 1;
+        let mut visited = vec![false; passes];
+        let mut tour: Vec<Step> = Vec::with_capacity(passes);
+        if free_start {
+            let pass = search.below(passes);
+            let step = Step {
+                pass,
+                reversed: search.below(2) == 1,
+            };
+            visited[pass] = true;
+            tour.push(step);
+        }
+        while tour.len() < passes {
+            let (from_node, from_end) = match tour.last() {
+                Some(step) => (step.pass, step.exit()),
+                None => (passes, ends),
+            };
+            let mut total = 0.0;
+            for (pass, &flown) in visited.iter().enumerate() {
+                for side in 0..2 {
+                    let end = 2 * pass + side;
+                    self.weights[end] = if flown {
+                        0.0
+                    } else {
+                        let trail = self.pheromone[from_node * nodes + pass];
+                        let trail = if settings.alpha == 1.0 {
+                            trail
                         } else {
-                            let trail = pheromone[from_node * nodes + pass];
-                            let trail = if settings.alpha == 1.0 {
-                                trail
-                            } else {
-                                trail.powf(settings.alpha)
-                            };
-                            trail * visibility[from_end * ends + end]
+                            trail.powf(settings.alpha)
                         };
-                        total += weights[end];
-                    }
+                        trail * self.visibility[from_end * ends + end]
+                    };
+                    total += self.weights[end];
                 }
-                // Roulette wheel over (pass, entry end).
-                let mut target = total * uniform(&mut stream);
-                let mut chosen = None;
-                for (end, weight) in weights.iter().enumerate() {
-                    if *weight > 0.0 {
-                        chosen = Some(end);
-                        if target < *weight {
-                            break;
-                        }
-                        target -= weight;
-                    }
-                }
-                let end = chosen.expect("an unvisited pass remains");
-                visited[end / 2] = true;
-                tour.push(Step {
-                    pass: end / 2,
-                    reversed: end % 2 == 1,
-                });
             }
-            let cost = problem.tour_cost(&tour);
+            // Roulette wheel over (pass, entry end).
+            let mut target = total * search.uniform();
+            let mut chosen = None;
+            for (end, weight) in self.weights.iter().enumerate() {
+                if *weight > 0.0 {
+                    chosen = Some(end);
+                    if target < *weight {
+                        break;
+                    }
+                    target -= weight;
+                }
+            }
+            let end = chosen.expect("an unvisited pass remains");
+            visited[end / 2] = true;
+            tour.push(Step {
+                pass: end / 2,
+                reversed: end % 2 == 1,
+            });
+        }
+        tour
+    }
+}
+
+impl<'a> Optimizer<OrderingProblem<'a>> for SwathAntColony {
+    fn name(&self) -> &'static str {
+        "ant colony (seed 001)"
+    }
+
+    fn start(&mut self, search: &mut Search<OrderingProblem<'a>>) {
+        let problem = search.problem();
+        let passes = problem.passes();
+        let ends = 2 * passes;
+        // Eqs. (6)-(10): every end to every end; row `ends` is the fixed start point.
+        let mut distance = vec![0.0; (ends + 1) * ends];
+        for from in 0..ends {
+            for to in 0..ends {
+                if from / 2 != to / 2 {
+                    distance[from * ends + to] = problem.cost(from, to);
+                }
+            }
+        }
+        for to in 0..ends {
+            distance[ends * ends + to] = problem.cost_from_start(to);
+        }
+        // η^β precomputed per end pair.
+        self.visibility = distance
+            .iter()
+            .map(|d| (1.0 / d.max(TINY_DISTANCE_M)).powf(self.settings.beta))
+            .collect();
+        let nodes = passes + 1;
+        self.pheromone = vec![self.settings.initial_pheromone; nodes * nodes];
+        self.weights = vec![0.0; ends];
+        self.passes = passes;
+    }
+
+    fn step(&mut self, search: &mut Search<OrderingProblem<'a>>) {
+        let start = search.problem().start;
+        let (passes, nodes) = (self.passes, self.passes + 1);
+        let mut batch: Vec<(f64, Vec<Step>)> = Vec::with_capacity(self.settings.ants);
+        for _ in 0..self.settings.ants.max(1) {
+            let tour = self.walk(start == Start::Free, search);
+            let cost = search.evaluate(&tour);
             batch.push((cost, tour));
         }
         // Eq. (13): evaporate, then deposit Q / l_m on every pair each ant flew.
-        for value in &mut pheromone {
-            *value *= 1.0 - settings.evaporation;
+        for value in &mut self.pheromone {
+            *value *= 1.0 - self.settings.evaporation;
         }
         for (cost, tour) in &batch {
-            let deposit = settings.deposit / cost.max(TINY_DISTANCE_M);
-            if let (Start::Fixed(_), Some(first)) = (problem.start, tour.first()) {
-                pheromone[passes * nodes + first.pass] += deposit;
+            let deposit = self.settings.deposit / cost.max(TINY_DISTANCE_M);
+            if let (Start::Fixed(_), Some(first)) = (start, tour.first()) {
+                self.pheromone[passes * nodes + first.pass] += deposit;
             }
             for pair in tour.windows(2) {
-                pheromone[pair[0].pass * nodes + pair[1].pass] += deposit;
+                self.pheromone[pair[0].pass * nodes + pair[1].pass] += deposit;
             }
-            if problem.start == Start::Free {
-                pheromone[tour[tour.len() - 1].pass * nodes + tour[0].pass] += deposit;
-            }
-        }
-        for (cost, tour) in batch {
-            if best.as_ref().is_none_or(|(best_cost, _)| cost < *best_cost) {
-                best = Some((cost, tour));
+            if start == Start::Free {
+                self.pheromone[tour[tour.len() - 1].pass * nodes + tour[0].pass] += deposit;
             }
         }
-        history.push(
-            best.as_ref()
-                .map(|(cost, _)| *cost)
-                .unwrap_or(f64::INFINITY),
-        );
     }
-    (best.map(|(_, tour)| tour).unwrap_or_default(), history)
 }

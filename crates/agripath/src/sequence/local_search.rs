@@ -14,7 +14,10 @@
 //!      way round.
 //!    - The neighbour lists hold the 10 nearest ends and the 6 nearest ends in other fields.
 //! 3. Iterated local search: a seeded double-bridge kick, then 1-2 again; a kick is kept only
-//!    when the tour gets cheaper. The number of kicks is the budget.
+//!    when the tour gets cheaper. The number of kicks is the budget: the iterations of
+//!    `swarm`'s Runner, which drives [`IteratedLocalSearch`] like every other search.
+
+use swarm::{Optimizer, Runner, Termination};
 
 use super::greedy::greedy_with_starts;
 use super::tour::{End, OrderingProblem, Start, Step};
@@ -267,10 +270,6 @@ impl Search<'_, '_> {
             consider(q + 1, self);
         }
         best
-    }
-
-    fn cost(&self) -> f64 {
-        self.problem.tour_cost(&self.tour)
     }
 
     /// Local search to a local optimum, looking only around `active` passes and around
@@ -934,7 +933,8 @@ pub fn block_local_search(
     Some(blocks.steps(&order))
 }
 
-/// Our sequencer: construction, local search, iterated kicks.
+/// Our sequencer: construction, local search, iterated kicks, on `swarm`'s Runner (one kick
+/// per iteration, run 0 of `settings.seed`); returns the Runner's best tour.
 pub fn best_tour(
     problem: &OrderingProblem,
     groups: &[Vec<usize>],
@@ -949,85 +949,140 @@ pub fn best_tour(
             })
             .collect();
     }
-    let mut starts = vec![boustrophedon(problem, groups)];
-    starts.extend(exact_field_order(problem, groups));
-    // Block relocation alone and with block reversals end in different local optima; both
-    // are kept as starts and the local search decides.
-    starts.extend(block_local_search(problem, groups, false, settings.seed));
-    starts.extend(block_local_search(problem, groups, true, settings.seed));
-    if n <= GREEDY_LIMIT {
-        starts.push(greedy_with_starts(problem, 8));
-    }
-    let mut group_of = vec![0; n];
-    for (group, members) in groups.iter().enumerate() {
-        for &pass in members {
-            group_of[pass] = group;
+    let runner = Runner::new(
+        Termination::iterations(kick_budget(settings, n)),
+        settings.seed,
+    )
+    .expect("a kick budget of at least one");
+    let mut search = IteratedLocalSearch::new(groups, settings.seed);
+    runner
+        .run_problem(&mut search, problem, 0, &mut ())
+        .best_solution
+}
+
+/// Steps 1-3 as an optimizer of [`OrderingProblem`]: `start` builds the constructions and
+/// descends from each; every `step` is one double-bridge kick and its local search, kept
+/// when the tour gets cheaper by more than a nanometre (so float noise does not count).
+/// The Runner costs the constructions and the kicks kept (its evaluation count); the local
+/// search costs its moves by their gains, as 2-opt does.
+pub struct IteratedLocalSearch<'g> {
+    groups: &'g [Vec<usize>],
+    /// The seed of the block relocation's own kicks (a construction, inside `start`).
+    seed: u64,
+    neighbours: Vec<Vec<End>>,
+    group_of: Vec<usize>,
+    incumbent: Vec<Step>,
+    incumbent_cost: f64,
+}
+
+impl<'g> IteratedLocalSearch<'g> {
+    /// The search over passes grouped by field in `groups`.
+    pub fn new(groups: &'g [Vec<usize>], seed: u64) -> Self {
+        Self {
+            groups,
+            seed,
+            neighbours: Vec::new(),
+            group_of: Vec::new(),
+            incumbent: Vec::new(),
+            incumbent_cost: f64::INFINITY,
         }
     }
-    // Near ends of any other pass, and near ends in other fields: without the latter, a
-    // field's own swath ends (a swath width apart) fill the list and moves between fields
-    // are never tried.
-    let mut neighbours = nearest_ends(problem, NEIGHBOURS, |end, other| other / 2 != end / 2);
-    if groups.len() > 1 {
-        let across = nearest_ends(problem, OTHER_FIELD_NEIGHBOURS, |end, other| {
-            group_of[other / 2] != group_of[end / 2]
-        });
-        for (list, extra) in neighbours.iter_mut().zip(across) {
-            for end in extra {
-                if !list.contains(&end) {
-                    list.push(end);
+
+    /// Local search from `tour` around `active` passes, at most `budget` positions.
+    fn descend(
+        &self,
+        problem: &OrderingProblem,
+        tour: Vec<Step>,
+        active: impl IntoIterator<Item = usize>,
+        budget: usize,
+    ) -> Vec<Step> {
+        let mut search = Search {
+            problem,
+            position: vec![0; tour.len()],
+            tour,
+            neighbours: &self.neighbours,
+            groups: &self.group_of,
+            closed: problem.start == Start::Free,
+        };
+        search.reindex();
+        search.descend(active, budget);
+        search.tour
+    }
+}
+
+impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
+    fn name(&self) -> &'static str {
+        "iterated local search (ours)"
+    }
+
+    fn start(&mut self, run: &mut swarm::Search<OrderingProblem<'a>>) {
+        let problem = run.problem();
+        let (n, groups) = (problem.passes(), self.groups);
+        let mut starts = vec![boustrophedon(problem, groups)];
+        starts.extend(exact_field_order(problem, groups));
+        // Block relocation alone and with block reversals end in different local optima; both
+        // are kept as starts and the local search decides.
+        starts.extend(block_local_search(problem, groups, false, self.seed));
+        starts.extend(block_local_search(problem, groups, true, self.seed));
+        if n <= GREEDY_LIMIT {
+            starts.push(greedy_with_starts(problem, 8));
+        }
+        self.group_of = vec![0; n];
+        for (group, members) in groups.iter().enumerate() {
+            for &pass in members {
+                self.group_of[pass] = group;
+            }
+        }
+        // Near ends of any other pass, and near ends in other fields: without the latter, a
+        // field's own swath ends (a swath width apart) fill the list and moves between fields
+        // are never tried.
+        let group_of = &self.group_of;
+        let mut neighbours = nearest_ends(problem, NEIGHBOURS, |end, other| other / 2 != end / 2);
+        if groups.len() > 1 {
+            let across = nearest_ends(problem, OTHER_FIELD_NEIGHBOURS, |end, other| {
+                group_of[other / 2] != group_of[end / 2]
+            });
+            for (list, extra) in neighbours.iter_mut().zip(across) {
+                for end in extra {
+                    if !list.contains(&end) {
+                        list.push(end);
+                    }
                 }
             }
         }
+        self.neighbours = neighbours;
+        for start in starts {
+            let tour = self.descend(problem, start, 0..n, 50 * n + 10_000);
+            run.evaluate(&tour);
+        }
+        self.incumbent = run.best_solution().to_vec();
+        self.incumbent_cost = run.best_cost();
+        if n < 8 {
+            // Too few passes for a double bridge's three cuts.
+            run.declare_converged();
+        }
     }
-    let closed = problem.start == Start::Free;
-    let mut best: Option<(f64, Vec<Step>)> = None;
-    for start in starts {
-        let mut search = Search {
-            problem,
-            tour: start,
-            position: vec![0; n],
-            neighbours: &neighbours,
-            groups: &group_of,
-            closed,
+
+    fn step(&mut self, run: &mut swarm::Search<OrderingProblem<'a>>) {
+        let problem = run.problem();
+        let n = self.incumbent.len();
+        let Some((kicked, [a, b, c])) = double_bridge(&self.incumbent, run.stream()) else {
+            return;
         };
-        search.reindex();
-        search.descend(0..n, 50 * n + 10_000);
-        let cost = search.cost();
-        if best.as_ref().is_none_or(|(best_cost, _)| cost < *best_cost) {
-            best = Some((cost, search.tour));
+        let touched: Vec<usize> = [0, a - 1, a, b - 1, b, c - 1, c, n - 1]
+            .iter()
+            .map(|&i| kicked[i].pass)
+            .collect();
+        let tour = self.descend(problem, kicked, touched, KICK_MOVES);
+        // Only a kick kept is handed to the Runner: a closed tour and its rotation cost the
+        // same up to float noise but fly different open routes, so the Runner's best must be
+        // the incumbent, not a tour a nanometre cheaper by summation order.
+        let cost = problem.tour_cost(&tour);
+        if cost < self.incumbent_cost - 1e-9 {
+            self.incumbent_cost = run.evaluate(&tour);
+            self.incumbent = tour;
         }
     }
-    let (mut best_cost, mut best_tour) = best.expect("at least one construction");
-    // Iterated local search with double-bridge kicks.
-    let mut stream = swarm::run_stream(settings.seed, 0);
-    if n >= 8 {
-        for _ in 0..kick_budget(settings, n) {
-            let Some((kicked, [a, b, c])) = double_bridge(&best_tour, &mut stream) else {
-                continue;
-            };
-            let touched: Vec<usize> = [0, a - 1, a, b - 1, b, c - 1, c, n - 1]
-                .iter()
-                .map(|&i| kicked[i].pass)
-                .collect();
-            let mut search = Search {
-                problem,
-                tour: kicked,
-                position: vec![0; n],
-                neighbours: &neighbours,
-                groups: &group_of,
-                closed,
-            };
-            search.reindex();
-            search.descend(touched, KICK_MOVES);
-            let cost = search.cost();
-            if cost < best_cost - 1e-9 {
-                best_cost = cost;
-                best_tour = search.tour;
-            }
-        }
-    }
-    best_tour
 }
 
 #[cfg(test)]

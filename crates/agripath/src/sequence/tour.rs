@@ -2,6 +2,8 @@
 //! drone enters at one and leaves at the other, so two swaths are four distances apart"), a
 //! start, and tours that every sequencer returns and every cost is computed on.
 
+use swarm::{below, RunStream};
+
 use crate::coverage::drape::GroundPoint;
 
 use super::transfer::TransferModel;
@@ -155,11 +157,64 @@ impl<'a> OrderingProblem<'a> {
     }
 }
 
-/// Every pass exactly once.
-pub fn is_permutation(tour: &[Step], passes: usize) -> bool {
+/// The ordering problem as the engine sees it: a tour of oriented passes, costed by eq. (8)'s
+/// transfers ([`OrderingProblem::tour_cost`]). The ant colony, the local search and the
+/// random-search baseline all run on it through `swarm`'s Runner.
+impl swarm::Problem for OrderingProblem<'_> {
+    type Solution = [Step];
+
+    fn evaluate(&self, tour: &[Step]) -> f64 {
+        self.tour_cost(tour)
+    }
+
+    /// Every pass in its index order, flown A to B.
+    fn first_solution(&self) -> Vec<Step> {
+        (0..self.passes())
+            .map(|pass| Step {
+                pass,
+                reversed: false,
+            })
+            .collect()
+    }
+
+    /// A uniform order (Fisher-Yates) with each pass's direction a fair coin.
+    fn random_solution(&self, stream: &mut RunStream) -> Vec<Step> {
+        let mut tour = self.first_solution();
+        for index in (1..tour.len()).rev() {
+            tour.swap(index, below(stream, index + 1));
+        }
+        for step in &mut tour {
+            step.reversed = below(stream, 2) == 1;
+        }
+        tour
+    }
+}
+
+/// The shared check of a pass order: every one of `passes` passes exactly once. Used by unit
+/// and property tests, the engine's conformance runs and the sequencers' own assertions.
+pub fn check_order(tour: &[Step], passes: usize) -> Result<(), String> {
+    if tour.len() != passes {
+        return Err(format!("{} steps for {passes} passes", tour.len()));
+    }
     let mut seen = vec![false; passes];
-    tour.len() == passes
-        && tour
-            .iter()
-            .all(|step| step.pass < passes && !std::mem::replace(&mut seen[step.pass], true))
+    for (index, step) in tour.iter().enumerate() {
+        if step.pass >= passes {
+            return Err(format!(
+                "step {index} flies pass {}, of {passes}",
+                step.pass
+            ));
+        }
+        if std::mem::replace(&mut seen[step.pass], true) {
+            return Err(format!(
+                "step {index} flies pass {} a second time",
+                step.pass
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Every pass exactly once ([`check_order`] as a yes or no).
+pub fn is_permutation(tour: &[Step], passes: usize) -> bool {
+    check_order(tour, passes).is_ok()
 }
