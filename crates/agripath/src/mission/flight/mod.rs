@@ -8,9 +8,9 @@
 //! field climb to the cruise height and back. At its last point the sprayer goes off and the
 //! drone climbs, flies back and lands at the supply point.
 //!
-//! The parts: [`settings`] (what the files are asked for: altitude reference, sprayer,
-//! terrain tolerance), [`geo_frame`] (plan metres ↔ longitude, latitude) and
-//! [`terrain_following`] (the waypoints a spray run keeps over the terrain).
+//! The parts: `settings` (what the files are asked for: altitude reference, sprayer,
+//! terrain tolerance), `geo_frame` (plan metres ↔ longitude, latitude) and
+//! `terrain_following` (the waypoints a spray run keeps over the terrain).
 
 mod geo_frame;
 mod settings;
