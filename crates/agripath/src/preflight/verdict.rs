@@ -66,6 +66,23 @@ pub struct Verdict {
 }
 
 impl Verdict {
+    /// The summary line and one line per check, as `agripath check` prints them.
+    pub fn to_text(&self) -> String {
+        let mut text = self.summary() + "\n";
+        for check in &self.checks {
+            text += &format!(
+                "  {:<20} {:>5}  {} {} (limit {} {})\n",
+                check.name,
+                if check.passed { "ok" } else { "FAIL" },
+                check.figure,
+                check.unit,
+                check.rule,
+                check.limit
+            );
+        }
+        text
+    }
+
     /// The one line of the printed summary.
     pub fn summary(&self) -> String {
         let coverage = self
