@@ -21,6 +21,7 @@ pub mod plot;
 pub mod preflight;
 pub mod report;
 pub mod repro;
+pub mod request;
 pub mod scenario;
 pub mod sequence;
 pub mod settings;
@@ -28,5 +29,6 @@ pub mod sortie;
 pub mod summary;
 pub mod terrain;
 pub mod track;
+pub mod view;
 
 pub use error::{Fault, InputError, TerrainError};

@@ -408,3 +408,49 @@ pub enum TerrainAction {
         cell: Option<f64>,
     },
 }
+
+impl Inputs {
+    /// The library's request for these inputs.
+    pub fn request(&self) -> agripath::request::ScenarioInputs {
+        agripath::request::ScenarioInputs {
+            scenario: self.scenario.clone(),
+            fields: self.fields.clone(),
+            terrain: self.terrain.clone(),
+            vehicle: self.vehicle.clone(),
+            local_coordinates: self.crs.is_some(),
+            overrides: agripath::scenario::VehicleOverrides {
+                swath_width_m: self.swath_width,
+                spray_height_m: self.spray_height,
+                safe_height_m: self.safe_height,
+            },
+            allow_overlap: self.allow_overlap,
+        }
+    }
+}
+
+/// The library's options for a coverage plan.
+pub fn plan_options(
+    coverage: &CoverageArgs,
+    order: &OrderArgs,
+    mission: &MissionArgs,
+) -> agripath::request::plan::PlanOptions {
+    agripath::request::plan::PlanOptions {
+        headland_passes: coverage.headland,
+        heading: coverage.heading.clone(),
+        weights: coverage.weights.clone(),
+        refine_heading: !coverage.no_refine,
+        drape_spacing_m: coverage.drape_spacing,
+        boundary_margin_m: coverage.boundary_margin,
+        obstacle_margin_m: coverage.obstacle_margin,
+        sequencer: order.sequencer.clone(),
+        start: order.start.clone(),
+        seed: order.seed,
+        batches: order.batches,
+        ants: order.ants,
+        sorties: order.sorties.clone(),
+        altitude: mission.altitude.clone(),
+        sprayer: mission.sprayer.clone(),
+        terrain_tolerance_m: mission.terrain_tolerance,
+        origin: mission.origin.clone(),
+    }
+}

@@ -6,7 +6,6 @@
 
 mod args;
 mod commands;
-mod view;
 
 use std::process::ExitCode;
 

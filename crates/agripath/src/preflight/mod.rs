@@ -18,22 +18,35 @@
 //!   excluded, as a share of all that is sprayed;
 //! - **tank** and **battery** per sortie, recomputed from the files and the vehicle.
 
+//!
+//! The parts: [`settings`] (what a plan is held to), [`verdict`] (the checks' figures and
+//! failure lines, as `report.json` carries them) and [`folder`] (the check run again on a plan
+//! folder as it is now); the flight itself in [`flown`], the measure of what it sprays in
+//! [`sprayed`].
+
 pub mod flown;
+pub mod folder;
 pub mod read_back;
+pub mod settings;
 pub mod sprayed;
+pub mod verdict;
 mod zones;
 
 use geo::Coord;
-use serde::Serialize;
 
 use crate::coverage::region::sprayable_region;
 use crate::geometry::rings;
-use crate::mission::flight::{AltitudeReference, GeoFrame, MissionSettings, SprayerCommand};
+use crate::mission::flight::GeoFrame;
 use crate::mission::mavlink::Command;
 use crate::model::{Farm, Vehicle};
 use crate::terrain::Terrain;
 use flown::{Leg, Motion};
 use sprayed::{Rings, Strip};
+use verdict::Tally;
+
+pub use folder::check_folder;
+pub use settings::{PreflightSettings, Promise};
+pub use verdict::{CheckResult, FieldFlown, SortieFlown, Verdict};
 
 /// Largest distance between two samples of a leg, metres.
 pub const SAMPLE_M: f64 = 1.0;
@@ -46,234 +59,12 @@ const SLACK_M: f64 = 0.02;
 pub const MAX_OUTSIDE_FRACTION: f64 = 0.005;
 /// Smallest change of direction between two spray legs that sweeps a turn's disc, radians.
 const MIN_TURN_RAD: f64 = 0.5 * std::f64::consts::PI / 180.0;
-/// Lines reported per failed check (the count of the rest follows).
-const LINES_PER_CHECK: usize = 3;
 
 /// What the flight is flown against.
 pub struct World<'a> {
     pub farm: &'a Farm,
     pub terrain: &'a dyn Terrain,
     pub vehicle: &'a Vehicle,
-}
-
-/// What the plan promised.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PreflightSettings {
-    pub altitude: AltitudeReference,
-    pub sprayer: SprayerCommand,
-    pub terrain_tolerance_m: f64,
-    pub local_origin: (f64, f64),
-    pub boundary_margin_m: f64,
-    pub obstacle_margin_m: f64,
-    /// Least share of each field's sprayable area to cover, 0..1, by field.
-    pub required_coverage: Vec<f64>,
-    /// Most sprayed area outside the fields, as a share of the sprayed area.
-    pub max_outside_fraction: f64,
-}
-
-/// What a plan promised by its own measure, which the coverage and spray-outside limits are
-/// drawn from.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Promise {
-    pub headland_passes: usize,
-    /// Per field, the share of its sprayable area the plan's measure covers.
-    pub covered_fraction: Vec<f64>,
-    /// Strip area the plan's measure puts outside the sprayable region, m².
-    pub outside_m2: f64,
-    /// Swath and edge-pass metres × swath width, m².
-    pub sprayed_m2: f64,
-}
-
-impl PreflightSettings {
-    /// The settings a plan is held to (decision 0012). With edge passes: 99 % of each field
-    /// and at most [`MAX_OUTSIDE_FRACTION`] outside. The seed's layout (`--headland 0`)
-    /// leaves 2-4 % at oblique swath ends and runs swaths to the boundary, half a swath
-    /// overhanging it: it is held to its own coverage − ½ point and its own overhang
-    /// + 0.1 point.
-    pub fn new(
-        mission: &MissionSettings,
-        boundary_margin_m: f64,
-        obstacle_margin_m: f64,
-        promise: &Promise,
-    ) -> Self {
-        let seed_layout = promise.headland_passes == 0;
-        Self {
-            altitude: mission.altitude,
-            sprayer: mission.sprayer,
-            terrain_tolerance_m: mission.terrain_tolerance_m,
-            local_origin: mission.local_origin,
-            boundary_margin_m,
-            obstacle_margin_m,
-            required_coverage: promise
-                .covered_fraction
-                .iter()
-                .map(|&covered| {
-                    if seed_layout {
-                        (covered - 0.005).max(0.0)
-                    } else {
-                        0.99
-                    }
-                })
-                .collect(),
-            max_outside_fraction: if seed_layout && promise.sprayed_m2 > 0.0 {
-                MAX_OUTSIDE_FRACTION.max(promise.outside_m2 / promise.sprayed_m2 + 0.001)
-            } else {
-                MAX_OUTSIDE_FRACTION
-            },
-        }
-    }
-}
-
-/// One check and its figure.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct CheckResult {
-    pub name: &'static str,
-    pub passed: bool,
-    /// The worst figure found, in `unit`.
-    pub figure: f64,
-    /// The bound it is held to (≥ or ≤ as `rule` says).
-    pub limit: f64,
-    pub rule: &'static str,
-    pub unit: &'static str,
-}
-
-/// A field's coverage as flown.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct FieldFlown {
-    pub name: String,
-    pub sprayable_area_m2: f64,
-    pub covered_fraction: f64,
-    pub required_fraction: f64,
-    pub missed_m2: f64,
-    pub double_sprayed_m2: f64,
-}
-
-/// A sortie as flown.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SortieFlown {
-    pub sortie: usize,
-    pub file: String,
-    pub items: usize,
-    pub spray_m: f64,
-    pub tank_fraction: Option<f64>,
-    pub flight_time_s: f64,
-    pub battery_fraction: f64,
-    /// Largest gap between the height above ground on spray legs and the spray height, m.
-    pub worst_spray_height_error_m: f64,
-    /// Least margin above h over the highest ground under a transit leg, m (none: no transit).
-    pub least_transit_margin_m: Option<f64>,
-}
-
-/// The verdict of the preflight, as `report.json` carries it.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Verdict {
-    pub safe: bool,
-    pub altitude_reference: AltitudeReference,
-    pub checks: Vec<CheckResult>,
-    /// One line per failure: sortie, item, place and what is wrong.
-    pub failures: Vec<String>,
-    pub fields: Vec<FieldFlown>,
-    pub sprayed_area_m2: f64,
-    pub sprayed_outside_m2: f64,
-    pub sprayed_outside_fraction: f64,
-    pub sorties: Vec<SortieFlown>,
-    /// Least height above the ground of any airborne sample (takeoff and landing aside), m.
-    pub lowest_clearance_m: f64,
-}
-
-impl Verdict {
-    /// The one line of the printed summary.
-    pub fn summary(&self) -> String {
-        let coverage = self
-            .fields
-            .iter()
-            .map(|field| field.covered_fraction)
-            .fold(f64::INFINITY, f64::min);
-        format!(
-            "preflight ({} altitudes, read back from {} mission file(s)): {}; least coverage {:.2}%, sprayed outside {:.3}%, lowest clearance {:.2} m",
-            self.altitude_reference.key(),
-            self.sorties.len(),
-            if self.safe {
-                "SAFE".to_string()
-            } else {
-                format!(
-                    "UNSAFE ({} failed)",
-                    self.checks.iter().filter(|c| !c.passed).count()
-                )
-            },
-            100.0 * if coverage.is_finite() { coverage } else { 0.0 },
-            100.0 * self.sprayed_outside_fraction,
-            self.lowest_clearance_m
-        )
-    }
-}
-
-/// Collects the figures and failure lines of one check.
-struct Tally {
-    name: &'static str,
-    rule: &'static str,
-    unit: &'static str,
-    limit: f64,
-    worst: Option<f64>,
-    lines: Vec<String>,
-    failed: usize,
-}
-
-impl Tally {
-    fn new(name: &'static str, rule: &'static str, limit: f64, unit: &'static str) -> Self {
-        Self {
-            name,
-            rule,
-            unit,
-            limit,
-            worst: None,
-            lines: Vec::new(),
-            failed: 0,
-        }
-    }
-
-    /// Records a figure; `bad` says whether it breaks the rule, `line` what to print then.
-    fn record(&mut self, figure: f64, bad: bool, line: impl FnOnce() -> String) {
-        let better = |old: f64| match self.rule {
-            "≥" => figure < old,
-            _ => figure > old,
-        };
-        if self.worst.is_none_or(better) {
-            self.worst = Some(figure);
-        }
-        if bad {
-            self.failed += 1;
-            if self.lines.len() < LINES_PER_CHECK {
-                self.lines.push(line());
-            }
-        }
-    }
-
-    fn fail(&mut self, line: String) {
-        self.failed += 1;
-        if self.lines.len() < LINES_PER_CHECK {
-            self.lines.push(line);
-        }
-    }
-
-    fn finish(self, checks: &mut Vec<CheckResult>, failures: &mut Vec<String>) {
-        checks.push(CheckResult {
-            name: self.name,
-            passed: self.failed == 0,
-            figure: self.worst.unwrap_or(self.limit),
-            limit: self.limit,
-            rule: self.rule,
-            unit: self.unit,
-        });
-        failures.extend(self.lines);
-        if self.failed > LINES_PER_CHECK {
-            failures.push(format!(
-                "{}: {} more failure(s) like these",
-                self.name,
-                self.failed - LINES_PER_CHECK
-            ));
-        }
-    }
 }
 
 /// The places a horizontal leg is sampled at: both ends and every [`SAMPLE_M`].
@@ -779,82 +570,6 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
     }
 }
 
-/// Checks a plan folder written earlier (and perhaps edited by hand in a ground station)
-/// against `world`: its mission files as they are now, held to the settings its
-/// `report.json` records.
-pub fn check_folder(world: &World, folder: &std::path::Path) -> Result<Verdict, crate::Fault> {
-    use crate::Fault;
-    let report_path = folder.join("report.json");
-    let text = crate::files::read_text(&report_path).map_err(|error| {
-        Fault::Structure(format!(
-            "{}: cannot read: {}",
-            report_path.display(),
-            error.fault
-        ))
-    })?;
-    let report: serde_json::Value = serde_json::from_str(&text).map_err(|error| {
-        Fault::Structure(format!("{}: not JSON: {error}", report_path.display()))
-    })?;
-    let missing = |what: &str| {
-        Fault::Structure(format!(
-            "{}: no {what} (written by agripath plan?)",
-            report_path.display()
-        ))
-    };
-    let mission: MissionSettings = serde_json::from_value(report["mission"].clone())
-        .map_err(|error| missing(&format!("valid mission settings ({error})")))?;
-    let number =
-        |value: &serde_json::Value, what: &str| value.as_f64().ok_or_else(|| missing(what));
-    let fields = report["fields"].as_array().cloned().unwrap_or_default();
-    let promise = Promise {
-        headland_passes: report["settings"]["headland_passes"].as_u64().unwrap_or(1) as usize,
-        covered_fraction: world
-            .farm
-            .fields
-            .iter()
-            .enumerate()
-            .map(|(index, _)| {
-                fields
-                    .get(index)
-                    .and_then(|field| field["covered_fraction"].as_f64())
-                    .unwrap_or(1.0)
-            })
-            .collect(),
-        outside_m2: fields
-            .iter()
-            .map(|field| field["outside_m2"].as_f64().unwrap_or(0.0))
-            .sum(),
-        sprayed_m2: (number(&report["spray_length_m"], "spray_length_m")?
-            + number(&report["edge_length_m"], "edge_length_m")?)
-            * world.vehicle.swath_width_m,
-    };
-    let settings = PreflightSettings::new(
-        &mission,
-        number(
-            &report["settings"]["boundary_margin_m"],
-            "settings.boundary_margin_m",
-        )?,
-        number(
-            &report["settings"]["obstacle_margin_m"],
-            "settings.obstacle_margin_m",
-        )?,
-        &promise,
-    );
-    let mut files = Vec::new();
-    let entries = std::fs::read_dir(folder)
-        .map_err(|error| Fault::Structure(format!("{}: cannot read: {error}", folder.display())))?;
-    for entry in entries.flatten() {
-        let name = entry.file_name().to_string_lossy().into_owned();
-        if name.starts_with("sortie_") && (name.ends_with(".plan") || name.ends_with(".waypoints"))
-        {
-            let bytes = crate::files::read_bytes(&entry.path())
-                .map_err(|error| Fault::Structure(error.to_string()))?;
-            files.push((name, bytes));
-        }
-    }
-    Ok(check(world, &settings, &files))
-}
-
 #[cfg(test)]
 mod tests {
     use std::path::Path;
@@ -863,6 +578,7 @@ mod tests {
 
     use super::*;
     use crate::input::{geojson, CoordinateChoice};
+    use crate::mission::flight::AltitudeReference;
     use crate::pipeline::{plan_mission, preflight_settings, render};
     use crate::scenario::Scenario;
     use crate::scenario::ScenarioParts;

@@ -26,42 +26,16 @@ pub(super) fn bench(action: BenchAction) -> Result<(), Failure> {
         seed,
         out,
     } = action;
-    let invalid = |what: &str, value: &str, why: String| {
-        InputError::new(
-            "arguments",
-            Fault::InvalidValue {
-                what: what.into(),
-                value: value.into(),
-                why,
-            },
-        )
-    };
-    let mut settings = FunctionBench::table_2();
-    (
-        settings.dimension,
-        settings.population,
-        settings.iterations,
-        settings.runs,
-        settings.seed,
-    ) = (dim, pop, iters, runs, seed);
-    if !algorithms.is_empty() {
-        settings.algorithms = algorithms
-            .iter()
-            .map(|name| {
-                name.parse::<swarm::Algorithm>()
-                    .map_err(|why| invalid("--algorithms", name, why))
-            })
-            .collect::<Result<_, _>>()?;
+    let settings = agripath::request::bench::FunctionBenchOptions {
+        dimension: dim,
+        population: pop,
+        iterations: iters,
+        runs,
+        algorithms,
+        functions,
+        seed,
     }
-    if !functions.is_empty() {
-        settings.functions = functions
-            .iter()
-            .map(|key| {
-                swarm::functions::by_key(key)
-                    .map_err(|why| invalid("--functions", key, why.to_string()))
-            })
-            .collect::<Result<_, _>>()?;
-    }
+    .settings()?;
     let table = run_function_bench(&settings)?;
     emit!("{}", table.markdown());
     emitln!("wall time {:.1} s", table.wall_seconds);

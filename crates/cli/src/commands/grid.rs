@@ -1,6 +1,7 @@
 //! `grid`: fewest-turn grid coverage of one field (seed 004).
 
 use super::*;
+use agripath::input::CoordinateChoice;
 
 pub(super) fn grid(
     fields: &Path,

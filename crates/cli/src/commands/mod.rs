@@ -4,25 +4,11 @@
 
 use std::path::{Path, PathBuf};
 
-use agripath::input::CoordinateChoice;
-use agripath::output::{write_file_atomically, StagedFolder};
-use agripath::scenario::{Scenario, ScenarioParts, VehicleOverrides};
-use agripath::summary::ScenarioSummary;
-use agripath::terrain::hillshade::hillshade;
-use agripath::terrain::{Extent, Terrain, TerrainSpec};
-use agripath::{Fault, InputError};
-
-use agripath::coverage::heading::HeadingObjective;
-use agripath::coverage::CoverageSettings;
-use agripath::mission::flight::{AltitudeReference, MissionSettings, SprayerCommand};
-use agripath::pipeline::{plan_mission, render};
-use agripath::sequence::ant_colony::AntColonySettings;
-use agripath::sequence::local_search::LocalSearchSettings;
-use agripath::sequence::Sequencer;
-use agripath::settings::PlanSettings;
-use agripath::sortie::SortieSettings;
-
 use agripath::bench::functions::{FunctionBench, FunctionTable};
+use agripath::output::{write_file_atomically, StagedFolder};
+use agripath::pipeline::plan_mission;
+use agripath::scenario::Scenario;
+use agripath::{Fault, InputError};
 
 use crate::args::{
     Arguments, BenchAction, Command, CoverageArgs, Inputs, MissionArgs, OrderArgs, ReproTable,
@@ -120,21 +106,23 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
             vehicle_radius,
             allow_unsafe,
             out,
-        } => track(TrackRequest {
-            scenario_path: &scenario,
-            task: task.as_deref(),
-            algorithms: &algorithm,
-            runs,
-            seed,
-            encoding: encoding.as_deref(),
-            evaluations,
-            limits: agripath::track::SafetyLimits {
-                min_clearance_m: min_clearance,
-                vehicle_radius_m: vehicle_radius,
+        } => track(
+            &agripath::request::track::TrackRequest {
+                scenario_path: scenario,
+                task,
+                algorithms: algorithm,
+                runs,
+                seed,
+                encoding,
+                evaluations,
+                limits: agripath::track::SafetyLimits {
+                    min_clearance_m: min_clearance,
+                    vehicle_radius_m: vehicle_radius,
+                },
             },
             allow_unsafe,
-            out: &out,
-        }),
+            &out,
+        ),
         Command::Validate { inputs, json } => validate(&inputs, json),
         Command::Terrain { action } => terrain(action),
     }
@@ -158,82 +146,9 @@ fn write_folder<Name: AsRef<str>>(
     staged.commit().map_err(|error| output_failure(out, error))
 }
 
-fn coverage_settings(arguments: &CoverageArgs) -> Result<CoverageSettings, InputError> {
-    if arguments.weights.len() != 2 {
-        return Err(InputError::new(
-            "--weights",
-            Fault::Structure("expected two weights ω_N,ω_L".into()),
-        ));
-    }
-    let heading = HeadingObjective::parse(
-        &arguments.heading,
-        [arguments.weights[0], arguments.weights[1]],
-    )
-    .map_err(|why| {
-        InputError::new(
-            "--heading",
-            Fault::InvalidValue {
-                what: "--heading".into(),
-                value: arguments.heading.clone(),
-                why,
-            },
-        )
-    })?;
-    let settings = CoverageSettings {
-        headland_passes: arguments.headland,
-        boundary_margin_m: arguments.boundary_margin,
-        obstacle_margin_m: arguments.obstacle_margin,
-        drape_spacing_m: arguments.drape_spacing,
-        heading,
-        refine_heading: !arguments.no_refine,
-    };
-    settings
-        .validate()
-        .map_err(|fault| InputError::new("arguments", fault))?;
-    Ok(settings)
-}
-
-fn sequencer(order: &OrderArgs) -> Result<Sequencer, InputError> {
-    // Checked whichever sequencer runs: a value no run could use is a mistake to report.
-    for (flag, value) in [("--ants", order.ants), ("--batches", order.batches)] {
-        if !(1..=100_000).contains(&value) {
-            return Err(InputError::new(
-                flag,
-                Fault::InvalidValue {
-                    what: flag.into(),
-                    value: value.to_string(),
-                    why: "must be 1..=100000".into(),
-                },
-            ));
-        }
-    }
-    Ok(match order.sequencer.as_str() {
-        "greedy" => Sequencer::Greedy,
-        "aco" => Sequencer::AntColony(AntColonySettings {
-            ants: order.ants,
-            batches: order.batches,
-            seed: order.seed,
-            ..AntColonySettings::default()
-        }),
-        _ => Sequencer::Best(LocalSearchSettings {
-            seed: order.seed,
-            ..LocalSearchSettings::default()
-        }),
-    })
-}
-
 fn view(folder: &Path, port: u16, open: bool) -> Result<(), Failure> {
-    if !folder.join("plan.html").is_file() {
-        return Err(InputError::new(
-            folder,
-            Fault::Structure(
-                "no plan.html here: give a folder written by `agripath plan` or `agripath demo`"
-                    .into(),
-            ),
-        )
-        .into());
-    }
-    crate::view::serve(folder, port, |url| {
+    agripath::view::check_folder(folder)?;
+    agripath::view::serve(folder, port, |url| {
         emitln!("serving {} at {url} (Ctrl-C to stop)", folder.display());
         if open {
             let opener = if cfg!(target_os = "macos") {
@@ -249,49 +164,6 @@ fn view(folder: &Path, port: u16, open: bool) -> Result<(), Failure> {
     .map_err(|error| Failure::Output(format!("cannot serve on 127.0.0.1:{port}: {error}")))
 }
 
-/// The mission-file options, checked.
-fn mission_settings(arguments: &MissionArgs) -> Result<MissionSettings, InputError> {
-    let invalid = |what: &str, value: String, why: &str| {
-        InputError::new(
-            "arguments",
-            Fault::InvalidValue {
-                what: what.into(),
-                value,
-                why: why.into(),
-            },
-        )
-    };
-    let mut settings = MissionSettings {
-        sprayer: arguments
-            .sprayer
-            .parse::<SprayerCommand>()
-            .map_err(|why| invalid("--sprayer", arguments.sprayer.clone(), &why))?,
-        ..MissionSettings::default()
-    };
-    if !(arguments.terrain_tolerance.is_finite() && arguments.terrain_tolerance > 0.0) {
-        return Err(invalid(
-            "--terrain-tolerance",
-            arguments.terrain_tolerance.to_string(),
-            "must be a finite number above 0",
-        ));
-    }
-    settings.terrain_tolerance_m = arguments.terrain_tolerance;
-    if let Some(origin) = &arguments.origin {
-        let valid = origin.len() == 2
-            && (-180.0..=180.0).contains(&origin[0])
-            && (-80.0..=84.0).contains(&origin[1]);
-        if !valid {
-            return Err(invalid(
-                "--origin",
-                format!("{origin:?}"),
-                "expected LON,LAT with longitude in -180..180 and latitude in -80..84",
-            ));
-        }
-        settings.local_origin = (origin[0], origin[1]);
-    }
-    Ok(settings)
-}
-
 /// A progress bar on stderr for `total` steps (hidden when stderr is not a terminal).
 fn progress_bar(total: u64, what: &str) -> indicatif::ProgressBar {
     let bar = indicatif::ProgressBar::new(total);
@@ -304,53 +176,4 @@ fn progress_bar(total: u64, what: &str) -> indicatif::ProgressBar {
     );
     bar.set_message(what.to_string());
     bar
-}
-
-fn load_scenario(inputs: &Inputs) -> Result<Scenario, InputError> {
-    let overrides = VehicleOverrides {
-        swath_width_m: inputs.swath_width,
-        spray_height_m: inputs.spray_height,
-        safe_height_m: inputs.safe_height,
-    };
-    let terrain = inputs
-        .terrain
-        .as_deref()
-        .map(TerrainSpec::from_argument)
-        .transpose()?;
-    let coordinates = match inputs.crs.as_deref() {
-        Some("local") => CoordinateChoice::Local,
-        _ => CoordinateChoice::FromFile,
-    };
-    match (&inputs.scenario, &inputs.fields) {
-        (Some(path), None) => {
-            if inputs.terrain.is_some() || inputs.vehicle.is_some() || inputs.crs.is_some() {
-                return Err(InputError::new(
-                    path,
-                    Fault::Structure(
-                        "with a scenario file, set terrain, vehicle and crs in the file (only --swath-width, --spray-height and --safe-height override it)".into(),
-                    ),
-                ));
-            }
-            Scenario::from_file(path, overrides, inputs.allow_overlap)
-        }
-        (None, Some(fields)) => Scenario::load(ScenarioParts {
-            name: None,
-            fields: fields.clone(),
-            coordinates,
-            terrain,
-            terrain_base: PathBuf::new(),
-            vehicle_file: inputs.vehicle.clone(),
-            vehicle_table: None,
-            overrides,
-            allow_overlap: inputs.allow_overlap,
-        }),
-        (Some(path), Some(_)) => Err(InputError::new(
-            path,
-            Fault::Structure("give a scenario file or --fields, not both".into()),
-        )),
-        (None, None) => Err(InputError::new(
-            "arguments",
-            Fault::Structure("give a scenario file or --fields FILE".into()),
-        )),
-    }
 }

@@ -2,87 +2,21 @@
 
 use super::*;
 
-pub(super) fn bad_argument(flag: &str, value: &str, why: impl Into<String>) -> Failure {
-    InputError::new(
-        "arguments",
-        Fault::InvalidValue {
-            what: flag.into(),
-            value: value.into(),
-            why: why.into(),
-        },
-    )
-    .into()
-}
-
-/// What `agripath track` was asked.
-pub(super) struct TrackRequest<'a> {
-    pub(super) scenario_path: &'a Path,
-    pub(super) task: Option<&'a str>,
-    pub(super) algorithms: &'a str,
-    pub(super) runs: Option<u64>,
-    pub(super) seed: u64,
-    pub(super) encoding: Option<&'a str>,
-    pub(super) evaluations: Option<u64>,
-    pub(super) limits: agripath::track::SafetyLimits,
-    pub(super) allow_unsafe: bool,
-    pub(super) out: &'a Path,
-}
-
-pub(super) fn track(request: TrackRequest) -> Result<(), Failure> {
+/// `agripath track`: every planner's runs, the folder, the verdict.
+pub(super) fn track(
+    request: &agripath::request::track::TrackRequest,
+    allow_unsafe: bool,
+    out: &Path,
+) -> Result<(), Failure> {
     use agripath::track::files::{self, PlannerRuns};
-    use agripath::track::{plan, Encoding, Planner, TrackScenario, TrackSettings};
-    let planners = request
-        .algorithms
-        .split(',')
-        .map(|name| Planner::parse(name).map_err(|why| bad_argument("--algorithm", name, why)))
-        .collect::<Result<Vec<_>, _>>()?;
-    let encoding = match request.encoding {
-        None => None,
-        Some(text) => Some(Encoding::parse(text).ok_or_else(|| {
-            bad_argument(
-                "--encoding",
-                text,
-                "expected cartesian, cylindrical or spherical",
-            )
-        })?),
-    };
-    if request.evaluations == Some(0) {
-        return Err(bad_argument("--evaluations", "0", "must be at least 1"));
-    }
-    let scenario = TrackScenario::read(request.scenario_path, request.task)?
-        .with_limits(request.limits)
-        .map_err(|fault| InputError::new(request.scenario_path, fault))?;
-    let runs = request.runs.or(scenario.paper_runs).unwrap_or(5);
-    if runs == 0 || runs > 1000 {
-        return Err(bad_argument(
-            "--runs",
-            &runs.to_string(),
-            "must be 1..=1000",
-        ));
-    }
-    let bar = progress_bar(runs * planners.len() as u64, "runs");
-    let mut results = Vec::new();
-    for planner in planners {
-        let settings = TrackSettings {
-            planner,
-            encoding,
-            runs,
-            seed: request.seed,
-            evaluations: request.evaluations,
-        };
-        let runs = plan(&scenario, &settings, &|| bar.inc(1))
-            .map_err(|fault| InputError::new(request.scenario_path, fault))?;
-        results.push(PlannerRuns {
-            planner,
-            encoding: planner.encoding(&scenario, encoding),
-            runs,
-        });
-    }
+    let job = request.prepare()?;
+    let bar = progress_bar(job.total_runs(), "runs");
+    let results = job.run(&|| bar.inc(1))?;
     bar.finish_and_clear();
-    let files = files::files(&scenario, &results, request.seed, request.allow_unsafe)
-        .map_err(Failure::Output)?;
-    let written = write_folder(request.out, &files)?;
-    emit!("{}", files::table(&scenario, &results));
+    let files =
+        files::files(&job.scenario, &results, job.seed, allow_unsafe).map_err(Failure::Output)?;
+    let written = write_folder(out, &files)?;
+    emit!("{}", files::table(&job.scenario, &results));
     let reasons: Vec<String> = results
         .iter()
         .filter_map(PlannerRuns::unsafe_reason)
@@ -95,7 +29,7 @@ pub(super) fn track(request: TrackRequest) -> Result<(), Failure> {
     if reasons.len() < results.len() {
         return Ok(());
     }
-    if request.allow_unsafe {
+    if allow_unsafe {
         emitln!("warning: the .waypoints of unsafe tracks were written (--allow-unsafe)");
         return Ok(());
     }
@@ -111,14 +45,7 @@ pub(super) fn repro_tracks(
 ) -> Result<(), Failure> {
     use agripath::repro::tracks;
     use agripath::track::files;
-    let runs = runs.unwrap_or(10);
-    if runs == 0 || runs > 1000 {
-        return Err(bad_argument(
-            "--runs",
-            &runs.to_string(),
-            "must be 1..=1000",
-        ));
-    }
+    let runs = agripath::request::track::check_runs(runs.unwrap_or(10))?;
     let label = "embedded track scenario";
     let key = match table {
         ReproTable::Seed000Table4 => "seed000-table4",

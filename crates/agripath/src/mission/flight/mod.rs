@@ -8,200 +8,28 @@
 //! field climb to the cruise height and back. At its last point the sprayer goes off and the
 //! drone climbs, flies back and lands at the supply point.
 //!
-//! Terrain following: along a swath the terrain is sampled every `sample_spacing_m` and the
-//! waypoints kept are those a vertical Douglas-Peucker keeps at `terrain_tolerance_m`: between
-//! two waypoints the straight climb or descent stays within the tolerance of terrain + spray
-//! height (what QGroundControl's terrain following precomputes), and flat stretches need
-//! only their ends.
+//! The parts: `settings` (what the files are asked for: altitude reference, sprayer,
+//! terrain tolerance), `geo_frame` (plan metres ↔ longitude, latitude) and
+//! `terrain_following` (the waypoints a spray run keeps over the terrain).
 
-use serde::{Deserialize, Serialize};
+mod geo_frame;
+mod settings;
+mod terrain_following;
+
+use serde::Serialize;
 
 use crate::error::Fault;
-use crate::geometry::{from_utm, to_utm, UtmZone};
-use crate::model::CoordinateSystem;
 use crate::scenario::Scenario;
 use crate::sequence::Route;
 use crate::sortie::route::{RoutePoint, Segment};
 use crate::sortie::PlannedSorties;
 use crate::terrain::Terrain;
+use terrain_following::follow_terrain;
 
-/// How altitudes are written (decision 0012).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum AltitudeReference {
-    /// Above the launch point's ground (MAV_FRAME_GLOBAL_RELATIVE_ALT, QGC "relative"): the
-    /// ground station's default, and the only honest one without a terrain model.
-    Relative,
-    /// Above sea level from our terrain model (MAV_FRAME_GLOBAL, QGC "absolute"): needs a DEM
-    /// or a stated ground height (`--terrain flat:H`).
-    SeaLevel,
-    /// Above the terrain, as the autopilot measures it (MAV_FRAME_GLOBAL_TERRAIN_ALT, ArduPilot).
-    Terrain,
-}
-
-impl AltitudeReference {
-    pub const KEYS: [&'static str; 3] = ["relative", "sea-level", "terrain"];
-
-    pub fn key(self) -> &'static str {
-        match self {
-            Self::Relative => "relative",
-            Self::SeaLevel => "sea-level",
-            Self::Terrain => "terrain",
-        }
-    }
-
-    /// The reference a plan uses: the one asked for, else `sea-level` over a DEM and
-    /// `relative` without one. `sea-level` needs heights above sea level: a DEM or a stated
-    /// flat ground.
-    pub fn resolve(
-        requested: Option<Self>,
-        terrain: &crate::terrain::TerrainSpec,
-        stated: bool,
-    ) -> Result<Self, Fault> {
-        let dem = matches!(terrain, crate::terrain::TerrainSpec::File { .. });
-        let sea_level_known =
-            dem || (stated && matches!(terrain, crate::terrain::TerrainSpec::Flat { .. }));
-        match requested {
-            None if dem => Ok(Self::SeaLevel),
-            None => Ok(Self::Relative),
-            Some(Self::SeaLevel) if !sea_level_known => Err(Fault::InvalidValue {
-                what: "--altitude".into(),
-                value: "sea-level".into(),
-                why: "sea-level altitudes need a terrain model (--terrain DEM) or a stated ground height (--terrain flat:H); without them use relative".into(),
-            }),
-            Some(reference) => Ok(reference),
-        }
-    }
-
-    /// What the altitudes of this reference assume, for the report and the summary.
-    pub fn assumption(self, terrain: &crate::terrain::TerrainSpec) -> String {
-        let ground = match terrain {
-            crate::terrain::TerrainSpec::File { path, .. } => format!("the DEM {}", path.display()),
-            crate::terrain::TerrainSpec::Flat { height_m } => {
-                format!("flat ground at {height_m} m")
-            }
-            _ => "the analytic terrain model (heights relative to its own datum)".into(),
-        };
-        match self {
-            Self::Relative => format!("altitudes relative to the launch point's ground; terrain under the flight from {ground}"),
-            Self::SeaLevel => format!("altitudes above sea level from {ground}"),
-            Self::Terrain => format!("altitudes above the terrain as the autopilot measures it; planned over {ground}"),
-        }
-    }
-}
-
-impl std::str::FromStr for AltitudeReference {
-    type Err = String;
-
-    fn from_str(text: &str) -> Result<Self, Self::Err> {
-        match text {
-            "relative" => Ok(Self::Relative),
-            "sea-level" => Ok(Self::SeaLevel),
-            "terrain" => Ok(Self::Terrain),
-            other => Err(format!(
-                "unknown altitude reference '{other}' (known: relative, sea-level, terrain)"
-            )),
-        }
-    }
-}
-
-/// How the sprayer is switched.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
-pub enum SprayerCommand {
-    /// MAV_CMD_DO_SPRAYER (216), ArduPilot's sprayer.
-    DoSprayer,
-    /// MAV_CMD_DO_SET_SERVO (183) on `channel` with these pulse widths, for any pump on a servo output.
-    Servo {
-        channel: u16,
-        on_pwm: u16,
-        off_pwm: u16,
-    },
-}
-
-/// Servo outputs a `DO_SET_SERVO` may name (ArduPilot has 1-32; PX4 and most boards fewer).
-pub const SERVO_CHANNELS: std::ops::RangeInclusive<u16> = 1..=32;
-/// Pulse widths a servo output accepts, microseconds.
-pub const SERVO_PWM_US: std::ops::RangeInclusive<u16> = 800..=2200;
-
-impl std::str::FromStr for SprayerCommand {
-    type Err = String;
-
-    /// `do-sprayer`, or `servo:CHANNEL:ON_PWM:OFF_PWM` with a real channel and pulse widths
-    /// (on and off must differ, or the pump would never switch).
-    fn from_str(spec: &str) -> Result<Self, String> {
-        if spec == "do-sprayer" {
-            return Ok(Self::DoSprayer);
-        }
-        let expected = "expected do-sprayer or servo:CHANNEL:ON_PWM:OFF_PWM".to_string();
-        let parts: Vec<&str> = spec.split(':').collect();
-        let ["servo", channel, on, off] = parts.as_slice() else {
-            return Err(expected);
-        };
-        let (Ok(channel), Ok(on_pwm), Ok(off_pwm)) = (
-            channel.parse::<u16>(),
-            on.parse::<u16>(),
-            off.parse::<u16>(),
-        ) else {
-            return Err(expected);
-        };
-        if !SERVO_CHANNELS.contains(&channel) {
-            return Err(format!(
-                "servo channel {channel} is not one of {}..={}",
-                SERVO_CHANNELS.start(),
-                SERVO_CHANNELS.end()
-            ));
-        }
-        for pwm in [on_pwm, off_pwm] {
-            if !SERVO_PWM_US.contains(&pwm) {
-                return Err(format!(
-                    "pulse width {pwm} µs is outside {}..={} µs",
-                    SERVO_PWM_US.start(),
-                    SERVO_PWM_US.end()
-                ));
-            }
-        }
-        if on_pwm == off_pwm {
-            return Err(
-                "the on and off pulse widths are the same: the pump would never switch".into(),
-            );
-        }
-        Ok(Self::Servo {
-            channel,
-            on_pwm,
-            off_pwm,
-        })
-    }
-}
-
-/// What the mission files are asked for.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct MissionSettings {
-    pub altitude: AltitudeReference,
-    pub sprayer: SprayerCommand,
-    /// Largest gap between the flown altitude and terrain + spray height along a swath, metres.
-    pub terrain_tolerance_m: f64,
-    /// Terrain samples along swaths, metres.
-    pub sample_spacing_m: f64,
-    /// Where a plan in local metres lies on Earth (lon, lat of its origin), for mission files.
-    pub local_origin: (f64, f64),
-    /// How far the geofence's inclusion polygon reaches beyond the flight, metres.
-    pub fence_margin_m: f64,
-}
-
-impl Default for MissionSettings {
-    fn default() -> Self {
-        Self {
-            altitude: AltitudeReference::Relative,
-            sprayer: SprayerCommand::DoSprayer,
-            terrain_tolerance_m: 1.0,
-            sample_spacing_m: 1.0,
-            // Harbin, Heilongjiang: the Northeast Agricultural University fields of seed 003.
-            local_origin: (126.63, 45.75),
-            fence_margin_m: 10.0,
-        }
-    }
-}
+pub use geo_frame::GeoFrame;
+pub use settings::{
+    AltitudeReference, MissionSettings, SprayerCommand, SERVO_CHANNELS, SERVO_PWM_US,
+};
 
 /// One autopilot command.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -261,139 +89,6 @@ pub struct SortieMission {
     /// The supply point: home, takeoff and landing.
     pub home: Item,
     pub items: Vec<Item>,
-}
-
-/// Plan metres → longitude, latitude.
-#[derive(Debug, Clone, Copy)]
-pub struct GeoFrame {
-    system: CoordinateSystem,
-    /// For local plans: the zone and UTM position of the origin.
-    local: Option<(UtmZone, f64, f64)>,
-}
-
-impl GeoFrame {
-    pub fn new(system: CoordinateSystem, local_origin: (f64, f64)) -> Self {
-        let local = (system == CoordinateSystem::Local).then(|| {
-            let zone = UtmZone::containing(local_origin.0, local_origin.1);
-            let (easting, northing) = to_utm(local_origin.0, local_origin.1, zone);
-            (zone, easting, northing)
-        });
-        Self { system, local }
-    }
-
-    pub fn lon_lat(&self, x: f64, y: f64) -> (f64, f64) {
-        match self.local {
-            Some((zone, easting, northing)) => from_utm(easting + x, northing + y, zone),
-            None => self.system.to_input(x, y),
-        }
-    }
-
-    /// Longitude, latitude → plan metres: the inverse of [`GeoFrame::lon_lat`], for reading
-    /// mission files back.
-    pub fn plan_xy(&self, lon: f64, lat: f64) -> (f64, f64) {
-        match self.local {
-            Some((zone, easting, northing)) => {
-                let (x, y) = to_utm(lon, lat, zone);
-                (x - easting, y - northing)
-            }
-            None => self.system.to_plan(lon, lat),
-        }
-    }
-
-    /// A place as the user's input gives it: lon/lat for lon/lat input, metres for local.
-    pub fn describe(&self, x: f64, y: f64) -> String {
-        match self.system {
-            CoordinateSystem::Local => format!("({x:.1}, {y:.1})"),
-            CoordinateSystem::Utm(_) => {
-                let (lon, lat) = self.lon_lat(x, y);
-                format!("({lon:.6}, {lat:.6})")
-            }
-        }
-    }
-}
-
-/// Keeps the samples a vertical Douglas-Peucker keeps: (distance along, height) pairs.
-fn simplify(profile: &[(f64, f64)], tolerance: f64, keep: &mut [bool], first: usize, last: usize) {
-    if last <= first + 1 {
-        return;
-    }
-    let (x0, z0) = profile[first];
-    let (x1, z1) = profile[last];
-    let mut worst = (0.0, first);
-    for (index, &(x, z)) in profile.iter().enumerate().take(last).skip(first + 1) {
-        let along = if x1 > x0 { (x - x0) / (x1 - x0) } else { 0.0 };
-        let gap = (z - (z0 + along * (z1 - z0))).abs();
-        if gap > worst.0 {
-            worst = (gap, index);
-        }
-    }
-    if worst.0 > tolerance {
-        keep[worst.1] = true;
-        simplify(profile, tolerance, keep, first, worst.1);
-        simplify(profile, tolerance, keep, worst.1, last);
-    }
-}
-
-/// The terrain-following waypoints of a spray run through `points` (plan metres and ground
-/// heights): the run's ends, every corner (an edge pass turns at the boundary's vertices),
-/// and every sample the terrain needs between them.
-fn follow_terrain(
-    points: &[RoutePoint],
-    terrain: &dyn Terrain,
-    settings: &MissionSettings,
-) -> Result<Vec<RoutePoint>, Fault> {
-    let mut samples = vec![points[0]];
-    let mut anchors = vec![0];
-    for (index, pair) in points.windows(2).enumerate() {
-        let (a, b) = (pair[0], pair[1]);
-        let length = (b.x - a.x).hypot(b.y - a.y);
-        let steps = (length / settings.sample_spacing_m).ceil().max(1.0) as usize;
-        for step in 1..steps {
-            let t = step as f64 / steps as f64;
-            let (x, y) = (a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
-            samples.push(RoutePoint {
-                x,
-                y,
-                ground_m: terrain.height_m(x, y)?,
-            });
-        }
-        samples.push(b);
-        let corner = points.get(index + 2).is_some_and(|c| {
-            let (incoming, outgoing) = ((b.x - a.x, b.y - a.y), (c.x - b.x, c.y - b.y));
-            let cross = incoming.0 * outgoing.1 - incoming.1 * outgoing.0;
-            let dot = incoming.0 * outgoing.0 + incoming.1 * outgoing.1;
-            cross.atan2(dot).abs() > 0.5_f64.to_radians()
-        });
-        if corner || index + 2 == points.len() {
-            anchors.push(samples.len() - 1);
-        }
-    }
-    let mut along = 0.0;
-    let profile: Vec<(f64, f64)> = samples
-        .iter()
-        .enumerate()
-        .map(|(index, point)| {
-            if index > 0 {
-                let previous = samples[index - 1];
-                along += (point.x - previous.x).hypot(point.y - previous.y);
-            }
-            (along, point.ground_m)
-        })
-        .collect();
-    let mut keep = vec![false; samples.len()];
-    // The terrain between two samples may stray a little beyond what the samples show: keep
-    // a tenth of the tolerance (at least 5 cm) for it, so the flight as sampled finer stays within.
-    let tolerance = (settings.terrain_tolerance_m * 0.9).min(settings.terrain_tolerance_m - 0.05);
-    for pair in anchors.windows(2) {
-        keep[pair[0]] = true;
-        keep[pair[1]] = true;
-        simplify(&profile, tolerance.max(0.01), &mut keep, pair[0], pair[1]);
-    }
-    Ok(samples
-        .into_iter()
-        .zip(keep)
-        .filter_map(|(point, kept)| kept.then_some(point))
-        .collect())
 }
 
 /// Terrain samples along a transit, metres: at most this far apart (the preflight samples
@@ -658,7 +353,9 @@ pub fn build_missions(
 
 #[cfg(test)]
 mod tests {
+    use super::terrain_following::simplify;
     use super::*;
+    use crate::model::CoordinateSystem;
 
     #[test]
     fn douglas_peucker_keeps_the_bend_and_drops_the_flat() {

@@ -1,5 +1,5 @@
-//! `agripath view DIR`: serves a plan folder on 127.0.0.1 so that `plan.html` (which also
-//! works straight from disk) and the files beside it open in a browser.
+//! The viewer of `agripath view DIR`: serves a plan folder on 127.0.0.1 so that `plan.html`
+//! (which also works straight from disk) and the files beside it open in a browser.
 //!
 //! Only what a local viewer needs, and nothing a hostile page or client can abuse:
 //! - it listens on the loopback address only, and answers only requests whose `Host` is
@@ -17,6 +17,8 @@ use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::Arc;
 use std::time::Duration;
+
+use crate::{Fault, InputError};
 
 /// Connections served at once.
 const MAX_CONNECTIONS: usize = 256;
@@ -191,6 +193,20 @@ fn answer(stream: &mut TcpStream, folder: &Path, port: u16) -> std::io::Result<(
         }
         None => respond(stream, "404 Not Found", text, b"not found"),
     }
+}
+
+/// Refuses a folder with no `plan.html`: only what `agripath plan` or `agripath demo` wrote
+/// is served.
+pub fn check_folder(folder: &Path) -> Result<(), InputError> {
+    if folder.join("plan.html").is_file() {
+        return Ok(());
+    }
+    Err(InputError::new(
+        folder,
+        Fault::Structure(
+            "no plan.html here: give a folder written by `agripath plan` or `agripath demo`".into(),
+        ),
+    ))
 }
 
 /// Serves `folder` until the process is stopped; `on_ready` gets the URL once listening.

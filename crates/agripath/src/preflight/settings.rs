@@ -1,0 +1,73 @@
+//! What a plan is held to by the preflight: the mission settings it was written with and the
+//! coverage and spray-outside limits drawn from its own measure (decision 0012).
+
+use super::MAX_OUTSIDE_FRACTION;
+use crate::mission::flight::{AltitudeReference, MissionSettings, SprayerCommand};
+
+/// What the plan promised.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PreflightSettings {
+    pub altitude: AltitudeReference,
+    pub sprayer: SprayerCommand,
+    pub terrain_tolerance_m: f64,
+    pub local_origin: (f64, f64),
+    pub boundary_margin_m: f64,
+    pub obstacle_margin_m: f64,
+    /// Least share of each field's sprayable area to cover, 0..1, by field.
+    pub required_coverage: Vec<f64>,
+    /// Most sprayed area outside the fields, as a share of the sprayed area.
+    pub max_outside_fraction: f64,
+}
+
+/// What a plan promised by its own measure, which the coverage and spray-outside limits are
+/// drawn from.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Promise {
+    pub headland_passes: usize,
+    /// Per field, the share of its sprayable area the plan's measure covers.
+    pub covered_fraction: Vec<f64>,
+    /// Strip area the plan's measure puts outside the sprayable region, m².
+    pub outside_m2: f64,
+    /// Swath and edge-pass metres × swath width, m².
+    pub sprayed_m2: f64,
+}
+
+impl PreflightSettings {
+    /// The settings a plan is held to (decision 0012). With edge passes: 99 % of each field
+    /// and at most [`MAX_OUTSIDE_FRACTION`] outside. The seed's layout (`--headland 0`)
+    /// leaves 2-4 % at oblique swath ends and runs swaths to the boundary, half a swath
+    /// overhanging it: it is held to its own coverage − ½ point and its own overhang
+    /// + 0.1 point.
+    pub fn new(
+        mission: &MissionSettings,
+        boundary_margin_m: f64,
+        obstacle_margin_m: f64,
+        promise: &Promise,
+    ) -> Self {
+        let seed_layout = promise.headland_passes == 0;
+        Self {
+            altitude: mission.altitude,
+            sprayer: mission.sprayer,
+            terrain_tolerance_m: mission.terrain_tolerance_m,
+            local_origin: mission.local_origin,
+            boundary_margin_m,
+            obstacle_margin_m,
+            required_coverage: promise
+                .covered_fraction
+                .iter()
+                .map(|&covered| {
+                    if seed_layout {
+                        (covered - 0.005).max(0.0)
+                    } else {
+                        0.99
+                    }
+                })
+                .collect(),
+            max_outside_fraction: if seed_layout && promise.sprayed_m2 > 0.0 {
+                MAX_OUTSIDE_FRACTION.max(promise.outside_m2 / promise.sprayed_m2 + 0.001)
+            } else {
+                MAX_OUTSIDE_FRACTION
+            },
+        }
+    }
+}

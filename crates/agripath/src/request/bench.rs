@@ -1,0 +1,69 @@
+//! A function bench as asked for: seed 000's Table 2 settings with the dimension, population,
+//! iterations, runs and seed given, and the algorithms and functions named.
+
+use super::bad_value;
+use crate::bench::functions::FunctionBench;
+use crate::InputError;
+
+/// The options of `agripath bench functions`, as given.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FunctionBenchOptions {
+    /// Dimension of every function.
+    pub dimension: usize,
+    /// Agents per iteration.
+    pub population: usize,
+    /// Iterations per run.
+    pub iterations: usize,
+    /// Independent runs per algorithm and function.
+    pub runs: u64,
+    /// Algorithm names (empty: the five of seed 000).
+    pub algorithms: Vec<String>,
+    /// Function keys f1 … f9 (empty: all nine).
+    pub functions: Vec<String>,
+    /// Seed of the random streams.
+    pub seed: u64,
+}
+
+impl FunctionBenchOptions {
+    /// The bench to run, its algorithms and functions found by name and its settings checked.
+    pub fn settings(&self) -> Result<FunctionBench, InputError> {
+        let mut settings = FunctionBench::table_2();
+        (
+            settings.dimension,
+            settings.population,
+            settings.iterations,
+            settings.runs,
+            settings.seed,
+        ) = (
+            self.dimension,
+            self.population,
+            self.iterations,
+            self.runs,
+            self.seed,
+        );
+        if !self.algorithms.is_empty() {
+            settings.algorithms = self
+                .algorithms
+                .iter()
+                .map(|name| {
+                    name.parse::<swarm::Algorithm>()
+                        .map_err(|why| bad_value("--algorithms", name, why))
+                })
+                .collect::<Result<_, _>>()?;
+        }
+        if !self.functions.is_empty() {
+            settings.functions = self
+                .functions
+                .iter()
+                .map(|key| {
+                    swarm::functions::by_key(key)
+                        .map_err(|why| bad_value("--functions", key, why.to_string()))
+                })
+                .collect::<Result<_, _>>()?;
+        }
+        settings
+            .validate()
+            .map_err(|fault| InputError::new("arguments", fault))?;
+        Ok(settings)
+    }
+}

@@ -1,0 +1,126 @@
+//! What a user asks for, as a command line gives it (paths, names and numbers), checked once
+//! into the library's own values: a scenario, plan settings, a track job, a function bench.
+//! Every bad value is an [`InputError`] naming the option and why, so that a program built
+//! on the library refuses the same input with the same words as `agripath` does.
+//!
+//! The checks run in the order the command line's options are read, so that of two faults
+//! the same one is reported first whichever program asks.
+
+pub mod bench;
+pub mod plan;
+pub mod terrain;
+pub mod track;
+
+use std::path::{Path, PathBuf};
+
+use crate::input::CoordinateChoice;
+use crate::preflight::{Verdict, World};
+use crate::scenario::{Scenario, ScenarioParts, VehicleOverrides};
+use crate::terrain::TerrainSpec;
+use crate::{Fault, InputError};
+
+/// Where a scenario comes from: a scenario file, or its parts (fields, terrain, vehicle);
+/// the vehicle figures given here override the vehicle's.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct ScenarioInputs {
+    /// A scenario TOML file tying fields, terrain and vehicle together.
+    pub scenario: Option<PathBuf>,
+    /// A field file (GeoJSON, KML or KMZ), instead of a scenario file.
+    pub fields: Option<PathBuf>,
+    /// A terrain argument: a DEM file or flat, flat:HEIGHT, seed000, seed002.
+    pub terrain: Option<String>,
+    /// A vehicle TOML file.
+    pub vehicle: Option<PathBuf>,
+    /// Read the field coordinates as local metres, whatever the file says.
+    pub local_coordinates: bool,
+    /// Swath width, spray height and safe height that override the vehicle's.
+    pub overrides: VehicleOverrides,
+    /// Keep overlapping fields and spray each overlap once.
+    pub allow_overlap: bool,
+}
+
+impl ScenarioInputs {
+    /// Whether a scenario file or a field file is given at all.
+    pub fn given(&self) -> bool {
+        self.scenario.is_some() || self.fields.is_some()
+    }
+
+    /// Reads and checks the scenario: a scenario file (whose terrain, vehicle and coordinates
+    /// are its own), or the parts.
+    pub fn load(&self) -> Result<Scenario, InputError> {
+        let terrain = self
+            .terrain
+            .as_deref()
+            .map(TerrainSpec::from_argument)
+            .transpose()?;
+        let coordinates = if self.local_coordinates {
+            CoordinateChoice::Local
+        } else {
+            CoordinateChoice::FromFile
+        };
+        match (&self.scenario, &self.fields) {
+            (Some(path), None) => {
+                if self.terrain.is_some() || self.vehicle.is_some() || self.local_coordinates {
+                    return Err(InputError::new(
+                        path,
+                        Fault::Structure(
+                            "with a scenario file, set terrain, vehicle and crs in the file (only --swath-width, --spray-height and --safe-height override it)".into(),
+                        ),
+                    ));
+                }
+                Scenario::from_file(path, self.overrides, self.allow_overlap)
+            }
+            (None, Some(fields)) => Scenario::load(ScenarioParts {
+                name: None,
+                fields: fields.clone(),
+                coordinates,
+                terrain,
+                terrain_base: PathBuf::new(),
+                vehicle_file: self.vehicle.clone(),
+                vehicle_table: None,
+                overrides: self.overrides,
+                allow_overlap: self.allow_overlap,
+            }),
+            (Some(path), Some(_)) => Err(InputError::new(
+                path,
+                Fault::Structure("give a scenario file or --fields, not both".into()),
+            )),
+            (None, None) => Err(InputError::new(
+                "arguments",
+                Fault::Structure("give a scenario file or --fields FILE".into()),
+            )),
+        }
+    }
+}
+
+/// The preflight of `agripath check`: the mission files of `folder` as they are now, flown
+/// against the scenario `inputs` give (the demo's embedded farm when they give none).
+pub fn check_folder(inputs: &ScenarioInputs, folder: &Path) -> Result<Verdict, InputError> {
+    let scenario = if inputs.given() {
+        inputs.load()?
+    } else {
+        crate::demo::scenario()?
+    };
+    let world = World {
+        farm: &scenario.farm,
+        terrain: scenario.terrain.as_ref(),
+        vehicle: &scenario.vehicle,
+    };
+    crate::preflight::check_folder(&world, folder).map_err(|fault| InputError::new(folder, fault))
+}
+
+/// An option's value that is not one it may take: the error names the option.
+pub(crate) fn bad_value(
+    option: &str,
+    value: impl Into<String>,
+    why: impl Into<String>,
+) -> InputError {
+    InputError::new(
+        "arguments",
+        Fault::InvalidValue {
+            what: option.into(),
+            value: value.into(),
+            why: why.into(),
+        },
+    )
+}

@@ -1,0 +1,126 @@
+//! A point-to-point track as asked for: the scenario file, its task, the planners by name,
+//! runs, encoding, budget and safety limits, checked into a [`TrackJob`] to run.
+
+use std::path::{Path, PathBuf};
+
+use super::bad_value;
+use crate::track::files::PlannerRuns;
+use crate::track::{plan, Encoding, Planner, SafetyLimits, TrackScenario, TrackSettings};
+use crate::InputError;
+
+/// What `agripath track` is asked, as given.
+#[derive(Debug, Clone)]
+pub struct TrackRequest {
+    /// The scenario file: seed 000, seed 002 or SPSO JSON, or an operator TOML.
+    pub scenario_path: PathBuf,
+    /// Seed 000's task (I, II or III, or a task name of the file).
+    pub task: Option<String>,
+    /// Planners, comma-separated.
+    pub algorithms: String,
+    /// Runs per planner; `None`: the scenario's own, else 5.
+    pub runs: Option<u64>,
+    /// Seed of the random streams.
+    pub seed: u64,
+    /// cartesian, cylindrical or spherical; `None`: the scenario paper's.
+    pub encoding: Option<String>,
+    /// Evaluations per run; `None`: the paper's budget.
+    pub evaluations: Option<u64>,
+    /// Clearance above the terrain and distance from threats a safe track keeps.
+    pub limits: SafetyLimits,
+}
+
+/// A checked track request: the scenario read, the planners and the runs to do.
+pub struct TrackJob {
+    /// The scenario, with the request's safety limits.
+    pub scenario: TrackScenario,
+    /// Planners in the order asked.
+    pub planners: Vec<Planner>,
+    /// The encoding asked for, if any.
+    pub encoding: Option<Encoding>,
+    /// Runs per planner.
+    pub runs: u64,
+    /// Seed of the random streams.
+    pub seed: u64,
+    /// Evaluations per run, if not the paper's.
+    pub evaluations: Option<u64>,
+    source: PathBuf,
+}
+
+/// Runs per planner or table that a request may ask for.
+const RUNS: std::ops::RangeInclusive<u64> = 1..=1000;
+
+/// Refuses a number of runs outside 1..=1000.
+pub fn check_runs(runs: u64) -> Result<u64, InputError> {
+    if RUNS.contains(&runs) {
+        Ok(runs)
+    } else {
+        Err(bad_value("--runs", runs.to_string(), "must be 1..=1000"))
+    }
+}
+
+impl TrackRequest {
+    /// Checks the options (planners, encoding, budget) and reads the scenario.
+    pub fn prepare(&self) -> Result<TrackJob, InputError> {
+        let planners = self
+            .algorithms
+            .split(',')
+            .map(|name| Planner::parse(name).map_err(|why| bad_value("--algorithm", name, why)))
+            .collect::<Result<Vec<_>, _>>()?;
+        let encoding = match self.encoding.as_deref() {
+            None => None,
+            Some(text) => Some(Encoding::parse(text).ok_or_else(|| {
+                bad_value(
+                    "--encoding",
+                    text,
+                    "expected cartesian, cylindrical or spherical",
+                )
+            })?),
+        };
+        if self.evaluations == Some(0) {
+            return Err(bad_value("--evaluations", "0", "must be at least 1"));
+        }
+        let path = &self.scenario_path;
+        let scenario = TrackScenario::read(path, self.task.as_deref())?
+            .with_limits(self.limits)
+            .map_err(|fault| InputError::new(path, fault))?;
+        let runs = check_runs(self.runs.or(scenario.paper_runs).unwrap_or(5))?;
+        Ok(TrackJob {
+            scenario,
+            planners,
+            encoding,
+            runs,
+            seed: self.seed,
+            evaluations: self.evaluations,
+            source: path.clone(),
+        })
+    }
+}
+
+impl TrackJob {
+    /// Runs in all, for a progress bar.
+    pub fn total_runs(&self) -> u64 {
+        self.runs * self.planners.len() as u64
+    }
+
+    /// Every planner's runs, in order; `tick` after each run.
+    pub fn run(&self, tick: &(dyn Fn() + Sync)) -> Result<Vec<PlannerRuns>, InputError> {
+        let mut results = Vec::new();
+        for &planner in &self.planners {
+            let settings = TrackSettings {
+                planner,
+                encoding: self.encoding,
+                runs: self.runs,
+                seed: self.seed,
+                evaluations: self.evaluations,
+            };
+            let runs = plan(&self.scenario, &settings, tick)
+                .map_err(|fault| InputError::new(Path::new(&self.source), fault))?;
+            results.push(PlannerRuns {
+                planner,
+                encoding: planner.encoding(&self.scenario, self.encoding),
+                runs,
+            });
+        }
+        Ok(results)
+    }
+}

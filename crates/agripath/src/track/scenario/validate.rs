@@ -1,0 +1,136 @@
+//! The checks every track scenario ends with, whatever file it came from: start and goal in
+//! the area, above the terrain and outside every threat, a band that makes sense, and the
+//! cruise's ends placed at the band's floor (a vertical leg reaches them).
+
+use super::{AltitudeReference, TrackScenario};
+use crate::error::Fault;
+
+/// Checks that start and goal lie in the area, above the terrain and outside every threat,
+/// that the band makes sense, and places the cruise's ends.
+pub(in crate::track) fn validated(mut scenario: TrackScenario) -> Result<TrackScenario, Fault> {
+    let (min_x, min_y, max_x, max_y) = scenario.area;
+    if !(max_x - min_x > 0.0
+        && max_y - min_y > 0.0
+        && scenario.altitude_bounds.1 > scenario.altitude_bounds.0)
+    {
+        return Err(Fault::InvalidValue {
+            what: "planning space".into(),
+            value: format!(
+                "[{min_x}, {max_x}] × [{min_y}, {max_y}] × {:?}",
+                scenario.altitude_bounds
+            ),
+            why: "needs a positive width, depth and height".into(),
+        });
+    }
+    if let Some((low, high)) = scenario.height_band {
+        if low.partial_cmp(&high) != Some(std::cmp::Ordering::Less) || low < 0.0 {
+            return Err(Fault::InvalidValue {
+                what: "height band".into(),
+                value: format!("[{low}, {high}]"),
+                why: "needs 0 ≤ lower < upper".into(),
+            });
+        }
+    }
+    if !(2..=100_000).contains(&scenario.population)
+        || !(1..=1_000_000).contains(&scenario.iterations)
+    {
+        return Err(Fault::InvalidValue {
+            what: "population / iterations".into(),
+            value: format!("{} / {}", scenario.population, scenario.iterations),
+            why: "need a population of 2..=100000 and 1..=1000000 iterations".into(),
+        });
+    }
+    if scenario.free_waypoints == 0 || scenario.free_waypoints > 100 {
+        return Err(Fault::InvalidValue {
+            what: "free waypoints".into(),
+            value: scenario.free_waypoints.to_string(),
+            why: "must be 1..=100".into(),
+        });
+    }
+    if scenario.threats.len() > 1000 {
+        return Err(Fault::InvalidValue {
+            what: "threat cylinders".into(),
+            value: scenario.threats.len().to_string(),
+            why: "at most 1000".into(),
+        });
+    }
+    // Within a metre of each other there is no track to plan (and the length term, which
+    // divides by the start-goal distance, would be meaningless).
+    let apart_m = (0..3)
+        .map(|axis| (scenario.goal[axis] - scenario.start[axis]).powi(2))
+        .sum::<f64>()
+        .sqrt()
+        * scenario.unit_m;
+    if apart_m.is_nan() || apart_m < 1.0 {
+        return Err(Fault::InvalidValue {
+            what: "start and goal".into(),
+            value: format!("{:?} and {:?}", scenario.start, scenario.goal),
+            why: format!(
+                "they are {apart_m:.2} m apart: a track needs two places at least 1 m apart"
+            ),
+        });
+    }
+    let radius_units = scenario.limits.vehicle_radius_m / scenario.unit_m;
+    let floor = scenario
+        .height_band
+        .map_or(0.0, |(low, _)| low)
+        .max(scenario.limits.min_clearance_m);
+    let mut ends = [scenario.start, scenario.goal];
+    for (what, point) in ["start", "goal"].into_iter().zip(ends.iter_mut()) {
+        let place = format!("({}, {})", point[0], point[1]);
+        if !(min_x..=max_x).contains(&point[0]) || !(min_y..=max_y).contains(&point[1]) {
+            return Err(Fault::InvalidValue {
+                what: what.into(),
+                value: place,
+                why: format!("outside the planning area [{min_x}, {max_x}] × [{min_y}, {max_y}]"),
+            });
+        }
+        if let Some((index, threat)) = scenario.threats.iter().enumerate().find(|(_, threat)| {
+            (point[0] - threat.x).hypot(point[1] - threat.y) < threat.radius + radius_units
+        }) {
+            return Err(Fault::InvalidValue {
+                what: what.into(),
+                value: place,
+                why: format!(
+                    "inside threat cylinder {index} (centre ({}, {}), radius {}, plus the vehicle's {} m)",
+                    threat.x, threat.y, threat.radius, scenario.limits.vehicle_radius_m
+                ),
+            });
+        }
+        let ground = scenario.terrain.height(point[0], point[1]);
+        let above = match scenario.altitude_reference {
+            AltitudeReference::AboveGround => point[2],
+            AltitudeReference::SeaLevel => {
+                let truth = scenario.true_ground(point[0], point[1]).unwrap_or(ground);
+                point[2] - truth
+            }
+        };
+        if above < -1e-6 {
+            return Err(Fault::InvalidValue {
+                what: what.into(),
+                value: format!("({}, {}, {})", point[0], point[1], point[2]),
+                why: format!("{:.2} m under the terrain", -above),
+            });
+        }
+        if above < floor {
+            // A vertical leg to the floor: sea-level altitudes over the true ground.
+            point[2] = match scenario.altitude_reference {
+                AltitudeReference::AboveGround => floor,
+                AltitudeReference::SeaLevel => point[2] + (floor - above),
+            };
+        }
+        let (_, high) = scenario.altitude_bounds;
+        if scenario.altitude_reference == AltitudeReference::SeaLevel && point[2] > high {
+            return Err(Fault::InvalidValue {
+                what: what.into(),
+                value: place,
+                why: format!(
+                    "the band's floor above it ({:.1} m) is above the space's ceiling ({high} m)",
+                    point[2]
+                ),
+            });
+        }
+    }
+    [scenario.cruise_start, scenario.cruise_goal] = ends;
+    Ok(scenario)
+}
