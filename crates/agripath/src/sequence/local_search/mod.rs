@@ -1,0 +1,384 @@
+//! `best`: our ordering for near-optimal tours in little time (not from the seeds).
+//!
+//! 1. Constructions, each improved by 2 and the cheapest kept: seed 001's greedy (on instances
+//!    small enough for its O(n²) scan); a field-by-field boustrophedon — fields chained
+//!    nearest-first, each field's swaths in scan-line order, alternating, from whichever corner
+//!    is nearest; and the best order and corner of whole field blocks — exact (Held-Karp over
+//!    fields × 4 corners) up to 10 fields, by block relocation above.
+//! 2. Local search to a local optimum of two neighbourhoods on oriented passes, both driven by
+//!    lists of the K nearest pass ends (so a sweep is O(n·K), not O(n²)):
+//!    - 2-opt with end flips: reversing a stretch of the tour flies each of its passes the
+//!      other way; only the two transfers at its edges change (eq. 8 is symmetric);
+//!    - Or-opt: a chain of 1-3 consecutive passes, a field's whole block, or a longer chain
+//!      whose removal joins two near ends (or-3opt), moved next to a neighbouring end, either
+//!      way round.
+//!    - The neighbour lists hold the 10 nearest ends and the 6 nearest ends in other fields.
+//! 3. Iterated local search: a seeded double-bridge kick, then 1-2 again; a kick is kept only
+//!    when the tour gets cheaper. The number of kicks is the budget: the iterations of
+//!    `swarm`'s Runner, which drives [`IteratedLocalSearch`] like every other search.
+
+use swarm::{Optimizer, Runner, Termination};
+
+mod construction;
+mod moves;
+
+pub use construction::{block_local_search, boustrophedon, exact_field_order, LARGE_FARM_FIELDS};
+
+use super::greedy::greedy_with_starts;
+use super::tour::{End, OrderingProblem, Start, Step};
+#[cfg(test)]
+use construction::{block_steps, boustrophedon_by_grid};
+use moves::{nearest_ends, Search};
+
+/// Positions examined after a kick before giving up on it.
+const KICK_MOVES: usize = 400;
+
+/// Nearest ends in other fields kept per end.
+const OTHER_FIELD_NEIGHBOURS: usize = 6;
+
+/// Nearest ends kept per end.
+const NEIGHBOURS: usize = 10;
+/// Greedy construction is O(n²) cost evaluations per start; above this it is skipped.
+const GREEDY_LIMIT: usize = 1000;
+
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct LocalSearchSettings {
+    /// Double-bridge kicks of the iterated local search.
+    pub kicks: usize,
+    pub seed: u64,
+}
+
+impl Default for LocalSearchSettings {
+    fn default() -> Self {
+        Self {
+            kicks: 400,
+            seed: 1,
+        }
+    }
+}
+
+/// Kicks actually made: the budget, scaled down on big instances so that a kick's local
+/// search (O(n·K) per sweep) keeps the whole run near linear.
+fn kick_budget(settings: &LocalSearchSettings, passes: usize) -> usize {
+    if passes > LOCAL_KICKS_ABOVE {
+        // Local kicks cost O(KICK_MOVES) each whatever the size: the full budget, twice.
+        return 2 * settings.kicks.max(1);
+    }
+    settings.kicks.min(100_000 / passes.max(1)).max(1)
+}
+
+/// Above this many passes the kicks are local double bridges (three cuts within
+/// `LOCAL_KICK_SPAN` positions): a random double bridge on a long tour joins far-apart
+/// stretches, which the local search then mostly undoes.
+const LOCAL_KICKS_ABOVE: usize = 1000;
+const LOCAL_KICK_SPAN: usize = 60;
+
+/// A double-bridge kick: cut `items` at three random places and swap the middle two parts.
+/// `None` when two cuts coincide (the caller skips that kick).
+fn double_bridge<T: Copy>(
+    items: &[T],
+    stream: &mut swarm::RunStream,
+) -> Option<(Vec<T>, [usize; 3])> {
+    let n = items.len();
+    let mut cuts: Vec<usize> = if n > LOCAL_KICKS_ABOVE {
+        let first = 1 + swarm::below(stream, n - 1 - LOCAL_KICK_SPAN);
+        (0..3)
+            .map(|k| {
+                if k == 0 {
+                    first
+                } else {
+                    first + 1 + swarm::below(stream, LOCAL_KICK_SPAN)
+                }
+            })
+            .collect()
+    } else {
+        (0..3).map(|_| 1 + swarm::below(stream, n - 1)).collect()
+    };
+    cuts.sort_unstable();
+    cuts.dedup();
+    if cuts.len() < 3 {
+        return None;
+    }
+    let (a, b, c) = (cuts[0], cuts[1], cuts[2]);
+    let mut kicked = Vec::with_capacity(n);
+    kicked.extend_from_slice(&items[..a]);
+    kicked.extend_from_slice(&items[b..c]);
+    kicked.extend_from_slice(&items[a..b]);
+    kicked.extend_from_slice(&items[c..]);
+    Some((kicked, [a, b, c]))
+}
+
+/// Our sequencer: construction, local search, iterated kicks, on `swarm`'s Runner (one kick
+/// per iteration, run 0 of `settings.seed`); returns the Runner's best tour.
+pub fn best_tour(
+    problem: &OrderingProblem,
+    groups: &[Vec<usize>],
+    settings: &LocalSearchSettings,
+) -> Vec<Step> {
+    let n = problem.passes();
+    if n <= 1 {
+        return (0..n)
+            .map(|pass| Step {
+                pass,
+                reversed: false,
+            })
+            .collect();
+    }
+    let runner = Runner::new(
+        Termination::iterations(kick_budget(settings, n)),
+        settings.seed,
+    )
+    .expect("a kick budget of at least one");
+    let mut search = IteratedLocalSearch::new(groups, settings.seed);
+    runner
+        .run_problem(&mut search, problem, 0, &mut ())
+        .best_solution
+}
+
+/// Steps 1-3 as an optimizer of [`OrderingProblem`]: `start` builds the constructions and
+/// descends from each; every `step` is one double-bridge kick and its local search, kept
+/// when the tour gets cheaper by more than a nanometre (so float noise does not count).
+/// The Runner costs the constructions and the kicks kept (its evaluation count); the local
+/// search costs its moves by their gains, as 2-opt does.
+pub struct IteratedLocalSearch<'g> {
+    groups: &'g [Vec<usize>],
+    /// The seed of the block relocation's own kicks (a construction, inside `start`).
+    seed: u64,
+    neighbours: Vec<Vec<End>>,
+    group_of: Vec<usize>,
+    incumbent: Vec<Step>,
+    incumbent_cost: f64,
+}
+
+impl<'g> IteratedLocalSearch<'g> {
+    /// The search over passes grouped by field in `groups`.
+    pub fn new(groups: &'g [Vec<usize>], seed: u64) -> Self {
+        Self {
+            groups,
+            seed,
+            neighbours: Vec::new(),
+            group_of: Vec::new(),
+            incumbent: Vec::new(),
+            incumbent_cost: f64::INFINITY,
+        }
+    }
+
+    /// Local search from `tour` around `active` passes, at most `budget` positions.
+    fn descend(
+        &self,
+        problem: &OrderingProblem,
+        tour: Vec<Step>,
+        active: impl IntoIterator<Item = usize>,
+        budget: usize,
+    ) -> Vec<Step> {
+        let mut search = Search {
+            problem,
+            position: vec![0; tour.len()],
+            tour,
+            neighbours: &self.neighbours,
+            groups: &self.group_of,
+            closed: problem.start == Start::Free,
+        };
+        search.reindex();
+        search.descend(active, budget);
+        search.tour
+    }
+}
+
+impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
+    fn name(&self) -> &'static str {
+        "iterated local search (ours)"
+    }
+
+    fn start(&mut self, run: &mut swarm::Search<OrderingProblem<'a>>) {
+        let problem = run.problem();
+        let (n, groups) = (problem.passes(), self.groups);
+        let mut starts = vec![boustrophedon(problem, groups)];
+        starts.extend(exact_field_order(problem, groups));
+        // Block relocation alone and with block reversals end in different local optima; both
+        // are kept as starts and the local search decides.
+        starts.extend(block_local_search(problem, groups, false, self.seed));
+        starts.extend(block_local_search(problem, groups, true, self.seed));
+        if n <= GREEDY_LIMIT {
+            starts.push(greedy_with_starts(problem, 8));
+        }
+        self.group_of = vec![0; n];
+        for (group, members) in groups.iter().enumerate() {
+            for &pass in members {
+                self.group_of[pass] = group;
+            }
+        }
+        // Near ends of any other pass, and near ends in other fields: without the latter, a
+        // field's own swath ends (a swath width apart) fill the list and moves between fields
+        // are never tried.
+        let group_of = &self.group_of;
+        let mut neighbours = nearest_ends(problem, NEIGHBOURS, |end, other| other / 2 != end / 2);
+        if groups.len() > 1 {
+            let across = nearest_ends(problem, OTHER_FIELD_NEIGHBOURS, |end, other| {
+                group_of[other / 2] != group_of[end / 2]
+            });
+            for (list, extra) in neighbours.iter_mut().zip(across) {
+                for end in extra {
+                    if !list.contains(&end) {
+                        list.push(end);
+                    }
+                }
+            }
+        }
+        self.neighbours = neighbours;
+        for start in starts {
+            let tour = self.descend(problem, start, 0..n, 50 * n + 10_000);
+            run.evaluate(&tour);
+        }
+        self.incumbent = run.best_solution().to_vec();
+        self.incumbent_cost = run.best_cost();
+        if n < 8 {
+            // Too few passes for a double bridge's three cuts.
+            run.declare_converged();
+        }
+    }
+
+    fn step(&mut self, run: &mut swarm::Search<OrderingProblem<'a>>) {
+        let problem = run.problem();
+        let n = self.incumbent.len();
+        let Some((kicked, [a, b, c])) = double_bridge(&self.incumbent, run.stream()) else {
+            return;
+        };
+        let touched: Vec<usize> = [0, a - 1, a, b - 1, b, c - 1, c, n - 1]
+            .iter()
+            .map(|&i| kicked[i].pass)
+            .collect();
+        let tour = self.descend(problem, kicked, touched, KICK_MOVES);
+        // Only a kick kept is handed to the Runner: a closed tour and its rotation cost the
+        // same up to float noise but fly different open routes, so the Runner's best must be
+        // the incumbent, not a tour a nanometre cheaper by summation order.
+        let cost = problem.tour_cost(&tour);
+        if cost < self.incumbent_cost - 1e-9 {
+            self.incumbent_cost = run.evaluate(&tour);
+            self.incumbent = tour;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coverage::drape::GroundPoint;
+    use crate::sequence::tour::is_permutation;
+    use crate::sequence::TransferModel;
+
+    /// Three "fields" of three parallel passes each, far apart on a line.
+    #[test]
+    fn exact_field_order_is_a_permutation_no_worse_than_the_chained_boustrophedon() {
+        let farm = crate::demo::scenario().unwrap().farm;
+        let model = TransferModel::new(&farm, 10.0);
+        let mut ends = Vec::new();
+        let mut groups = vec![Vec::new(); 3];
+        for (field, offset) in [(0, 0.0), (1, 900.0), (2, 300.0)] {
+            for line in 0..3 {
+                let x = offset + 5.0 * line as f64;
+                groups[field].push(ends.len());
+                ends.push([
+                    GroundPoint {
+                        x,
+                        y: 2000.0,
+                        ground_m: 0.0,
+                    },
+                    GroundPoint {
+                        x,
+                        y: 2100.0,
+                        ground_m: 0.0,
+                    },
+                ]);
+            }
+        }
+        for start in [
+            Start::Free,
+            Start::Fixed(GroundPoint {
+                x: -50.0,
+                y: 2000.0,
+                ground_m: 0.0,
+            }),
+        ] {
+            let problem = OrderingProblem::new(ends.clone(), start, &model);
+            let exact = exact_field_order(&problem, &groups).unwrap();
+            assert!(is_permutation(&exact, 9));
+            let chained = boustrophedon(&problem, &groups);
+            assert!(problem.tour_cost(&exact) <= problem.tour_cost(&chained) + 1e-9);
+            // From the west the best order visits the fields west to east: 0, 2, 1.
+            if let Start::Fixed(_) = start {
+                let order: Vec<usize> = exact.iter().map(|step| step.pass / 3).collect();
+                assert_eq!(order, [0, 0, 0, 2, 2, 2, 1, 1, 1]);
+            }
+        }
+    }
+
+    /// A farm of more fields than the exact constructions take: the grid construction flies
+    /// each field once as a block, and stays within a few per cent of the all-pairs one.
+    #[test]
+    fn the_grid_construction_on_a_large_farm_is_a_permutation_close_to_the_exact_one() {
+        let farm = crate::demo::scenario().unwrap().farm;
+        let model = TransferModel::new(&farm, 10.0);
+        let mut ends = Vec::new();
+        let mut groups = Vec::new();
+        let side = 34; // 1,156 fields of two passes
+        for row in 0..side {
+            for column in 0..side {
+                let mut group = Vec::new();
+                for line in 0..2 {
+                    let x = 3000.0 + 60.0 * column as f64 + 5.0 * line as f64 + (row % 3) as f64;
+                    let y = 2000.0 + 60.0 * row as f64;
+                    group.push(ends.len());
+                    ends.push([
+                        GroundPoint {
+                            x,
+                            y,
+                            ground_m: 0.0,
+                        },
+                        GroundPoint {
+                            x,
+                            y: y + 40.0,
+                            ground_m: 0.0,
+                        },
+                    ]);
+                }
+                groups.push(group);
+            }
+        }
+        assert!(groups.len() > LARGE_FARM_FIELDS);
+        let problem = OrderingProblem::new(ends, Start::Free, &model);
+        let grid = boustrophedon_by_grid(&problem, &groups);
+        assert!(is_permutation(&grid, 2 * side * side));
+        for pair in grid.chunks(2) {
+            assert_eq!(
+                pair[0].pass / 2,
+                pair[1].pass / 2,
+                "each field flown as one block"
+            );
+        }
+        // The all-pairs construction, called directly.
+        let mut all_pairs = Vec::new();
+        let mut remaining: Vec<usize> = (0..groups.len()).collect();
+        while !remaining.is_empty() {
+            let (slot, steps) = remaining
+                .iter()
+                .enumerate()
+                .flat_map(|(slot, &g)| [0, 2, 1, 3].map(|v| (slot, block_steps(&groups[g], v))))
+                .min_by(|a, b| {
+                    let cost = |steps: &Vec<Step>| match all_pairs.last() {
+                        Some(last) => problem.cost(Step::exit(last), steps[0].entry()),
+                        None => problem.cost_from_start(steps[0].entry()),
+                    };
+                    cost(&a.1).total_cmp(&cost(&b.1))
+                })
+                .unwrap();
+            remaining.remove(slot);
+            all_pairs.extend(steps);
+        }
+        let (ours, exact) = (problem.tour_cost(&grid), problem.tour_cost(&all_pairs));
+        assert!(
+            ours <= 1.05 * exact,
+            "grid {ours} against all pairs {exact}"
+        );
+    }
+}

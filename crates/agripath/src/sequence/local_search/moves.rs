@@ -1,0 +1,338 @@
+//! Step 2 of `best`: local search to a local optimum of 2-opt with end flips and Or-opt on
+//! oriented passes, driven by lists of the K nearest pass ends (see the parent module).
+
+use super::super::tour::{End, OrderingProblem, Step};
+
+/// Marker for the start point in edge costs.
+const START: End = usize::MAX;
+
+pub(super) struct Search<'a, 'b> {
+    pub(super) problem: &'a OrderingProblem<'b>,
+    pub(super) tour: Vec<Step>,
+    pub(super) position: Vec<usize>,
+    pub(super) neighbours: &'a [Vec<End>],
+    /// The group (field) of each pass.
+    pub(super) groups: &'a [usize],
+    pub(super) closed: bool,
+}
+
+impl Search<'_, '_> {
+    fn edge(&self, from: Option<End>, to: Option<End>) -> f64 {
+        match (from, to) {
+            (Some(START), Some(to)) => self.problem.cost_from_start(to),
+            (Some(from), Some(to)) => self.problem.cost(from, to),
+            _ => 0.0,
+        }
+    }
+
+    /// The end the flight comes from before position `p`.
+    fn previous(&self, p: usize) -> Option<End> {
+        if p > 0 {
+            Some(self.tour[p - 1].exit())
+        } else if self.closed {
+            Some(self.tour[self.tour.len() - 1].exit())
+        } else {
+            Some(START)
+        }
+    }
+
+    /// The end the flight goes to after position `q`.
+    fn next(&self, q: usize) -> Option<End> {
+        if q + 1 < self.tour.len() {
+            Some(self.tour[q + 1].entry())
+        } else if self.closed {
+            Some(self.tour[0].entry())
+        } else {
+            None
+        }
+    }
+
+    pub(super) fn reindex(&mut self) {
+        for (index, step) in self.tour.iter().enumerate() {
+            self.position[step.pass] = index;
+        }
+    }
+
+    /// Gain of reversing positions p..=q (positive = cheaper).
+    fn reversal_gain(&self, p: usize, q: usize) -> f64 {
+        let n = self.tour.len();
+        if self.closed && p == 0 && q == n - 1 {
+            return 0.0;
+        }
+        let (before, after) = (self.previous(p), self.next(q));
+        let old = self.edge(before, Some(self.tour[p].entry()))
+            + self.edge(Some(self.tour[q].exit()), after);
+        let new = self.edge(before, Some(self.tour[q].exit()))
+            + self.edge(Some(self.tour[p].entry()), after);
+        old - new
+    }
+
+    fn reverse(&mut self, p: usize, q: usize) {
+        self.tour[p..=q].reverse();
+        for step in &mut self.tour[p..=q] {
+            *step = step.flipped();
+        }
+        self.reindex();
+    }
+
+    /// The best 2-opt move at the transfer into position `p`, applied if it improves the
+    /// tour. Returns the range reversed.
+    fn two_opt_at(&mut self, p: usize) -> Option<(usize, usize)> {
+        let mut candidates: Vec<(usize, usize)> = vec![(p, p)];
+        if let Some(before) = self.previous(p).filter(|end| *end != START) {
+            for &end in &self.neighbours[before] {
+                let q = self.position[end / 2];
+                if q > p && self.tour[q].exit() == end {
+                    candidates.push((p, q));
+                }
+            }
+        }
+        for &end in &self.neighbours[self.tour[p].entry()] {
+            let q = self.position[end / 2];
+            if q < p && self.tour[q].entry() == end {
+                candidates.push((q, p - 1));
+            }
+        }
+        let (gain, from, to) = candidates
+            .into_iter()
+            .map(|(from, to)| (self.reversal_gain(from, to), from, to))
+            .max_by(|a, b| a.0.total_cmp(&b.0))?;
+        (gain > 1e-9).then(|| {
+            self.reverse(from, to);
+            (from, to)
+        })
+    }
+
+    /// The best Or-opt move of a chain of 1-3 passes starting at position `i`, applied if it
+    /// improves the tour. Returns the positions the chain now occupies.
+    fn or_opt_at(&mut self, i: usize) -> Option<(usize, usize)> {
+        let n = self.tour.len();
+        if n < 3 {
+            return None;
+        }
+        let mut best: Option<(f64, usize, usize, bool)> = None;
+        // Chains of 1-3 passes, and the whole run of passes of the same field from `i`: moving
+        // a field's block (either way round) reorders the fields without undoing their
+        // boustrophedon.
+        let block_end = (i..n)
+            .take_while(|&k| self.groups[self.tour[k].pass] == self.groups[self.tour[i].pass])
+            .last()
+            .unwrap_or(i);
+        // And chains [i, q) whose removal joins the flight before i to a near end at q: the
+        // or-3opt segment moves that short chains cannot make.
+        let mut lengths: Vec<usize> = (1..=3usize)
+            .chain(std::iter::once(block_end + 1 - i))
+            .collect();
+        if let Some(before) = self.previous(i).filter(|end| *end != START) {
+            for &end in &self.neighbours[before] {
+                let q = self.position[end / 2];
+                if q > i + 3 && self.tour[q].entry() == end && q - i <= n / 2 {
+                    lengths.push(q - i);
+                }
+            }
+        }
+        for length in lengths {
+            let j = i + length - 1;
+            if j >= n || (self.closed && length >= n) {
+                continue;
+            }
+            if let Some((gain, insert_at, reversed)) = self.best_insertion(i, j) {
+                if best.is_none_or(|(best_gain, ..)| gain > best_gain) {
+                    best = Some((gain, j, insert_at, reversed));
+                }
+            }
+        }
+        let (gain, j, insert_at, reversed) = best?;
+        if gain <= 1e-9 {
+            return None;
+        }
+        let length = j - i + 1;
+        let mut chain: Vec<Step> = self.tour.drain(i..=j).collect();
+        if reversed {
+            chain.reverse();
+            chain.iter_mut().for_each(|step| *step = step.flipped());
+        }
+        // `insert_at` indexes the tour before removal.
+        let at = if insert_at > j {
+            insert_at - length
+        } else {
+            insert_at
+        };
+        self.tour.splice(at..at, chain);
+        self.reindex();
+        Some((at, at + length - 1))
+    }
+
+    /// Best place to move chain i..=j to: (gain, insertion index before removal, reversed).
+    fn best_insertion(&self, i: usize, j: usize) -> Option<(f64, usize, bool)> {
+        let n = self.tour.len();
+        if self.closed && i == 0 && j == n - 1 {
+            return None;
+        }
+        let (before, after) = (self.previous(i), self.next(j));
+        let entry = self.tour[i].entry();
+        let exit = self.tour[j].exit();
+        let removed = self.edge(before, Some(entry)) + self.edge(Some(exit), after)
+            - self.edge(before, after);
+        let mut best: Option<(f64, usize, bool)> = None;
+        let mut consider = |k: usize, this: &Self| {
+            // Insert before position k (k == n: at the end). Positions i..=j+1 change nothing.
+            if (i..=j + 1).contains(&k) {
+                return;
+            }
+            let left = if k == 0 {
+                this.previous(0)
+            } else {
+                Some(this.tour[k - 1].exit())
+            };
+            let right = if k < n {
+                Some(this.tour[k].entry())
+            } else {
+                this.next(n - 1)
+            };
+            if this.closed && k == 0 {
+                return; // the same gap as k == n
+            }
+            let base = this.edge(left, right);
+            for (reversed, first, last) in [(false, entry, exit), (true, exit, entry)] {
+                let added = this.edge(left, Some(first)) + this.edge(Some(last), right) - base;
+                let gain = removed - added;
+                if best.is_none_or(|(best_gain, _, _)| gain > best_gain) {
+                    best = Some((gain, k, reversed));
+                }
+            }
+        };
+        for &end in self.neighbours[entry].iter().chain(&self.neighbours[exit]) {
+            let q = self.position[end / 2];
+            consider(q, self);
+            consider(q + 1, self);
+        }
+        best
+    }
+
+    /// Local search to a local optimum, looking only around `active` passes and around
+    /// every move made (don't-look bits): a kick costs work near its cuts, not a whole sweep.
+    pub(super) fn descend(&mut self, active: impl IntoIterator<Item = usize>, mut budget: usize) {
+        let n = self.tour.len();
+        let mut queued = vec![false; n];
+        let mut queue: Vec<usize> = Vec::new();
+        let wake = |pass: usize, queue: &mut Vec<usize>, queued: &mut Vec<bool>| {
+            if !queued[pass] {
+                queued[pass] = true;
+                queue.push(pass);
+            }
+        };
+        for pass in active {
+            wake(pass, &mut queue, &mut queued);
+        }
+        while let Some(pass) = queue.pop() {
+            queued[pass] = false;
+            if budget == 0 {
+                break;
+            }
+            budget -= 1;
+            let p = self.position[pass];
+            let mut changed = self.two_opt_at(p);
+            if changed.is_none() && p + 1 < n {
+                changed = self.two_opt_at(p + 1);
+            }
+            if changed.is_none() {
+                changed = self.or_opt_at(p);
+            }
+            if let Some((from, to)) = changed {
+                for position in [from.saturating_sub(1), from, to, (to + 1).min(n - 1)] {
+                    let touched = self.tour[position].pass;
+                    wake(touched, &mut queue, &mut queued);
+                }
+                wake(pass, &mut queue, &mut queued);
+            }
+        }
+    }
+}
+
+/// For every end, its `count` nearest ends that `accept(end, other)` lets through, by planar
+/// distance, through a uniform grid.
+pub(super) fn nearest_ends(
+    problem: &OrderingProblem,
+    count: usize,
+    accept: impl Fn(End, End) -> bool,
+) -> Vec<Vec<End>> {
+    let ends = 2 * problem.passes();
+    let points: Vec<(f64, f64)> = (0..ends)
+        .map(|end| {
+            let point = problem.point(end);
+            (point.x, point.y)
+        })
+        .collect();
+    let (mut min_x, mut min_y, mut max_x, mut max_y) = (f64::MAX, f64::MAX, f64::MIN, f64::MIN);
+    for &(x, y) in &points {
+        min_x = min_x.min(x);
+        min_y = min_y.min(y);
+        max_x = max_x.max(x);
+        max_y = max_y.max(y);
+    }
+    let span = (max_x - min_x).max(max_y - min_y).max(1e-9);
+    let cells_per_side = ((ends as f64 / 4.0).sqrt().ceil() as usize).max(1);
+    let cell = span / cells_per_side as f64 * (1.0 + 1e-9);
+    let index = |x: f64, y: f64| {
+        (
+            (((x - min_x) / cell) as usize).min(cells_per_side - 1),
+            (((y - min_y) / cell) as usize).min(cells_per_side - 1),
+        )
+    };
+    let mut grid: Vec<Vec<End>> = vec![Vec::new(); cells_per_side * cells_per_side];
+    for (end, &(x, y)) in points.iter().enumerate() {
+        let (column, row) = index(x, y);
+        grid[row * cells_per_side + column].push(end);
+    }
+    (0..ends)
+        .map(|end| {
+            let (x, y) = points[end];
+            let (column, row) = index(x, y);
+            let mut found: Vec<(f64, End)> = Vec::new();
+            let mut ring = 0usize;
+            loop {
+                let low_c = column.saturating_sub(ring);
+                let high_c = (column + ring).min(cells_per_side - 1);
+                let low_r = row.saturating_sub(ring);
+                let high_r = (row + ring).min(cells_per_side - 1);
+                for r in low_r..=high_r {
+                    for c in low_c..=high_c {
+                        if r.abs_diff(row) != ring && c.abs_diff(column) != ring {
+                            continue; // inner cells were searched in earlier rings
+                        }
+                        for &other in &grid[r * cells_per_side + c] {
+                            if accept(end, other) {
+                                let (ox, oy) = points[other];
+                                found.push(((ox - x).hypot(oy - y), other));
+                            }
+                        }
+                    }
+                }
+                // Only the `count` nearest so far can end in the answer: later rings are farther
+                // than everything already searched.
+                let by_distance =
+                    |a: &(f64, End), b: &(f64, End)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
+                if found.len() > count {
+                    found.select_nth_unstable_by(count - 1, by_distance);
+                    found.truncate(count);
+                }
+                // Everything within `ring` cells is now known.
+                let covered = ring as f64 * cell;
+                let complete =
+                    found.len() >= count && found.iter().all(|(distance, _)| *distance <= covered);
+                let exhausted = low_c == 0
+                    && low_r == 0
+                    && high_c == cells_per_side - 1
+                    && high_r == cells_per_side - 1;
+                if complete || exhausted {
+                    break;
+                }
+                ring += 1;
+            }
+            found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+            found.into_iter().map(|(_, other)| other).collect()
+        })
+        .collect()
+}
+
