@@ -75,7 +75,7 @@ pub enum Command {
         /// Which field, by name (default: the first).
         #[arg(long)]
         field: Option<String>,
-        #[arg(long, default_value = "ours", value_parser = ["ours", "hpso", "baseline"])]
+        #[arg(long, default_value = "ours", value_parser = agripath::grid_cover::GRID_METHODS)]
         method: String,
         /// Path-point spacing = swath width, metres (default: the file's `swath_width_m`, else 5).
         #[arg(long, allow_negative_numbers = true)]
@@ -233,7 +233,7 @@ pub struct CoverageArgs {
 #[derive(Debug, Args)]
 pub struct OrderArgs {
     /// `best` (ours: local search), `greedy` or `aco` (seed 001's ant colony).
-    #[arg(long, default_value = "best", value_parser = ["best", "greedy", "aco"])]
+    #[arg(long, default_value = "best", value_parser = agripath::sequence::Sequencer::KEYS)]
     pub sequencer: String,
     /// Launch point X,Y in the input's coordinates (lon,lat or local metres); default: the
     /// field file's `launch`/`supply` marker, else a free start (closed tour).

@@ -21,6 +21,70 @@ mod render;
 
 pub use render::{render, routes_svg};
 
+/// A way to cover a grid of path points: the one signature every grid method has. The route
+/// visits every valid point once ([`GridRoute::visits_every_point_once`]).
+pub trait GridMethod {
+    /// The name on the command line and in `report.json`.
+    fn key(&self) -> &'static str;
+    /// The route over `grid`.
+    fn plan(&self, grid: &PointGrid) -> GridRoute;
+}
+
+/// Ours: cells, the best sweep direction per cell, runs joined to save turns.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct FewestTurns;
+
+impl GridMethod for FewestTurns {
+    fn key(&self) -> &'static str {
+        "ours"
+    }
+
+    fn plan(&self, grid: &PointGrid) -> GridRoute {
+        fewest_turns::plan(grid)
+    }
+}
+
+/// The baseline: boustrophedon cells in a fixed order.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Boustrophedon;
+
+impl GridMethod for Boustrophedon {
+    fn key(&self) -> &'static str {
+        "baseline"
+    }
+
+    fn plan(&self, grid: &PointGrid) -> GridRoute {
+        boustrophedon::plan(grid)
+    }
+}
+
+impl GridMethod for hybrid_pso::HpsoSettings {
+    fn key(&self) -> &'static str {
+        "hpso"
+    }
+
+    fn plan(&self, grid: &PointGrid) -> GridRoute {
+        hybrid_pso::plan(grid, self).0
+    }
+}
+
+/// The grid methods' names, default first.
+pub const GRID_METHODS: [&str; 3] = ["ours", "hpso", "baseline"];
+
+/// The registry of grid methods: the method called `key` (seeded with `seed` where it is
+/// stochastic), or `None` for an unknown name.
+pub fn grid_method(key: &str, seed: u64) -> Option<Box<dyn GridMethod>> {
+    match key {
+        "ours" => Some(Box::new(FewestTurns)),
+        "baseline" => Some(Box::new(Boustrophedon)),
+        "hpso" => Some(Box::new(hybrid_pso::HpsoSettings {
+            seed,
+            ..Default::default()
+        })),
+        _ => None,
+    }
+}
+
 use std::collections::VecDeque;
 
 use geo::{Contains, Coord, Intersects, Line, Point, Polygon};

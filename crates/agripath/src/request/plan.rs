@@ -7,8 +7,6 @@ use crate::coverage::CoverageSettings;
 use crate::mission::flight::{AltitudeReference, MissionSettings, SprayerCommand};
 use crate::pipeline::{plan_mission, PlannedMission};
 use crate::scenario::Scenario;
-use crate::sequence::ant_colony::AntColonySettings;
-use crate::sequence::local_search::LocalSearchSettings;
 use crate::sequence::Sequencer;
 use crate::settings::PlanSettings;
 use crate::sortie::SortieSettings;
@@ -160,24 +158,13 @@ impl PlanOptions {
                 ));
             }
         }
-        match self.sequencer.as_str() {
-            "greedy" => Ok(Sequencer::Greedy),
-            "aco" => Ok(Sequencer::AntColony(AntColonySettings {
-                ants: self.ants,
-                batches: self.batches,
-                seed: self.seed,
-                ..AntColonySettings::default()
-            })),
-            "best" => Ok(Sequencer::Best(LocalSearchSettings {
-                seed: self.seed,
-                ..LocalSearchSettings::default()
-            })),
-            other => Err(bad_value(
+        Sequencer::from_key(&self.sequencer, self.seed, self.ants, self.batches).ok_or_else(|| {
+            bad_value(
                 "--sequencer",
-                other,
-                "expected best, greedy or aco",
-            )),
-        }
+                &self.sequencer,
+                &format!("expected {}", Sequencer::KEYS.join(", ")),
+            )
+        })
     }
 
     /// The mission-file options, checked.

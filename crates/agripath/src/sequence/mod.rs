@@ -17,7 +17,7 @@ use crate::coverage::drape::GroundPoint;
 use crate::coverage::CoveragePlan;
 use ant_colony::{ant_colony, AntColonySettings};
 use local_search::{best_tour, LocalSearchSettings};
-use tour::{is_permutation, OrderingProblem, Start, Step};
+use tour::{OrderingProblem, Start, Step};
 pub use transfer::{Transfer, TransferModel};
 
 /// A pass of the plan.
@@ -119,14 +119,96 @@ fn reverses(points: &[GroundPoint], next: &[GroundPoint]) -> bool {
     a.0 * b.0 + a.1 * b.1 < -0.99
 }
 
-/// Which sequencer orders the passes.
+/// A way to order the passes: the one signature every sequencer has. `groups` lists the
+/// passes of each field (edge passes, then swaths by scan line), for the constructions that
+/// fly a field as a block. The result is a tour of every pass once ([`tour::check_order`]).
+pub trait OrderPasses {
+    /// The name on the command line and in `report.json`.
+    fn key(&self) -> &'static str;
+    /// The tour of `problem`'s passes.
+    fn order(&self, problem: &OrderingProblem, groups: &[Vec<usize>]) -> Vec<Step>;
+}
+
+/// Seed 001's baseline: the nearest unflown pass end next ([`greedy::greedy`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Greedy;
+
+impl OrderPasses for Greedy {
+    fn key(&self) -> &'static str {
+        "greedy"
+    }
+
+    fn order(&self, problem: &OrderingProblem, _groups: &[Vec<usize>]) -> Vec<Step> {
+        greedy::greedy(problem)
+    }
+}
+
+impl OrderPasses for AntColonySettings {
+    fn key(&self) -> &'static str {
+        "aco"
+    }
+
+    fn order(&self, problem: &OrderingProblem, _groups: &[Vec<usize>]) -> Vec<Step> {
+        ant_colony(problem, self).0
+    }
+}
+
+impl OrderPasses for LocalSearchSettings {
+    fn key(&self) -> &'static str {
+        "best"
+    }
+
+    fn order(&self, problem: &OrderingProblem, groups: &[Vec<usize>]) -> Vec<Step> {
+        best_tour(problem, groups, self)
+    }
+}
+
+/// Which sequencer orders the passes, with its settings: the registry of [`OrderPasses`]
+/// implementations (a new sequencer is its file, its variant and its arm in
+/// [`Sequencer::sequencer`] and [`Sequencer::from_key`]).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(tag = "sequencer", rename_all = "snake_case")]
 pub enum Sequencer {
+    /// [`Greedy`].
     Greedy,
+    /// Seed 001's improved ant colony ([`ant_colony`]).
     #[serde(rename = "aco")]
     AntColony(AntColonySettings),
+    /// Ours: constructions, local search, iterated kicks ([`local_search`]).
     Best(LocalSearchSettings),
+}
+
+impl Sequencer {
+    /// The names [`Sequencer::from_key`] knows, default first.
+    pub const KEYS: [&'static str; 3] = ["best", "greedy", "aco"];
+
+    /// The sequencer called `key`, seeded with `seed`; the ant colony flies `ants` ants for
+    /// `batches` batches. `None` for an unknown name.
+    pub fn from_key(key: &str, seed: u64, ants: usize, batches: usize) -> Option<Self> {
+        match key {
+            "greedy" => Some(Sequencer::Greedy),
+            "aco" => Some(Sequencer::AntColony(AntColonySettings {
+                ants,
+                batches,
+                seed,
+                ..AntColonySettings::default()
+            })),
+            "best" => Some(Sequencer::Best(LocalSearchSettings {
+                seed,
+                ..LocalSearchSettings::default()
+            })),
+            _ => None,
+        }
+    }
+
+    /// The sequencer itself.
+    pub fn sequencer(&self) -> &dyn OrderPasses {
+        match self {
+            Sequencer::Greedy => &Greedy,
+            Sequencer::AntColony(settings) => settings,
+            Sequencer::Best(settings) => settings,
+        }
+    }
 }
 
 impl Default for Sequencer {
@@ -196,12 +278,8 @@ pub fn route(
             Pass::Swath { swath, .. } => (1, plan.fields[field].swaths[swath].line),
         });
     }
-    let tour: Vec<Step> = match sequencer {
-        Sequencer::Greedy => greedy::greedy(&problem),
-        Sequencer::AntColony(settings) => ant_colony(&problem, settings).0,
-        Sequencer::Best(settings) => best_tour(&problem, &groups, settings),
-    };
-    debug_assert!(is_permutation(&tour, passes.len()));
+    let tour: Vec<Step> = sequencer.sequencer().order(&problem, &groups);
+    debug_assert_eq!(tour::check_order(&tour, passes.len()), Ok(()));
     let tour_cost_m = problem.tour_cost(&tour);
     let visits: Vec<Visit> = tour
         .iter()
@@ -243,6 +321,7 @@ mod tests {
     use super::*;
     use crate::coverage::{plan_coverage, CoverageSettings};
     use proptest::prelude::*;
+    use tour::is_permutation;
 
     fn demo_plan(headland: usize) -> (crate::scenario::Scenario, CoveragePlan) {
         let scenario = crate::demo::scenario().unwrap();

@@ -12,7 +12,7 @@ pub(super) fn grid(
     seed: u64,
     out: &Path,
 ) -> Result<(), Failure> {
-    use agripath::grid_cover::{boustrophedon, fewest_turns, hybrid_pso, PointGrid};
+    use agripath::grid_cover::PointGrid;
     let choice = if local {
         CoordinateChoice::Local
     } else {
@@ -40,17 +40,17 @@ pub(super) fn grid(
     let grid =
         PointGrid::new(&farm, index, width).map_err(|fault| InputError::new(fields, fault))?;
     let started = std::time::Instant::now();
-    let route = match method {
-        "hpso" => {
-            let settings = hybrid_pso::HpsoSettings {
-                seed,
-                ..Default::default()
-            };
-            hybrid_pso::plan(&grid, &settings).0
-        }
-        "baseline" => boustrophedon::plan(&grid),
-        _ => fewest_turns::plan(&grid),
-    };
+    let planner = agripath::grid_cover::grid_method(method, seed).ok_or_else(|| {
+        InputError::new(
+            "--method",
+            Fault::InvalidValue {
+                what: "--method".into(),
+                value: method.into(),
+                why: format!("expected {}", agripath::grid_cover::GRID_METHODS.join(", ")),
+            },
+        )
+    })?;
+    let route = planner.plan(&grid);
     let runtime_s = started.elapsed().as_secs_f64();
     // The grid route's preflight: a move that crosses an obstacle is not flown.
     let crossings = route.measure(&grid).crossings;

@@ -335,4 +335,3 @@ pub(super) fn nearest_ends(
         })
         .collect()
 }
-
