@@ -162,7 +162,7 @@ impl PlanOptions {
             bad_value(
                 "--sequencer",
                 &self.sequencer,
-                &format!("expected {}", Sequencer::KEYS.join(", ")),
+                format!("expected {}", Sequencer::KEYS.join(", ")),
             )
         })
     }
