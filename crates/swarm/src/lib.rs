@@ -23,7 +23,8 @@
 //!   evaluation counting; convergence history; one seeded stream per run (MISSION.md
 //!   decision 10); parallel runs equal to serial ones;
 //! - [`functions`]: seed 000 Table 1, with the official CEC 2005 data;
-//! - [`conformance`]: the checks every optimizer passes.
+//! - [`conformance`]: the checks every optimizer passes;
+//! - [`statistics`]: best, worst, mean and deviation of runs, for every table.
 
 pub mod algorithms;
 pub mod conformance;
@@ -31,6 +32,7 @@ pub mod functions;
 pub mod problem;
 pub mod random;
 pub mod runner;
+pub mod statistics;
 
 pub use algorithms::Algorithm;
 pub use problem::{as_solution, Bounds, BoundsError, BoxProblem, FnProblem, Problem, SolutionOf};

@@ -195,17 +195,12 @@ impl Cell {
     ) -> Self {
         let finals: Vec<f64> = outcomes.iter().map(|o| o.best_cost).collect();
         let count = finals.len() as f64;
-        let mean = finals.iter().sum::<f64>() / count;
-        let variance = if finals.len() > 1 {
-            finals.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / (count - 1.0)
-        } else {
-            0.0
-        };
+        let spread = swarm::statistics::Spread::of(&finals);
         let statistics = Statistics {
-            best: finals.iter().copied().fold(f64::INFINITY, f64::min),
-            worst: finals.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-            mean,
-            standard_deviation: variance.sqrt(),
+            best: spread.best,
+            worst: spread.worst,
+            mean: spread.mean,
+            standard_deviation: spread.standard_deviation,
             mean_seconds: outcomes
                 .iter()
                 .map(|o| o.elapsed.as_secs_f64())

@@ -360,14 +360,13 @@ impl RunStatistics {
 /// The statistics of `runs` (final costs, as [`TrackRun::final_cost`] gives them).
 pub fn statistics(runs: &[TrackRun]) -> RunStatistics {
     let costs: Vec<f64> = runs.iter().map(TrackRun::final_cost).collect();
+    let spread = swarm::statistics::Spread::of(&costs);
     let count = costs.len().max(1) as f64;
-    let mean = costs.iter().sum::<f64>() / count;
-    let variance = costs.iter().map(|c| (c - mean).powi(2)).sum::<f64>() / (count - 1.0).max(1.0);
     RunStatistics {
-        best: costs.iter().copied().fold(f64::INFINITY, f64::min),
-        worst: costs.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-        mean,
-        standard_deviation: variance.sqrt(),
+        best: spread.best,
+        worst: spread.worst,
+        mean: spread.mean,
+        standard_deviation: spread.standard_deviation,
         safe_runs: runs.iter().filter(|run| run.is_safe()).count(),
         runs: runs.len(),
         mean_seconds: runs
