@@ -307,13 +307,57 @@ pub fn plan_sorties(
         return Ok(model.evaluate(route, planner, vec![]));
     }
     unreachable_points(route, model)?;
-    let breaks = match planner {
-        SortiePlanner::Unplanned => unplanned::breaks(route, model)?,
-        SortiePlanner::Simple => simple::breaks(route, model)?,
-        SortiePlanner::Gsa => gsa::search(route, model, &gsa::GsaSettings::default(), seed)?.breaks,
-        SortiePlanner::Exact => exact::breaks(route, model)?,
-    };
+    let breaks = planner.breaker().breaks(route, model, seed)?;
     Ok(model.evaluate(route, planner, breaks))
+}
+
+/// A way to split a route into sorties: the one signature every sortie planner has. The
+/// result is the indices of the route points after which the vehicle returns to refill.
+pub trait BreakRoute {
+    /// The points after which the vehicle returns; `seed` drives the stochastic planners.
+    fn breaks(
+        &self,
+        route: &WorkRoute,
+        model: &SortieModel,
+        seed: u64,
+    ) -> Result<Vec<usize>, Fault>;
+}
+
+/// The planner functions of [`SortiePlanner`]'s variants.
+struct Planned(fn(&WorkRoute, &SortieModel) -> Result<Vec<usize>, Fault>);
+
+impl BreakRoute for Planned {
+    fn breaks(
+        &self,
+        route: &WorkRoute,
+        model: &SortieModel,
+        _seed: u64,
+    ) -> Result<Vec<usize>, Fault> {
+        (self.0)(route, model)
+    }
+}
+
+impl BreakRoute for gsa::GsaSettings {
+    fn breaks(
+        &self,
+        route: &WorkRoute,
+        model: &SortieModel,
+        seed: u64,
+    ) -> Result<Vec<usize>, Fault> {
+        Ok(gsa::search(route, model, self, seed)?.breaks)
+    }
+}
+
+impl SortiePlanner {
+    /// The planner itself: the registry of [`BreakRoute`] implementations.
+    pub fn breaker(self) -> Box<dyn BreakRoute> {
+        match self {
+            SortiePlanner::Unplanned => Box::new(Planned(unplanned::breaks)),
+            SortiePlanner::Simple => Box::new(Planned(simple::breaks)),
+            SortiePlanner::Gsa => Box::new(gsa::GsaSettings::default()),
+            SortiePlanner::Exact => Box::new(Planned(exact::breaks)),
+        }
+    }
 }
 
 /// Refuses routes where one step already cannot be flown on one tank and one battery.
