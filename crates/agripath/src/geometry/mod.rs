@@ -9,6 +9,23 @@ pub use projection::{from_utm, mean_longitude, to_utm, wrap_longitude, UtmZone};
 
 use geo::{Coord, Polygon};
 
+/// Changes of direction at the vertices of `polyline` sharper than `tolerance_rad` (MISSION.md
+/// decision 5: every angle counts, so a tolerance only absorbs float noise or draping
+/// wiggles). The one turn counter of the coverage routes and the grid routes.
+pub fn turn_count(polyline: &[Coord<f64>], tolerance_rad: f64) -> usize {
+    polyline
+        .windows(3)
+        .filter(|triple| {
+            let (a, b, c) = (triple[0], triple[1], triple[2]);
+            let incoming = (b.x - a.x, b.y - a.y);
+            let outgoing = (c.x - b.x, c.y - b.y);
+            let cross = incoming.0 * outgoing.1 - incoming.1 * outgoing.0;
+            let dot = incoming.0 * outgoing.0 + incoming.1 * outgoing.1;
+            cross.atan2(dot).abs() > tolerance_rad
+        })
+        .count()
+}
+
 /// The rings of a polygon, shell first, as closed point lists.
 pub fn rings(polygon: &Polygon<f64>) -> impl Iterator<Item = &[Coord<f64>]> {
     std::iter::once(polygon.exterior())

@@ -426,16 +426,8 @@ impl GridRoute {
             let length = dx.hypot(dy);
             (dx / length, dy / length)
         };
-        for triple in line.windows(3) {
-            let (u, v) = (
-                direction(triple[0], triple[1]),
-                direction(triple[1], triple[2]),
-            );
-            let cross = u.0 * v.1 - u.1 * v.0;
-            if cross.abs() > 1e-9 || u.0 * v.0 + u.1 * v.1 < 0.0 {
-                measure.turns += 1;
-            }
-        }
+        // Lattice moves: any change of direction at all is a turn.
+        measure.turns = crate::geometry::turn_count(&line, 1e-9);
         // A U-turn: a run, a sideways step, a run back.
         for quad in line.windows(4) {
             let (u, w) = (direction(quad[0], quad[1]), direction(quad[2], quad[3]));

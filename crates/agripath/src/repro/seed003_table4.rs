@@ -15,7 +15,7 @@ use serde::Serialize;
 use crate::error::{Fault, InputError, TerrainError};
 use crate::input::{geojson, CoordinateChoice};
 use crate::model::Vehicle;
-use crate::sortie::grid::{Grid, GridRoute};
+use crate::sortie::grid::{Grid, MotionRoute};
 use crate::sortie::gsa::{self, GsaSettings};
 use crate::sortie::route::{RoutePoint, Speeds};
 use crate::sortie::{plan_sorties, SortieModel, SortiePlan, SortiePlanner};
@@ -97,7 +97,7 @@ pub struct Case {
 }
 
 /// The strip, the drone and the grid route over `terrain`.
-pub fn strip_route(terrain: &dyn Terrain) -> Result<(GridRoute, SortieModel), InputError> {
+pub fn strip_route(terrain: &dyn Terrain) -> Result<(MotionRoute, SortieModel), InputError> {
     let farm = geojson::parse(
         Path::new(STRIP_LABEL),
         STRIP_GEOJSON,

@@ -89,17 +89,8 @@ impl Route {
                 }
             }
         }
-        let turns = polyline
-            .windows(3)
-            .filter(|triple| {
-                let (a, b, c) = (triple[0], triple[1], triple[2]);
-                let incoming = (b.x - a.x, b.y - a.y);
-                let outgoing = (c.x - b.x, c.y - b.y);
-                let cross = incoming.0 * outgoing.1 - incoming.1 * outgoing.0;
-                let dot = incoming.0 * outgoing.0 + incoming.1 * outgoing.1;
-                cross.atan2(dot).abs() > 1f64.to_radians()
-            })
-            .count();
+        // 1°: draped points wiggle by float noise along a straight swath.
+        let turns = crate::geometry::turn_count(&polyline, 1f64.to_radians());
         (turns, u_turns)
     }
 }

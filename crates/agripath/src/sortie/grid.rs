@@ -51,7 +51,7 @@ pub struct Grid {
 
 /// The route flown by the motion rule over a grid.
 #[derive(Debug, Clone)]
-pub struct GridRoute {
+pub struct MotionRoute {
     /// The grid the route was flown over.
     pub grid: Grid,
     /// Cell indices in flight order.
@@ -142,7 +142,7 @@ impl Grid {
     }
 
     /// Flies the motion rule from the workable cell nearest `supply`.
-    pub fn fly(self, supply: Coord<f64>, speeds: Speeds) -> Result<GridRoute, Fault> {
+    pub fn fly(self, supply: Coord<f64>, speeds: Speeds) -> Result<MotionRoute, Fault> {
         let start = (0..self.workable.len())
             .filter(|&i| self.workable[i])
             .min_by(|&a, &b| {
@@ -229,7 +229,7 @@ impl Grid {
             })
             .collect();
         let route = WorkRoute::new(points, segments, None, speeds);
-        Ok(GridRoute {
+        Ok(MotionRoute {
             grid: self,
             cells,
             route,
