@@ -96,9 +96,13 @@ use crate::model::Farm;
 /// The path points of one field.
 #[derive(Debug, Clone)]
 pub struct PointGrid {
+    /// Side of a cell (the swath width), metres.
     pub cell_m: f64,
+    /// Cells along x.
     pub columns: usize,
+    /// Cells along y.
     pub rows: usize,
+    /// The south-west corner of the grid (the field's bounding box), plan metres.
     pub origin: Coord<f64>,
     /// Row-major (index = row · columns + column): whether the point is valid.
     pub valid: Vec<bool>,
@@ -218,6 +222,7 @@ impl PointGrid {
         Ok(grid)
     }
 
+    /// The centre of point `index`, plan metres.
     pub fn centre(&self, index: usize) -> Coord<f64> {
         Coord {
             x: self.origin.x + ((index % self.columns) as f64 + 0.5) * self.cell_m,
@@ -363,17 +368,22 @@ impl PointGrid {
 /// point and the next (empty for a direct move).
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct GridRoute {
+    /// Point indices (row · columns + column) in visiting order.
     pub visits: Vec<usize>,
+    /// For each move, the transit vertices between the two points, plan metres.
     pub via: Vec<Vec<[f64; 2]>>,
 }
 
 /// What a route costs, as seed 004 and operators count it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct RouteMeasure {
+    /// Changes of direction along the flown polyline (MISSION.md decision 5).
     pub turns: usize,
+    /// Runs followed by a sideways step and a run back.
     pub u_turns: usize,
     /// Length of the moves that are not between 4-neighbours (incl. transits), metres.
     pub non_spray_m: f64,
+    /// Length of the whole route, metres.
     pub length_m: f64,
     /// Moves that cross an obstacle or leave the field (0 for a valid route).
     pub crossings: usize,
@@ -412,6 +422,7 @@ impl GridRoute {
         line
     }
 
+    /// Turns, U-turns, lengths and crossings of the route over `grid`.
     pub fn measure(&self, grid: &PointGrid) -> RouteMeasure {
         let line = self.polyline(grid);
         let mut measure = RouteMeasure {

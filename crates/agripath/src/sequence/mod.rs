@@ -25,14 +25,25 @@ pub use transfer::{Transfer, TransferModel};
 #[serde(tag = "kind", rename_all = "snake_case")]
 pub enum Pass {
     /// Interior swath `swath` of field `field`.
-    Swath { field: usize, swath: usize },
+    Swath {
+        /// The field's index.
+        field: usize,
+        /// The swath's index in the field.
+        swath: usize,
+    },
     /// Edge pass `edge` of field `field`.
-    Edge { field: usize, edge: usize },
+    Edge {
+        /// The field's index.
+        field: usize,
+        /// The edge pass's index in the field.
+        edge: usize,
+    },
 }
 
 /// One pass in flight order.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Visit {
+    /// Which pass.
     pub pass: Pass,
     /// The points in the direction flown.
     pub points: Vec<GroundPoint>,
@@ -42,9 +53,13 @@ pub struct Visit {
 /// between them (`transfers[i]` leads from `visits[i]` to `visits[i + 1]`), and the leg home.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Route {
+    /// From the launch point to the first pass, when there is one.
     pub launch: Option<Transfer>,
+    /// The passes in flight order.
     pub visits: Vec<Visit>,
+    /// `transfers[i]` leads from `visits[i]` to `visits[i + 1]`.
     pub transfers: Vec<Transfer>,
+    /// From the last pass back to the launch point, when there is one.
     pub home: Option<Transfer>,
     /// The tour cost the sequencer minimised: from the start point (without the leg home), or
     /// the closed tour for a free start (seed 001's Table 8 measure), metres.
@@ -60,6 +75,7 @@ impl Route {
             .chain(self.home.iter())
     }
 
+    /// Length of every leg flown between passes, metres.
     pub fn transfer_length_m(&self) -> f64 {
         self.legs().map(|leg| leg.cost_m).sum()
     }

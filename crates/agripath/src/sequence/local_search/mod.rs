@@ -41,10 +41,12 @@ const NEIGHBOURS: usize = 10;
 /// Greedy construction is O(n²) cost evaluations per start; above this it is skipped.
 const GREEDY_LIMIT: usize = 1000;
 
+/// `best`'s settings.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct LocalSearchSettings {
     /// Double-bridge kicks of the iterated local search.
     pub kicks: usize,
+    /// Seed of the kicks (run 0 of this seed).
     pub seed: u64,
 }
 
