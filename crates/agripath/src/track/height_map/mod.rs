@@ -219,10 +219,12 @@ impl HeightMap {
         )
     }
 
+    /// The spacing between neighbouring centres, plan metres.
     pub fn cell(&self) -> f64 {
         self.cell
     }
 
+    /// How heights between centres are read.
     pub fn sampling(&self) -> Sampling {
         self.sampling
     }
