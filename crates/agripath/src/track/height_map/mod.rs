@@ -219,7 +219,8 @@ impl HeightMap {
         )
     }
 
-    /// The spacing between neighbouring centres, plan metres.
+    /// The spacing between neighbouring centres, in the map's horizontal unit (metres, or pixels
+    /// for a map in pixel units).
     pub fn cell(&self) -> f64 {
         self.cell
     }
