@@ -4,10 +4,10 @@
 //! Only what a local viewer needs, and nothing a hostile page or client can abuse:
 //! - it listens on the loopback address only, and answers only requests whose `Host` is
 //!   `127.0.0.1:PORT` or `localhost:PORT` (a DNS-rebinding page sends its own host name);
-//! - each connection has its own thread (at most [`MAX_CONNECTIONS`] at once; beyond that a
+//! - each connection has its own thread (at most `MAX_CONNECTIONS` at once; beyond that a
 //!   client gets 503 at once), with one deadline for the whole request head and a write
 //!   timeout, so an idle or trickling client blocks no one; files are streamed;
-//! - the request line and headers are read within [`MAX_HEAD_BYTES`];
+//! - the request line and headers are read within `MAX_HEAD_BYTES`;
 //! - a file is served only if its canonical path (links resolved) is a regular file directly
 //!   inside the folder's canonical path: traversal and links out of DIR get 404.
 

@@ -24,12 +24,19 @@ const CURVE_POINTS: usize = 100;
 /// What to run.
 #[derive(Debug, Clone)]
 pub struct FunctionBench {
+    /// D, the number of coordinates of every function.
     pub dimension: usize,
+    /// Agents per algorithm (at least 2); also sets the evaluation budget.
     pub population: usize,
+    /// Iterations a population-sized algorithm runs (at least 1); sets the budget.
     pub iterations: usize,
+    /// Independent runs per algorithm and function (at least 1).
     pub runs: u64,
+    /// The algorithms compared, one table column each.
     pub algorithms: Vec<Algorithm>,
+    /// The test functions, one group of table rows each.
     pub functions: Vec<&'static TestFunction>,
+    /// The base seed; run r draws from its own stream derived from it.
     pub seed: u64,
 }
 
@@ -166,19 +173,28 @@ impl FunctionBench {
 /// Best, worst, mean and sample standard deviation of the final costs, and the mean time.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Statistics {
+    /// The lowest final cost.
     pub best: f64,
+    /// The highest final cost.
     pub worst: f64,
+    /// The mean final cost.
     pub mean: f64,
+    /// The sample standard deviation of the final costs (0 for a single run).
     pub standard_deviation: f64,
+    /// The mean wall-clock time of a run, in seconds.
     pub mean_seconds: f64,
+    /// The mean number of evaluations a run spent.
     pub mean_evaluations: f64,
 }
 
 /// One function × one algorithm.
 #[derive(Debug, Clone)]
 pub struct Cell {
+    /// The test function.
     pub function: &'static TestFunction,
+    /// The algorithm.
     pub algorithm: Algorithm,
+    /// The statistics over the runs.
     pub statistics: Statistics,
     /// Every run's final best cost, in run order.
     pub finals: Vec<f64>,
@@ -250,8 +266,11 @@ type ShowStatistic = fn(&Statistics) -> String;
 /// The results of a bench run.
 #[derive(Debug, Clone)]
 pub struct FunctionTable {
+    /// The settings the bench ran with.
     pub settings: FunctionBench,
+    /// One cell per function × algorithm, functions in order, algorithms within.
     pub cells: Vec<Cell>,
+    /// Wall-clock time of the whole bench, in seconds.
     pub wall_seconds: f64,
 }
 
@@ -265,6 +284,7 @@ pub fn scientific(value: f64) -> String {
 }
 
 impl FunctionTable {
+    /// The cell of the function with key `function` and `algorithm`, if it ran.
     pub fn cell(&self, function: &str, algorithm: Algorithm) -> Option<&Cell> {
         self.cells
             .iter()

@@ -8,6 +8,7 @@
 use super::fewest_turns::{cells, fly_in_order, runs, Sweep};
 use super::{GridRoute, PointGrid};
 
+/// The baseline route over `grid`'s path points: cells in fixed order, each swept along y.
 pub fn plan(grid: &PointGrid) -> GridRoute {
     let mut decomposition = cells(grid, Sweep::AlongY);
     decomposition.sort_by_key(|cell| {

@@ -20,7 +20,9 @@ use super::{GridRoute, PointGrid};
 /// Which way runs go.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Sweep {
+    /// Runs go along y, within a column.
     AlongY,
+    /// Runs go along x, within a row.
     AlongX,
 }
 

@@ -25,8 +25,11 @@ use super::{GridRoute, PointGrid};
 /// HPSO's settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct HpsoSettings {
+    /// Swarm size, in routes (at least 1).
     pub particles: usize,
+    /// Iterations the swarm runs (at least 1).
     pub iterations: usize,
+    /// The Runner's seed; the swarm is its run 0.
     pub seed: u64,
 }
 

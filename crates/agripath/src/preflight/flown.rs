@@ -19,15 +19,20 @@ use crate::terrain::Terrain;
 /// An altitude as an item gives it: above sea level, or above the terrain (frame 10).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Height {
+    /// Metres above sea level (frame 0, or frame 3 plus home's ground).
     SeaLevel(f64),
+    /// Metres above the terrain under the vehicle (frame 10).
     AboveTerrain(f64),
 }
 
 /// A place of the flight: plan metres and a height.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Place {
+    /// Plan x (east), metres.
     pub x: f64,
+    /// Plan y (north), metres.
     pub y: f64,
+    /// The altitude.
     pub height: Height,
 }
 
@@ -47,14 +52,20 @@ pub enum Motion {
 pub struct Leg {
     /// The item (1-based, as ground stations number them) that ends the leg.
     pub item: usize,
+    /// Where the leg starts.
     pub from: Place,
+    /// Where the leg ends.
     pub to: Place,
+    /// Whether the sprayer is on along the leg.
     pub spraying: bool,
+    /// Ground speed along the leg, m/s.
     pub speed_mps: f64,
+    /// What kind of motion the leg is.
     pub motion: Motion,
 }
 
 impl Leg {
+    /// Horizontal length of the leg, metres.
     pub fn horizontal_m(&self) -> f64 {
         (self.to.x - self.from.x).hypot(self.to.y - self.from.y)
     }
@@ -104,7 +115,9 @@ impl Leg {
 /// Where flying the items went wrong before any check: an item the autopilot would not fly.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Unflyable {
+    /// The item (1-based, as ground stations number them).
     pub item: usize,
+    /// Why the autopilot would not fly it.
     pub why: String,
 }
 

@@ -62,8 +62,11 @@ const MIN_TURN_RAD: f64 = 0.5 * std::f64::consts::PI / 180.0;
 
 /// What the flight is flown against.
 pub struct World<'a> {
+    /// The farm: its fields, obstacles and coordinate system.
     pub farm: &'a Farm,
+    /// The terrain the flight is flown over.
     pub terrain: &'a dyn Terrain,
+    /// The drone: heights, speeds, swath width, tank and battery.
     pub vehicle: &'a Vehicle,
 }
 

@@ -7,19 +7,24 @@ use serde_json::Value;
 /// One mission item as a file stores it.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FileItem {
+    /// MAVLink command number (MAV_CMD), e.g. 16 for NAV_WAYPOINT.
     pub command: u16,
+    /// MAVLink frame number (MAV_FRAME): 0 above sea level, 3 above home, 10 above terrain.
     pub frame: u8,
     /// p1…p7; NaN where the file has `null` or `nan`.
     pub params: [f64; 7],
 }
 
 impl FileItem {
+    /// Latitude, degrees (p5).
     pub fn lat(&self) -> f64 {
         self.params[4]
     }
+    /// Longitude, degrees (p6).
     pub fn lon(&self) -> f64 {
         self.params[5]
     }
+    /// Altitude in the item's frame, metres (p7).
     pub fn altitude(&self) -> f64 {
         self.params[6]
     }
@@ -28,7 +33,9 @@ impl FileItem {
 /// A polygon of the geofence, as (lat, lon) corners.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FencePolygon {
+    /// `true`: the flight must stay inside; `false`: outside (an exclusion zone).
     pub inclusion: bool,
+    /// The corners, (lat, lon) in degrees, in file order.
     pub corners: Vec<(f64, f64)>,
 }
 
@@ -37,7 +44,9 @@ pub struct FencePolygon {
 pub struct PlanFile {
     /// plannedHomePosition: lat, lon, altitude above sea level.
     pub home: (f64, f64, f64),
+    /// The mission items, in file order.
     pub items: Vec<FileItem>,
+    /// The geofence's polygons.
     pub fence: Vec<FencePolygon>,
     /// Rally points: lat, lon, altitude.
     pub rally: Vec<(f64, f64, f64)>,
@@ -131,7 +140,9 @@ pub fn read_plan(text: &str) -> Result<PlanFile, String> {
 /// What a `.waypoints` file holds: home (row 0: lat, lon, altitude) and the items after it.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WaypointsFile {
+    /// Home from row 0: lat, lon (degrees) and altitude (metres).
     pub home: (f64, f64, f64),
+    /// The rows after home, in file order.
     pub items: Vec<FileItem>,
 }
 

@@ -7,11 +7,17 @@ use crate::mission::flight::{AltitudeReference, MissionSettings, SprayerCommand}
 /// What the plan promised.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PreflightSettings {
+    /// How the files write altitudes.
     pub altitude: AltitudeReference,
+    /// How the files switch the sprayer.
     pub sprayer: SprayerCommand,
+    /// Largest gap allowed between the spray altitude flown and terrain + spray height, metres.
     pub terrain_tolerance_m: f64,
+    /// Where a plan in local metres lies on Earth (lon, lat of its origin, degrees).
     pub local_origin: (f64, f64),
+    /// Distance the plan kept from field boundaries, metres (it shapes the sprayable region).
     pub boundary_margin_m: f64,
+    /// Distance the plan kept from obstacles, metres (no spraying within it).
     pub obstacle_margin_m: f64,
     /// Least share of each field's sprayable area to cover, 0..1, by field.
     pub required_coverage: Vec<f64>,
@@ -23,6 +29,7 @@ pub struct PreflightSettings {
 /// drawn from.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Promise {
+    /// Edge passes around each boundary and hole; 0 is the seed's layout.
     pub headland_passes: usize,
     /// Per field, the share of its sprayable area the plan's measure covers.
     pub covered_fraction: Vec<f64>,

@@ -109,6 +109,7 @@ pub struct Rings {
 }
 
 impl Rings {
+    /// The region of `rings`, each a list of corners; a ring given open is closed.
     pub fn new<'a>(rings: impl IntoIterator<Item = &'a [Coord<f64>]>) -> Self {
         let mut edges = Vec::new();
         for ring in rings {
@@ -134,6 +135,7 @@ impl Rings {
         Self::new(crate::geometry::rings(polygon))
     }
 
+    /// The rings of every polygon of `region`, holes included.
     pub fn of_multi_polygon(region: &geo::MultiPolygon<f64>) -> Self {
         Self::new(region.0.iter().flat_map(crate::geometry::rings))
     }
@@ -266,6 +268,7 @@ fn length(intervals: &[(f64, f64)]) -> f64 {
 /// The figures of one region.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RegionSprayed {
+    /// The region's area, m² (measured on the same rows as the rest).
     pub area_m2: f64,
     /// Under at least one strip.
     pub covered_m2: f64,

@@ -11,36 +11,53 @@ const LINES_PER_CHECK: usize = 3;
 /// One check and its figure.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct CheckResult {
+    /// The check's name, e.g. "spray height".
     pub name: &'static str,
+    /// Whether nothing failed the check.
     pub passed: bool,
     /// The worst figure found, in `unit`.
     pub figure: f64,
     /// The bound it is held to (≥ or ≤ as `rule` says).
     pub limit: f64,
+    /// "≥" or "≤": how the figures must compare with `limit`.
     pub rule: &'static str,
+    /// The unit of `figure` and `limit`, in words (e.g. "m above the ground", "items").
     pub unit: &'static str,
 }
 
 /// A field's coverage as flown.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FieldFlown {
+    /// The field's name.
     pub name: String,
+    /// Area of the field's sprayable region (within the margins), m².
     pub sprayable_area_m2: f64,
+    /// Share of the sprayable area under at least one strip as flown, 0..1 (1 when it is empty).
     pub covered_fraction: f64,
+    /// The share the field must reach, 0..1.
     pub required_fraction: f64,
+    /// Sprayable area under no strip, m².
     pub missed_m2: f64,
+    /// Sprayable area under two strips or more, m².
     pub double_sprayed_m2: f64,
 }
 
 /// A sortie as flown.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SortieFlown {
+    /// The sortie's number, from 1, in the order of the `sortie_NN.plan` names.
     pub sortie: usize,
+    /// The `.plan` file flown.
     pub file: String,
+    /// Number of mission items in the file.
     pub items: usize,
+    /// Horizontal distance flown with the sprayer on, metres.
     pub spray_m: f64,
+    /// Spray distance as a share of one tank's (none: the vehicle gives no tank figure).
     pub tank_fraction: Option<f64>,
+    /// Flight time as written, seconds: each leg at its speed, or at the climb speed when longer.
     pub flight_time_s: f64,
+    /// Flight time as a share of the battery's endurance.
     pub battery_fraction: f64,
     /// Largest gap between the height above ground on spray legs and the spray height, m.
     pub worst_spray_height_error_m: f64,
@@ -51,15 +68,24 @@ pub struct SortieFlown {
 /// The verdict of the preflight, as `report.json` carries it.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct Verdict {
+    /// Whether every check passed.
     pub safe: bool,
+    /// The altitude reference the files were checked against.
     pub altitude_reference: AltitudeReference,
+    /// Every check, in a fixed order.
     pub checks: Vec<CheckResult>,
     /// One line per failure: sortie, item, place and what is wrong.
     pub failures: Vec<String>,
+    /// Coverage as flown, one entry per field in the farm's order.
     pub fields: Vec<FieldFlown>,
+    /// Area under at least one strip, m².
     pub sprayed_area_m2: f64,
+    /// Sprayed area outside the ground that may be sprayed (off the fields, over holes or
+    /// obstacles), m².
     pub sprayed_outside_m2: f64,
+    /// `sprayed_outside_m2` as a share of `sprayed_area_m2`, 0..1 (0 when nothing is sprayed).
     pub sprayed_outside_fraction: f64,
+    /// The figures of each sortie whose file could be flown, by sortie number.
     pub sorties: Vec<SortieFlown>,
     /// Least height above the ground of any airborne sample (takeoff and landing aside), m.
     pub lowest_clearance_m: f64,

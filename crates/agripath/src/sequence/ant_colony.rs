@@ -23,15 +23,24 @@ use swarm::{Optimizer, Runner, Search, Termination};
 
 use super::tour::{OrderingProblem, Start, Step};
 
+/// The colony's settings; `Default` is seed 001 §5's.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct AntColonySettings {
+    /// M, ants per batch (at least 1).
     pub ants: usize,
+    /// T, batches flown (at least 1).
     pub batches: usize,
+    /// α, the weight of the pheromone τ in eqs. (4)-(5).
     pub alpha: f64,
+    /// β, the weight of the visibility η = 1/d in eqs. (4)-(5).
     pub beta: f64,
+    /// ρ, the share of the pheromone that evaporates after each batch, 0..1 (eq. 13).
     pub evaporation: f64,
+    /// Q: an ant deposits Q / l_m on every pair it flew, l_m its tour's cost in metres (eq. 13).
     pub deposit: f64,
+    /// The pheromone on every pair before the first batch.
     pub initial_pheromone: f64,
+    /// The Runner's seed; the colony is its run 0.
     pub seed: u64,
 }
 

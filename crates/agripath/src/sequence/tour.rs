@@ -14,19 +14,24 @@ pub type End = usize;
 /// One pass in a tour: which, and whether it is flown from B to A.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Step {
+    /// Index of the pass in the problem's `ends`.
     pub pass: usize,
+    /// Whether the pass is flown from B to A.
     pub reversed: bool,
 }
 
 impl Step {
+    /// The end the pass is entered by.
     pub fn entry(&self) -> End {
         2 * self.pass + usize::from(self.reversed)
     }
 
+    /// The end the pass is left by.
     pub fn exit(&self) -> End {
         2 * self.pass + usize::from(!self.reversed)
     }
 
+    /// The same pass flown the other way.
     pub fn flipped(self) -> Self {
         Self {
             reversed: !self.reversed,
@@ -51,6 +56,7 @@ pub struct OrderingProblem<'a> {
     pub ends: Vec<[GroundPoint; 2]>,
     /// The field each pass lies in, when known (it narrows eq. 8's geometric test).
     pub fields: Option<Vec<usize>>,
+    /// Where the flight starts.
     pub start: Start,
     model: &'a TransferModel<'a>,
     /// Every end-to-end cost, precomputed when there are few enough ends.
@@ -61,6 +67,8 @@ pub struct OrderingProblem<'a> {
 const MATRIX_LIMIT_ENDS: usize = 2000;
 
 impl<'a> OrderingProblem<'a> {
+    /// The problem of ordering the passes with `ends` from `start`, transfers costed by
+    /// `model`; all end-to-end costs are precomputed when there are at most 2,000 ends.
     pub fn new(ends: Vec<[GroundPoint; 2]>, start: Start, model: &'a TransferModel<'a>) -> Self {
         Self::build(ends, None, start, model)
     }
@@ -115,10 +123,12 @@ impl<'a> OrderingProblem<'a> {
         }
     }
 
+    /// Number of passes.
     pub fn passes(&self) -> usize {
         self.ends.len()
     }
 
+    /// Where `end` lies.
     pub fn point(&self, end: End) -> GroundPoint {
         self.ends[end / 2][end % 2]
     }

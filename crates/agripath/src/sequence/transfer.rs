@@ -19,7 +19,9 @@ use crate::model::Farm;
 /// A transfer leg between two pass ends.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
 pub struct Transfer {
+    /// The pass end the leg leaves.
     pub from: GroundPoint,
+    /// The pass end the leg reaches.
     pub to: GroundPoint,
     /// True when the leg leaves the field and climbs h.
     pub climbs: bool,
@@ -30,6 +32,7 @@ pub struct Transfer {
 /// Distances below this are "on" a boundary, metres.
 const ON_BOUNDARY_M: f64 = 1e-6;
 
+/// Eq. (8)'s transfer cost over a farm's fields and obstacles, with climb height h.
 pub struct TransferModel<'a> {
     farm: &'a Farm,
     safe_height_m: f64,
@@ -55,6 +58,8 @@ impl Bounds {
 }
 
 impl<'a> TransferModel<'a> {
+    /// The model over `farm`'s fields and obstacles; legs that leave the work area climb
+    /// `safe_height_m` (h, metres).
     pub fn new(farm: &'a Farm, safe_height_m: f64) -> Self {
         let field_boxes = farm
             .fields

@@ -37,10 +37,14 @@ use swarm::{Continuous, Optimizer, Search};
 
 use super::scenario::TrackScenario;
 
+/// The improved GA's parameters; `Default` is this planner's setting.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ImprovedGeneticParameters {
+    /// Chromosomes kept after each replacement (at least 2).
     pub population: usize,
+    /// Waypoints of each initial chromosome (1 to `max_length`).
     pub initial_length: usize,
+    /// Most waypoints a chromosome may hold; also the room of the Cartesian encoding.
     pub max_length: usize,
     /// α: the share of the mating pool chosen by tournament.
     pub tournament_share: f64,
@@ -72,6 +76,8 @@ struct Chromosome {
     cost: f64,
 }
 
+/// Seed 002's improved genetic algorithm: an optimizer of a [`super::problem::TrackProblem`]
+/// with the Cartesian encoding and room for `max_length` waypoints.
 pub struct ImprovedGenetic<'a> {
     parameters: ImprovedGeneticParameters,
     scenario: &'a TrackScenario,
@@ -79,6 +85,7 @@ pub struct ImprovedGenetic<'a> {
 }
 
 impl<'a> ImprovedGenetic<'a> {
+    /// The improved GA over `scenario`; the population is drawn when the run starts.
     pub fn new(scenario: &'a TrackScenario, parameters: ImprovedGeneticParameters) -> Self {
         Self {
             parameters,

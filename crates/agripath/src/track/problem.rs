@@ -7,8 +7,12 @@ use super::cost::CostBreakdown;
 use super::encoding::Encoding;
 use super::scenario::TrackScenario;
 
+/// A track scenario under an encoding as a box problem: a point of the box is the free
+/// waypoints, its cost the total of the scenario's cost model.
 pub struct TrackProblem<'a> {
+    /// The scenario the tracks are flown in.
     pub scenario: &'a TrackScenario,
+    /// How a point of the box is read as waypoints.
     pub encoding: Encoding,
     waypoints: usize,
     bounds: Bounds,
@@ -35,6 +39,7 @@ impl<'a> TrackProblem<'a> {
         }
     }
 
+    /// Number of free waypoints a point of the box holds.
     pub fn waypoints(&self) -> usize {
         self.waypoints
     }
@@ -55,6 +60,7 @@ impl<'a> TrackProblem<'a> {
         points
     }
 
+    /// The cost of the track at `x`, term by term (its `total` is the problem's cost).
     pub fn breakdown(&self, x: &[f64]) -> CostBreakdown {
         self.scenario.evaluate(&self.track(x))
     }

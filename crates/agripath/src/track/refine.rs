@@ -46,6 +46,8 @@ struct Lane {
     steps: Vec<f64>,
 }
 
+/// Our track planner as an optimizer: lattice corridors refined waypoint by waypoint, on a
+/// track problem with the Cartesian encoding.
 pub struct LatticeRefine<'a> {
     scenario: &'a TrackScenario,
     lanes: Vec<Lane>,
@@ -60,6 +62,7 @@ const PATIENCE: f64 = 0.1;
 const STILL: f64 = 1e-3;
 
 impl<'a> LatticeRefine<'a> {
+    /// The planner over `scenario`; the corridors are laid when the run starts.
     pub fn new(scenario: &'a TrackScenario) -> Self {
         Self {
             scenario,

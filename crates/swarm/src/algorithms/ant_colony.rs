@@ -26,7 +26,9 @@ pub const ALGORITHM: super::Algorithm = super::Algorithm::new("aco-r", "ACO_R", 
 /// ACO_R's parameters.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AntColonyParameters {
+    /// k: how many solutions the archive keeps (at least 2).
     pub archive: usize,
+    /// m: new solutions sampled per iteration (at least 1).
     pub ants: usize,
     /// q: how strongly the best-ranked solutions guide (small = greedy).
     pub locality: f64,
@@ -55,6 +57,7 @@ pub struct AntColony {
 }
 
 impl AntColony {
+    /// ACO_R with the given parameters; the archive is drawn when the run starts.
     pub fn new(parameters: AntColonyParameters) -> Self {
         Self {
             parameters,

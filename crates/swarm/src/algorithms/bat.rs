@@ -30,11 +30,17 @@ pub const ALGORITHM: super::Algorithm = super::Algorithm::new("ba", "BA", |popul
 /// BA's parameters; `Default` is seed 000's baseline setting.
 #[derive(Debug, Clone, PartialEq)]
 pub struct BatParameters {
+    /// Number of bats (at least 1).
     pub population: usize,
+    /// f_min of eq. (3).
     pub frequency_min: f64,
+    /// f_max of eq. (3).
     pub frequency_max: f64,
+    /// Range (low, high) from which each bat's initial loudness A_i^0 is drawn uniformly.
     pub initial_loudness: (f64, f64),
+    /// Range (low, high) from which each bat's initial pulse rate R_i^0 is drawn uniformly.
     pub initial_pulse_rate: (f64, f64),
+    /// R_max of eq. (6), the pulse rate approached as t grows.
     pub pulse_rate_max: f64,
     /// Loudness decay α of eq. (5).
     pub alpha: f64,
@@ -171,6 +177,7 @@ pub struct Bat {
 }
 
 impl Bat {
+    /// BA with the given parameters; the colony is drawn when the run starts.
     pub fn new(parameters: BatParameters) -> Self {
         Self {
             parameters,

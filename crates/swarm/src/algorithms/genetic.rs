@@ -28,10 +28,15 @@ pub const ALGORITHM: super::Algorithm = super::Algorithm::new("ga", "GA", |popul
 /// The GA's parameters; `Default` is seed 000's ranges.
 #[derive(Debug, Clone, PartialEq)]
 pub struct GeneticParameters {
+    /// Number of individuals (at least 2).
     pub population: usize,
+    /// Crossover rate p_c at the start of the run.
     pub crossover_start: f64,
+    /// Crossover rate p_c at the end of the run (linear in between).
     pub crossover_end: f64,
+    /// Mutation rate p_m at the start of the run.
     pub mutation_start: f64,
+    /// Mutation rate p_m at the end of the run (linear in between).
     pub mutation_end: f64,
     /// The chance that each gene of a mutating individual changes.
     pub gene_mutation: f64,
@@ -62,6 +67,7 @@ pub struct Genetic {
 }
 
 impl Genetic {
+    /// A GA with the given parameters; the population is drawn when the run starts.
     pub fn new(parameters: GeneticParameters) -> Self {
         Self {
             parameters,

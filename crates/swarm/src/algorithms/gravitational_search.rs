@@ -30,6 +30,7 @@ pub const ALGORITHM: super::Algorithm = super::Algorithm::new("gsa", "GSA", |pop
 /// match the other benchmarks; set it per use).
 #[derive(Debug, Clone, PartialEq)]
 pub struct GravitationalSearchParameters {
+    /// Number of agents N (at least 1).
     pub population: usize,
     /// G0 of eq. (28).
     pub initial_gravity: f64,
@@ -60,6 +61,7 @@ pub struct GravitationalSearch {
 }
 
 impl GravitationalSearch {
+    /// GSA with the given parameters; the agents are drawn when the run starts.
     pub fn new(parameters: GravitationalSearchParameters) -> Self {
         Self {
             parameters,

@@ -38,21 +38,33 @@ pub const ALGORITHM: super::Algorithm = super::Algorithm::new("iba-fcs", "IBA-FC
 /// IBA-FCS's parameters; `Default` is seed 000 §2.5.
 #[derive(Debug, Clone, PartialEq)]
 pub struct IbaFcsParameters {
+    /// Number of bats (at least 1).
     pub population: usize,
+    /// ω_max of eq. (11), the inertia weight at the start of the run.
     pub omega_max: f64,
+    /// ω_min of eq. (11), the inertia weight at the end of the run.
     pub omega_min: f64,
+    /// α_b of eq. (9), the weight of the cost spread |F_avg − F_min| in f1.
     pub alpha_b: f64,
+    /// γ_b of eq. (9), the weight of the remaining progress 1 − k in f1.
     pub gamma_b: f64,
     /// S_F = f1 + f2.
     pub frequency_sum: f64,
+    /// f_min of eq. (9), the floor added to f1.
     pub frequency_min: f64,
+    /// f_max of eqs. (14)-(15), dividing f1 and f2 into A and R.
     pub frequency_max: f64,
+    /// μ_max, the position step factor μ of eq. (10) at the start of the run.
     pub mu_max: f64,
+    /// μ_min, the position step factor μ of eq. (10) at the end of the run.
     pub mu_min: f64,
+    /// A_min, the floor of the loudness A of eq. (14).
     pub loudness_min: f64,
+    /// R_max, the cap of the pulse rate R of eq. (15) and the upper end of β_i.
     pub pulse_rate_max: f64,
     /// g(k) = a_g·exp(−Σ_j b_j k^j), eq. (13).
     pub step_scale: f64,
+    /// b_1, b_2, … of eq. (13): b_j multiplies k^j (J is the length).
     pub step_exponents: Vec<f64>,
     /// ρ of §2.3: a mutating bat is reset when β2 > ρ.
     pub mutation_threshold: f64,
@@ -107,6 +119,7 @@ pub struct IbaFcs {
 }
 
 impl IbaFcs {
+    /// IBA-FCS with the given parameters; the bats are drawn when the run starts.
     pub fn new(parameters: IbaFcsParameters) -> Self {
         Self {
             parameters,

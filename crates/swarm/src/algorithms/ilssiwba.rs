@@ -34,18 +34,31 @@ pub const ALGORITHM: super::Algorithm =
 /// ILSSIWBA's parameters; `Default` is seed 000 §2.5 plus the documented ILS budget.
 #[derive(Debug, Clone, PartialEq)]
 pub struct IlssiwbaParameters {
+    /// Number of bats (at least 1).
     pub population: usize,
+    /// f_min, the lower end of the frequency range.
     pub frequency_min: f64,
+    /// f_max, the upper end of the frequency range.
     pub frequency_max: f64,
+    /// μ_min, the lower end of the uniform part of the inertia weight.
     pub inertia_mean_min: f64,
+    /// μ_max, the upper end of the uniform part of the inertia weight.
     pub inertia_mean_max: f64,
+    /// σ, the standard deviation of the Gaussian part of the inertia weight.
     pub inertia_deviation: f64,
+    /// r_x, the pulse rate approached as t grows.
     pub pulse_rate_cap: f64,
+    /// A_x, the loudness below which α no longer lowers A_i.
     pub loudness_floor: f64,
+    /// Range (low, high) from which each bat's initial loudness is drawn uniformly.
     pub initial_loudness: (f64, f64),
+    /// Range (low, high) from which each bat's initial pulse rate is drawn uniformly.
     pub initial_pulse_rate: (f64, f64),
+    /// Loudness decay α.
     pub alpha: f64,
+    /// Pulse-rate growth γ.
     pub gamma: f64,
+    /// Evaluations the iterated local search spends per iteration (0: no ILS).
     pub local_search_evaluations: usize,
 }
 
@@ -77,6 +90,7 @@ pub struct Ilssiwba {
 }
 
 impl Ilssiwba {
+    /// ILSSIWBA with the given parameters; the colony is drawn when the run starts.
     pub fn new(parameters: IlssiwbaParameters) -> Self {
         Self {
             parameters,

@@ -36,9 +36,13 @@ pub const ALGORITHM: super::Algorithm = super::Algorithm::new("lshade", "L-SHADE
 pub struct LshadeParameters {
     /// N_init; `None` = 18·D.
     pub population: Option<usize>,
+    /// N_min, the population size at the end of the run (never below 4).
     pub minimum_population: usize,
+    /// H, the number of memory slots for M_CR and M_F (at least 1).
     pub memory_size: usize,
+    /// r_arc: the archive holds at most round(r_arc·N) solutions.
     pub archive_rate: f64,
+    /// p: pbest is drawn among the best max(2, round(p·N)).
     pub best_share: f64,
 }
 
@@ -69,6 +73,7 @@ pub struct Lshade {
 }
 
 impl Lshade {
+    /// L-SHADE with the given parameters; the population is drawn when the run starts.
     pub fn new(parameters: LshadeParameters) -> Self {
         Self {
             parameters,

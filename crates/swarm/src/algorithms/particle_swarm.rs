@@ -28,9 +28,13 @@ pub const ALGORITHM: super::Algorithm = super::Algorithm::new("pso", "PSO", |pop
 /// PSO's parameters; `Default` is seed 000's setting.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ParticleSwarmParameters {
+    /// Number of particles (at least 1).
     pub population: usize,
+    /// Inertia weight w at the start of the run.
     pub inertia: f64,
+    /// c1, the pull towards the particle's own best p_i.
     pub cognitive: f64,
+    /// c2, the pull towards the global best g.
     pub social: f64,
     /// Velocity limit as a share of the box width.
     pub velocity_limit: f64,
@@ -83,6 +87,7 @@ pub struct ParticleSwarm {
 }
 
 impl ParticleSwarm {
+    /// PSO with the given parameters; the swarm is drawn when the run starts.
     pub fn new(parameters: ParticleSwarmParameters) -> Self {
         Self {
             parameters,

@@ -14,12 +14,14 @@ use crate::problem::{Bounds, BoxProblem};
 pub struct TestFunction {
     /// Table 1's code: "f1" … "f9".
     pub key: &'static str,
+    /// The function's name, e.g. "Shifted Sphere (CEC 2005 F1)".
     pub name: &'static str,
     /// The search interval of every coordinate.
     pub domain: (f64, f64),
     /// Table 1's "theoretical optimum" (for Ackley N.4 at D = 50 the paper's −150 is not a
     /// proven minimum: see `classic::ackley_4`).
     pub optimum: f64,
+    /// Whether Table 1 counts the function as unimodal (`false`: multimodal).
     pub unimodal: bool,
     evaluate: fn(&[f64]) -> f64,
     /// The only dimension allowed, when the data fix it (F3's rotation matrix).
@@ -29,6 +31,7 @@ pub struct TestFunction {
 }
 
 impl TestFunction {
+    /// The function's value at `x`.
     pub fn evaluate(&self, x: &[f64]) -> f64 {
         (self.evaluate)(x)
     }
@@ -63,12 +66,17 @@ impl fmt::Display for TestFunction {
 /// A function refused for a problem.
 #[derive(Debug, Error, PartialEq)]
 pub enum FunctionError {
+    /// The function is not defined at the dimension asked for.
     #[error("{function} is defined for dimension {allowed}, not {dimension}")]
     Dimension {
+        /// The function's key.
         function: &'static str,
+        /// The dimension asked for.
         dimension: usize,
+        /// The dimensions allowed, in words.
         allowed: String,
     },
+    /// No Table 1 function has this key.
     #[error("unknown function '{0}' (known: f1 … f9)")]
     Unknown(String),
 }
@@ -186,6 +194,8 @@ pub struct FunctionProblem {
 }
 
 impl FunctionProblem {
+    /// `function` on its domain in `dimension` coordinates; errs when the function is not
+    /// defined at that dimension.
     pub fn new(function: &'static TestFunction, dimension: usize) -> Result<Self, FunctionError> {
         function.check_dimension(dimension)?;
         let (low, high) = function.domain;
@@ -193,6 +203,7 @@ impl FunctionProblem {
         Ok(Self { function, bounds })
     }
 
+    /// The test function.
     pub fn function(&self) -> &'static TestFunction {
         self.function
     }

@@ -12,6 +12,8 @@ pub struct GeoFrame {
 }
 
 impl GeoFrame {
+    /// The frame of a plan in `system`; `local_origin` (lon, lat, degrees) places a local
+    /// plan's origin on Earth and is ignored otherwise.
     pub fn new(system: CoordinateSystem, local_origin: (f64, f64)) -> Self {
         let local = (system == CoordinateSystem::Local).then(|| {
             let zone = UtmZone::containing(local_origin.0, local_origin.1);
@@ -21,6 +23,7 @@ impl GeoFrame {
         Self { system, local }
     }
 
+    /// Plan metres (x, y) → longitude, latitude, degrees.
     pub fn lon_lat(&self, x: f64, y: f64) -> (f64, f64) {
         match self.local {
             Some((zone, easting, northing)) => from_utm(easting + x, northing + y, zone),

@@ -35,14 +35,20 @@ pub use settings::{
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 #[serde(tag = "action", rename_all = "snake_case")]
 pub enum Action {
+    /// Take off, climbing to the item's altitude.
     Takeoff,
+    /// Fly to the item's place and altitude.
     Waypoint,
+    /// Land at the item's place.
     Land,
     /// Ground speed, m/s.
     Speed {
+        /// The speed, m/s.
         mps: f64,
     },
+    /// Turn the sprayer on or off.
     Spray {
+        /// `true`: on; `false`: off.
         on: bool,
     },
 }
@@ -50,15 +56,21 @@ pub enum Action {
 /// A command with its place: longitude, latitude, terrain height and height above it.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Item {
+    /// What the command does.
     #[serde(flatten)]
     pub action: Action,
+    /// Longitude, degrees.
     pub lon: f64,
+    /// Latitude, degrees.
     pub lat: f64,
+    /// Terrain height under the item, metres, in the terrain model's datum (sea level for a DEM).
     pub ground_m: f64,
+    /// Height of the item above that terrain, metres.
     pub above_ground_m: f64,
 }
 
 impl Item {
+    /// The item's altitude, metres: ground plus height above it, in the terrain model's datum.
     pub fn sea_level_m(&self) -> f64 {
         self.ground_m + self.above_ground_m
     }
@@ -85,9 +97,11 @@ impl Item {
 /// The mission of one sortie.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct SortieMission {
+    /// The sortie's index in the plan, from 0.
     pub sortie: usize,
     /// The supply point: home, takeoff and landing.
     pub home: Item,
+    /// The commands in flying order, from takeoff to landing.
     pub items: Vec<Item>,
 }
 

@@ -20,8 +20,10 @@ pub enum AltitudeReference {
 }
 
 impl AltitudeReference {
+    /// Every reference's key, in the order of the variants: the names `--altitude` accepts.
     pub const KEYS: [&'static str; 3] = ["relative", "sea-level", "terrain"];
 
+    /// The reference's key (`relative`, `sea-level` or `terrain`), as `--altitude` takes it.
     pub fn key(self) -> &'static str {
         match self {
             Self::Relative => "relative",
@@ -93,8 +95,11 @@ pub enum SprayerCommand {
     DoSprayer,
     /// MAV_CMD_DO_SET_SERVO (183) on `channel` with these pulse widths, for any pump on a servo output.
     Servo {
+        /// The servo output, one of [`SERVO_CHANNELS`].
         channel: u16,
+        /// Pulse width that turns the pump on, microseconds, within [`SERVO_PWM_US`].
         on_pwm: u16,
+        /// Pulse width that turns the pump off, microseconds, within [`SERVO_PWM_US`].
         off_pwm: u16,
     },
 }
@@ -157,7 +162,9 @@ impl std::str::FromStr for SprayerCommand {
 /// What the mission files are asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct MissionSettings {
+    /// How altitudes are written.
     pub altitude: AltitudeReference,
+    /// How the sprayer is switched.
     pub sprayer: SprayerCommand,
     /// Largest gap between the flown altitude and terrain + spray height along a swath, metres.
     pub terrain_tolerance_m: f64,

@@ -219,10 +219,13 @@ impl HeightMap {
         )
     }
 
+    /// The spacing between neighbouring centres, in the map's horizontal unit (metres, or pixels
+    /// for a map in pixel units).
     pub fn cell(&self) -> f64 {
         self.cell
     }
 
+    /// How heights between centres are read.
     pub fn sampling(&self) -> Sampling {
         self.sampling
     }

@@ -62,13 +62,17 @@ pub const SURVEY_JSON: &str = include_str!("../../../../../data/seed002_field_su
 /// SPSO's public scenario and its DEM (Christmas Island, 5 m pixels; BSD-style licence in
 /// `data/spso/LICENSE-SPSO.txt`).
 pub const SPSO_JSON: &str = include_str!("../../../../../data/spso/scenario.json");
+/// SPSO's DEM, the GeoTIFF's bytes.
 pub const SPSO_DEM: &[u8] = include_bytes!("../../../../../data/spso/ChrismasTerrain.tif");
 
 /// A vertical cylinder the track must not enter (2D: centre and radius).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Threat {
+    /// Centre x, in the scenario's horizontal unit.
     pub x: f64,
+    /// Centre y, in the scenario's horizontal unit.
     pub y: f64,
+    /// Radius, in the scenario's horizontal unit.
     pub radius: f64,
 }
 
@@ -85,16 +89,28 @@ pub enum AltitudeReference {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Georeference {
     /// Metres east and north of a longitude/latitude.
-    Local { lon: f64, lat: f64 },
+    Local {
+        /// Longitude of the origin, degrees.
+        lon: f64,
+        /// Latitude of the origin, degrees.
+        lat: f64,
+    },
     /// UTM metres of a zone: the scenario was given in longitude/latitude, and its outputs
     /// go back to longitude/latitude.
-    Utm { zone: UtmZone },
+    Utm {
+        /// The UTM zone.
+        zone: UtmZone,
+    },
     /// SPSO's pixel units on a UTM raster: x = column + 1, y = row + 1 from the top-left
     /// pixel, whose corner is at (easting, northing).
     Pixels {
+        /// The raster's UTM zone.
         zone: UtmZone,
+        /// Easting of the top-left pixel's outer corner, metres.
         easting: f64,
+        /// Northing of the top-left pixel's outer corner, metres.
         northing: f64,
+        /// The pixel's size, metres.
         pixel_m: f64,
     },
 }
@@ -102,24 +118,33 @@ pub enum Georeference {
 /// One track problem.
 #[derive(Debug, Clone)]
 pub struct TrackScenario {
+    /// The scenario's name.
     pub name: String,
+    /// The terrain as the planners sample it (a raster of `ground_truth`).
     pub terrain: HeightMap,
     /// Waypoints stay in [min_x, max_x] × [min_y, max_y].
     pub area: (f64, f64, f64, f64),
     /// Waypoint altitudes stay in [low, high], in `altitude_reference`.
     pub altitude_bounds: (f64, f64),
+    /// What the z of the start, goal and waypoints means.
     pub altitude_reference: AltitudeReference,
     /// Start and goal: x, y and z in `altitude_reference`.
     pub start: [f64; 3],
+    /// Where the track ends: x, y and z in `altitude_reference`.
     pub goal: [f64; 3],
+    /// Cylinders the track must not enter.
     pub threats: Vec<Threat>,
     /// Height above ground the track should keep, when the scenario has a band.
     pub height_band: Option<(f64, f64)>,
+    /// Waypoints a planner places between the cruise's start and goal (1 to 100).
     pub free_waypoints: usize,
+    /// The cost model tracks are compared by.
     pub cost: CostModel,
     /// Population and iterations the scenario's paper uses.
     pub population: usize,
+    /// Iterations the scenario's paper uses (see `population`).
     pub iterations: usize,
+    /// Where the scenario's plane lies on Earth.
     pub georeference: Georeference,
     /// Horizontal unit in metres (1 for the seeds, 5 for SPSO's pixels).
     pub unit_m: f64,
@@ -130,6 +155,7 @@ pub struct TrackScenario {
     /// Where the cruise begins and ends (in `altitude_reference`): above the start and the
     /// goal at the band's floor when they are below it, else the start and the goal.
     pub cruise_start: [f64; 3],
+    /// Where the cruise ends (see `cruise_start`).
     pub cruise_goal: [f64; 3],
     /// Runs the scenario's paper makes (seed 000's `algorithms.runs`), the default of `--runs`.
     pub paper_runs: Option<u64>,
