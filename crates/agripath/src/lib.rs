@@ -3,6 +3,8 @@
 //! The data flows one way (see `docs/architecture.md`): inputs ([`input`], [`terrain`]) become
 //! validated models ([`model`]), which the planning stages turn into missions.
 
+#![warn(missing_docs)]
+
 pub mod bench;
 pub mod coverage;
 pub mod demo;

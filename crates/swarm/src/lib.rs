@@ -26,6 +26,8 @@
 //! - [`conformance`]: the checks every optimizer passes;
 //! - [`statistics`]: best, worst, mean and deviation of runs, for every table.
 
+#![warn(missing_docs)]
+
 pub mod algorithms;
 pub mod conformance;
 pub mod functions;

@@ -178,7 +178,7 @@ impl OrderPasses for LocalSearchSettings {
 pub enum Sequencer {
     /// [`Greedy`].
     Greedy,
-    /// Seed 001's improved ant colony ([`ant_colony`]).
+    /// Seed 001's improved ant colony ([`ant_colony()`]).
     #[serde(rename = "aco")]
     AntColony(AntColonySettings),
     /// Ours: constructions, local search, iterated kicks ([`local_search`]).
