@@ -780,6 +780,7 @@ fn track_writes_safe_tracks_missions_and_pictures_and_repeats_byte_for_byte() {
         "table.md",
         "convergence.svg",
         "top_view.svg",
+        #[cfg(feature = "png")]
         "top_view.png",
         "lattice.waypoints",
         "iba-fcs.waypoints",
