@@ -14,6 +14,7 @@ use crate::mission::{qgc_plan, wpl};
 use crate::model::CoordinateSystem;
 use crate::plot::map_svg::{plan_svg, Underlay};
 use crate::plot::plan_html::{plan_html, Overlay};
+#[cfg(feature = "png")]
 use crate::plot::raster::svg_to_png;
 use crate::report::Report;
 use crate::scenario::Scenario;
@@ -260,7 +261,7 @@ pub fn preflight_settings(mission: &PlannedMission) -> crate::preflight::Preflig
 /// The files of a plan folder, by name: the mission files (per sortie `sortie_NN.plan` and
 /// `sortie_NN.waypoints`, `mission.kml`, `waypoints.csv`), checked by the preflight as written,
 /// then the contract files (`plan.geojson`, `report.json` with the verdict) and the maps
-/// (`plan.svg`, `plan.png`, `plan.html`, `terrain.png`).
+/// (`plan.svg`, `plan.png` with the `png` feature, `plan.html`, `terrain.png`).
 pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered, Fault> {
     let vehicle = &scenario.vehicle;
     let settings = &mission.settings.mission;
@@ -354,6 +355,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         Some(&underlay),
         &title,
     );
+    #[cfg(feature = "png")]
     files.push((
         "plan.png".to_string(),
         svg_to_png(&map, 1600).map_err(Fault::Structure)?,

@@ -90,8 +90,8 @@ pub enum Command {
         out: PathBuf,
     },
     /// Plan a safe point-to-point 3D track over terrain and threat cylinders. Writes
-    /// DIR/track.geojson, DIR/report.json, DIR/table.md, DIR/top_view.svg/.png,
-    /// DIR/profile_NAME.svg, DIR/convergence.svg and, per planner whose track is safe,
+    /// DIR/track.geojson, DIR/report.json, DIR/table.md, DIR/top_view.svg (and .png in
+    /// builds with the `png` feature, the default), DIR/profile_NAME.svg, DIR/convergence.svg and, per planner whose track is safe,
     /// DIR/NAME.waypoints (QGC WPL 110). Exits 3 and writes no .waypoints when no planner
     /// finds a safe track.
     ///

@@ -40,6 +40,9 @@ fn demo_writes_its_folder_and_is_byte_identical_when_run_again() {
     let text = stdout(&agripath(&["demo"], &folder));
     assert!(text.contains("S4") && text.contains("covered"), "{text}");
     let out = folder.join("agripath-demo");
+    // plan.png only with the `png` feature, and listed only when written.
+    assert_eq!(out.join("plan.png").is_file(), cfg!(feature = "png"));
+    assert_eq!(text.contains("plan.png"), cfg!(feature = "png"), "{text}");
     let names = [
         "plan.geojson",
         "plan.svg",
@@ -780,6 +783,7 @@ fn track_writes_safe_tracks_missions_and_pictures_and_repeats_byte_for_byte() {
         "table.md",
         "convergence.svg",
         "top_view.svg",
+        #[cfg(feature = "png")]
         "top_view.png",
         "lattice.waypoints",
         "iba-fcs.waypoints",

@@ -335,6 +335,7 @@ pub fn files(
         })
         .collect();
     let top = track_svg::top_view(scenario, &scenario.name, &drawn);
+    #[cfg(feature = "png")]
     files.push((
         "top_view.png".to_string(),
         crate::plot::raster::svg_to_png(&top, 1200)?,
