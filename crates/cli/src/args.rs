@@ -70,22 +70,8 @@ pub enum Command {
     /// seed's `hpso`, or the `baseline` boustrophedon decomposition. Writes DIR/plan.geojson,
     /// DIR/report.json and DIR/plan.svg.
     Grid {
-        /// Field file (GeoJSON, KML or KMZ); obstacles as in `plan`.
-        fields: PathBuf,
-        /// Which field, by name (default: the first).
-        #[arg(long)]
-        field: Option<String>,
-        #[arg(long, default_value = "ours", value_parser = agripath::grid_cover::GRID_METHODS)]
-        method: String,
-        /// Path-point spacing = swath width, metres (default: the file's `swath_width_m`, else 5).
-        #[arg(long, allow_negative_numbers = true)]
-        swath_width: Option<f64>,
-        /// Read coordinates as local metres.
-        #[arg(long, value_parser = ["local"])]
-        crs: Option<String>,
-        /// Seed of HPSO.
-        #[arg(long, default_value_t = 1)]
-        seed: u64,
+        #[command(flatten)]
+        grid: GridArgs,
         #[arg(long)]
         out: PathBuf,
     },
@@ -103,35 +89,8 @@ pub enum Command {
     /// ground, data/tracks/christmas_island_track.toml). Unknown keys are an error. A start
     /// or goal below the band's floor is reached by a vertical climb or descent.
     Track {
-        /// Scenario file: JSON of seed 000, seed 002 or SPSO, or an operator TOML.
-        scenario: PathBuf,
-        /// Seed 000's task (I, II or III, or a task name of the file).
-        #[arg(long)]
-        task: Option<String>,
-        /// Planners, comma-separated: lattice (ours), iba-fcs, ba, ilssiwba, pso, spso, ga,
-        /// aco-r, gsa, lshade, improved-ga.
-        #[arg(long, default_value = "lattice")]
-        algorithm: String,
-        /// Independent runs per planner (default: the scenario's `algorithms.runs`, else 5).
-        #[arg(long)]
-        runs: Option<u64>,
-        /// Seed of the random streams.
-        #[arg(long, default_value_t = 1)]
-        seed: u64,
-        /// Encoding for the swarm algorithms: cartesian, cylindrical or spherical (default:
-        /// the scenario paper's).
-        #[arg(long)]
-        encoding: Option<String>,
-        /// Evaluations per run (default: the scenario paper's population × iterations).
-        #[arg(long)]
-        evaluations: Option<u64>,
-        /// Least height above the terrain a safe track keeps along its cruise, metres
-        /// (checked every 1 m against the terrain as given).
-        #[arg(long, default_value_t = 2.0)]
-        min_clearance: f64,
-        /// The vehicle's radius: least distance from a threat cylinder's wall, metres.
-        #[arg(long, default_value_t = 1.0)]
-        vehicle_radius: f64,
+        #[command(flatten)]
+        track: TrackArgs,
         /// Write the .waypoints of unsafe tracks too, and exit 0 with a warning.
         #[arg(long)]
         allow_unsafe: bool,
@@ -200,6 +159,61 @@ pub struct Inputs {
     /// in the file (without it, overlapping fields are refused).
     #[arg(long)]
     pub allow_overlap: bool,
+}
+
+/// What `grid` plans: the field, the method and the cell width.
+#[derive(Debug, Args)]
+pub struct GridArgs {
+    /// Field file (GeoJSON, KML or KMZ); obstacles as in `plan`.
+    pub fields: PathBuf,
+    /// Which field, by name (default: the first).
+    #[arg(long)]
+    pub field: Option<String>,
+    #[arg(long, default_value = "ours", value_parser = agripath::grid_cover::GRID_METHODS)]
+    pub method: String,
+    /// Path-point spacing = swath width, metres (default: the file's `swath_width_m`, else 5).
+    #[arg(long, allow_negative_numbers = true)]
+    pub swath_width: Option<f64>,
+    /// Read coordinates as local metres.
+    #[arg(long, value_parser = ["local"])]
+    pub crs: Option<String>,
+    /// Seed of HPSO.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+}
+
+/// What `track` plans: the scenario, the planners, their runs and the safety limits.
+#[derive(Debug, Args)]
+pub struct TrackArgs {
+    /// Scenario file: JSON of seed 000, seed 002 or SPSO, or an operator TOML.
+    pub scenario: PathBuf,
+    /// Seed 000's task (I, II or III, or a task name of the file).
+    #[arg(long)]
+    pub task: Option<String>,
+    /// Planners, comma-separated: lattice (ours), iba-fcs, ba, ilssiwba, pso, spso, ga,
+    /// aco-r, gsa, lshade, improved-ga.
+    #[arg(long, default_value = "lattice")]
+    pub algorithm: String,
+    /// Independent runs per planner (default: the scenario's `algorithms.runs`, else 5).
+    #[arg(long)]
+    pub runs: Option<u64>,
+    /// Seed of the random streams.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Encoding for the swarm algorithms: cartesian, cylindrical or spherical (default:
+    /// the scenario paper's).
+    #[arg(long)]
+    pub encoding: Option<String>,
+    /// Evaluations per run (default: the scenario paper's population × iterations).
+    #[arg(long)]
+    pub evaluations: Option<u64>,
+    /// Least height above the terrain a safe track keeps along its cruise, metres
+    /// (checked every 1 m against the terrain as given).
+    #[arg(long, default_value_t = 2.0)]
+    pub min_clearance: f64,
+    /// The vehicle's radius: least distance from a threat cylinder's wall, metres.
+    #[arg(long, default_value_t = 1.0)]
+    pub vehicle_radius: f64,
 }
 
 /// How coverage is laid out.
@@ -452,5 +466,38 @@ pub fn plan_options(
         sprayer: mission.sprayer.clone(),
         terrain_tolerance_m: mission.terrain_tolerance,
         origin: mission.origin.clone(),
+    }
+}
+
+impl GridArgs {
+    /// The library's request for this grid.
+    pub fn request(&self) -> agripath::request::grid::GridRequest {
+        agripath::request::grid::GridRequest {
+            fields: self.fields.clone(),
+            field: self.field.clone(),
+            method: self.method.clone(),
+            swath_width_m: self.swath_width,
+            local_coordinates: self.crs.is_some(),
+            seed: self.seed,
+        }
+    }
+}
+
+impl TrackArgs {
+    /// The library's request for this track.
+    pub fn request(&self) -> agripath::request::track::TrackRequest {
+        agripath::request::track::TrackRequest {
+            scenario_path: self.scenario.clone(),
+            task: self.task.clone(),
+            algorithms: self.algorithm.clone(),
+            runs: self.runs,
+            seed: self.seed,
+            encoding: self.encoding.clone(),
+            evaluations: self.evaluations,
+            limits: agripath::track::SafetyLimits {
+                min_clearance_m: self.min_clearance,
+                vehicle_radius_m: self.vehicle_radius,
+            },
+        }
     }
 }

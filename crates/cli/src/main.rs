@@ -11,21 +11,7 @@ use std::process::ExitCode;
 
 use clap::Parser;
 
-/// Why a command stopped.
-pub enum Failure {
-    /// The user's input is wrong: exit 2.
-    Input(agripath::InputError),
-    /// Something outside the input failed (a disk full, a folder not writable): exit 1.
-    Output(String),
-    /// The mission as written does not fly safely: exit 3, one line per failure.
-    Unsafe(Vec<String>),
-}
-
-impl From<agripath::InputError> for Failure {
-    fn from(error: agripath::InputError) -> Self {
-        Self::Input(error)
-    }
-}
+use agripath::request::Failure;
 
 /// Clap's message in one line: its first paragraph (the fault and, for missing arguments, the
 /// indented list of them), without its `error:` prefix.
@@ -82,7 +68,7 @@ fn main() -> ExitCode {
             for line in lines {
                 eprintln!("agripath: unsafe: {line}");
             }
-            eprintln!("agripath: error: not safe to fly as planned: no mission file was written (--allow-unsafe writes them)");
+            eprintln!("agripath: error: {}", agripath::request::UNSAFE_CLOSING);
             ExitCode::from(3)
         }
     }

@@ -1,8 +1,8 @@
 //! A function bench as asked for: seed 000's Table 2 settings with the dimension, population,
 //! iterations, runs and seed given, and the algorithms and functions named.
 
-use super::bad_value;
-use crate::bench::functions::FunctionBench;
+use super::{bad_value, Outcome};
+use crate::bench::functions::{FunctionBench, FunctionTable};
 use crate::InputError;
 
 /// The options of `agripath bench functions`, as given.
@@ -66,4 +66,36 @@ impl FunctionBenchOptions {
             .map_err(|fault| InputError::new("arguments", fault))?;
         Ok(settings)
     }
+}
+
+/// Refuses a function bench that cannot run, before any run starts.
+pub fn check(settings: &FunctionBench) -> Result<(), InputError> {
+    settings
+        .validate()
+        .map_err(|fault| InputError::new("arguments", fault))
+}
+
+/// Runs a checked function bench; `tick` after each run.
+pub fn run(
+    settings: &FunctionBench,
+    tick: &(dyn Fn() + Sync),
+) -> Result<FunctionTable, InputError> {
+    settings
+        .run(tick)
+        .map_err(|fault| InputError::new("arguments", fault))
+}
+
+/// The outcome of `agripath bench functions`: the table and its wall time, and the folder of
+/// table.md, table.csv and the convergence plots.
+pub fn outcome(table: &FunctionTable) -> Outcome {
+    let text = format!(
+        "{}wall time {:.1} s\n",
+        table.markdown(),
+        table.wall_seconds
+    );
+    Outcome::with_folder(
+        text,
+        table.files(),
+        "table.md, table.csv, convergence_*.svg",
+    )
 }

@@ -7,9 +7,14 @@
 //! the same one is reported first whichever program asks.
 
 pub mod bench;
+pub mod grid;
+mod outcome;
 pub mod plan;
+pub mod repro;
 pub mod terrain;
 pub mod track;
+
+pub use outcome::{output_failure, write_folder, Failure, FolderFiles, Outcome, UNSAFE_CLOSING};
 
 use std::path::{Path, PathBuf};
 
@@ -107,6 +112,27 @@ pub fn check_folder(inputs: &ScenarioInputs, folder: &Path) -> Result<Verdict, I
         vehicle: &scenario.vehicle,
     };
     crate::preflight::check_folder(&world, folder).map_err(|fault| InputError::new(folder, fault))
+}
+
+/// `agripath check`: the verdict on `folder` as text, unsafe when the preflight fails.
+pub fn check(inputs: &ScenarioInputs, folder: &Path) -> Result<Outcome, InputError> {
+    let verdict = check_folder(inputs, folder)?;
+    let mut outcome = Outcome::text(verdict.to_text());
+    if !verdict.safe {
+        outcome.failures = verdict.failures;
+    }
+    Ok(outcome)
+}
+
+/// `agripath validate`: what the inputs hold, as text ending in `valid`, or as JSON.
+pub fn validate(inputs: &ScenarioInputs, json: bool) -> Result<String, InputError> {
+    let scenario = inputs.load()?;
+    let summary = crate::summary::ScenarioSummary::of(&scenario);
+    Ok(if json {
+        serde_json::to_string_pretty(&summary).expect("a summary serialises") + "\n"
+    } else {
+        summary.to_text() + "valid\n"
+    })
 }
 
 /// An option's value that is not one it may take: the error names the option.

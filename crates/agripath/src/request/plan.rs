@@ -1,7 +1,7 @@
 //! A coverage plan as asked for: the layout, the order of the passes, the sorties and the
 //! mission files, checked into [`PlanSettings`] for a scenario.
 
-use super::{bad_value, ScenarioInputs};
+use super::{bad_value, Outcome, ScenarioInputs};
 use crate::coverage::heading::HeadingObjective;
 use crate::coverage::CoverageSettings;
 use crate::mission::flight::{AltitudeReference, MissionSettings, SprayerCommand};
@@ -216,6 +216,35 @@ pub fn plan_demo() -> Result<(Scenario, PlannedMission), InputError> {
     let mission = plan_mission(&scenario, &settings)
         .map_err(|fault| InputError::new(crate::demo::FARM_LABEL, fault))?;
     Ok((scenario, mission))
+}
+
+/// A rendered plan as a command ends it: the plan's files (all but the mission files when the
+/// preflight fails and not `allow_unsafe`), its report, and the verdict; `source` names the
+/// input in errors.
+pub fn outcome(
+    scenario: &Scenario,
+    mission: &PlannedMission,
+    allow_unsafe: bool,
+    source: &std::path::Path,
+) -> Result<Outcome, InputError> {
+    let mut rendered = crate::pipeline::render(scenario, mission)
+        .map_err(|fault| InputError::new(source, fault))?;
+    rendered.keep_files_to_write(allow_unsafe);
+    let contents = files_summary(&rendered.files);
+    let mut outcome = Outcome::with_folder(String::new(), rendered.files, &contents);
+    if let Some(folder) = outcome.folder.as_mut() {
+        folder.report = rendered.report.to_text();
+    }
+    if !rendered.verdict.safe {
+        if allow_unsafe {
+            outcome.warning = Some(
+                "warning: the mission files were written although the preflight failed (--allow-unsafe)".into(),
+            );
+        } else {
+            outcome.failures = rendered.verdict.failures;
+        }
+    }
+    Ok(outcome)
 }
 
 /// The files written, in one short line: mission files per sortie are counted, not listed.

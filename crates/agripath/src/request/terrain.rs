@@ -138,3 +138,24 @@ pub fn shade(
     };
     Ok(hillshade(model.as_ref(), area, size, exaggeration))
 }
+
+/// `agripath terrain hillshade`: the picture of [`shade`] written as a PNG to `out`, and the
+/// line saying so.
+pub fn write_hillshade(
+    argument: &str,
+    cell: Option<f64>,
+    size: usize,
+    exaggeration: f64,
+    extent: Option<&[f64]>,
+    out: &std::path::Path,
+) -> Result<String, super::Failure> {
+    let shaded = shade(argument, cell, size, exaggeration, extent)?;
+    crate::output::write_file_atomically(out, &shaded.to_png())
+        .map_err(|error| super::output_failure(out, error))?;
+    Ok(format!(
+        "wrote {} ({} × {} pixels)\n",
+        out.display(),
+        shaded.width,
+        shaded.height
+    ))
+}

@@ -3,7 +3,7 @@
 
 use std::path::{Path, PathBuf};
 
-use super::bad_value;
+use super::{bad_value, Failure, Outcome};
 use crate::track::files::PlannerRuns;
 use crate::track::{plan, Encoding, Planner, SafetyLimits, TrackScenario, TrackSettings};
 use crate::InputError;
@@ -122,5 +122,39 @@ impl TrackJob {
             });
         }
         Ok(results)
+    }
+
+    /// The outcome of `agripath track` for `results`: the folder (a planner's `.waypoints`
+    /// only when its track is safe, unless `allow_unsafe`), the table and why tracks are
+    /// unsafe; unsafe when no planner's track is safe.
+    pub fn outcome(&self, results: &[PlannerRuns], allow_unsafe: bool) -> Result<Outcome, Failure> {
+        use crate::track::files;
+        let files = files::files(&self.scenario, results, self.seed, allow_unsafe)
+            .map_err(Failure::Output)?;
+        let mut report = files::table(&self.scenario, results);
+        let reasons: Vec<String> = results
+            .iter()
+            .filter_map(PlannerRuns::unsafe_reason)
+            .collect();
+        for reason in &reasons {
+            report += reason;
+            report += "\n";
+        }
+        let names: Vec<&str> = files.iter().map(|(name, _)| name.as_str()).collect();
+        let contents = names.join(", ");
+        let mut outcome = Outcome::with_folder(String::new(), files, &contents);
+        if let Some(folder) = outcome.folder.as_mut() {
+            folder.report = report;
+        }
+        if reasons.len() >= results.len() {
+            if allow_unsafe {
+                outcome.warning = Some(
+                    "warning: the .waypoints of unsafe tracks were written (--allow-unsafe)".into(),
+                );
+            } else {
+                outcome.failures = reasons;
+            }
+        }
+        Ok(outcome)
     }
 }

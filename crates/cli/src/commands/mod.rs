@@ -1,20 +1,12 @@
-//! One file per command: build the request, call the library, print, write. Shared here:
-//! the output helpers and the requests several commands build (scenario, coverage, order,
-//! mission settings).
+//! One function per command: build the request, call the library, print what it returns.
+//! Shared here: printing, how every command ends (print, write, verdict) and progress bars.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use agripath::bench::functions::{FunctionBench, FunctionTable};
-use agripath::output::{write_file_atomically, StagedFolder};
-use agripath::pipeline::plan_mission;
-use agripath::scenario::Scenario;
+use agripath::request::{self, terrain, write_folder, Failure, Outcome};
 use agripath::{Fault, InputError};
 
-use crate::args::{
-    Arguments, BenchAction, Command, CoverageArgs, Inputs, MissionArgs, OrderArgs, ReproTable,
-    TerrainAction,
-};
-use crate::Failure;
+use crate::args::{Arguments, Command, TerrainAction};
 
 /// Writes to stdout; a closed pipe (`agripath … | head`) ends the program quietly, as Unix
 /// tools do, instead of panicking.
@@ -31,28 +23,12 @@ pub fn emit_text(text: &str) {
     }
 }
 
-macro_rules! emit {
-    ($($argument:tt)*) => { emit_text(&format!($($argument)*)) };
-}
-
 macro_rules! emitln {
-    () => { emit_text("\n") };
     ($($argument:tt)*) => { emit_text(&(format!($($argument)*) + "\n")) };
 }
 
-mod bench;
-mod grid;
 mod plan;
-mod repro;
-mod terrain;
-mod track;
-
-use bench::*;
-use grid::*;
-use plan::*;
-use repro::*;
-use terrain::*;
-use track::*;
+mod runs;
 
 pub fn run(arguments: Arguments) -> Result<(), Failure> {
     if let Some(out) = arguments.command.output_folder() {
@@ -60,90 +36,85 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
             .map_err(|error| InputError::new("--out", Fault::Structure(error.to_string())))?;
     }
     match arguments.command {
-        Command::Demo { out } => demo(&out),
+        Command::Demo { out } => plan::demo(&out),
         Command::Plan {
             inputs,
             coverage,
             order,
             mission,
             out,
-        } => plan(&inputs, &coverage, &order, &mission, &out),
-        Command::Check { folder, inputs } => check(&folder, &inputs),
+        } => plan::plan(&inputs, &coverage, &order, &mission, &out),
+        Command::Check { folder, inputs } => {
+            finish(None, request::check(&inputs.request(), &folder)?)
+        }
         Command::Repro {
             table,
             runs,
             seed,
             out,
-        } => repro(table, runs, seed, out.as_deref()),
-        Command::Bench { action } => bench(action),
+        } => runs::repro(table, runs, seed, out.as_deref()),
+        Command::Bench { action } => runs::bench(action),
         Command::View { folder, port, open } => view(&folder, port, open),
-        Command::Grid {
-            fields,
-            field,
-            method,
-            swath_width,
-            crs,
-            seed,
-            out,
-        } => grid(
-            &fields,
-            field.as_deref(),
-            &method,
-            swath_width,
-            crs.is_some(),
-            seed,
-            &out,
-        ),
+        Command::Grid { grid, out } => finish(Some(&out), grid.request().plan()?),
         Command::Track {
-            scenario,
-            task,
-            algorithm,
-            runs,
-            seed,
-            encoding,
-            evaluations,
-            min_clearance,
-            vehicle_radius,
+            track,
             allow_unsafe,
             out,
-        } => track(
-            &agripath::request::track::TrackRequest {
-                scenario_path: scenario,
-                task,
-                algorithms: algorithm,
-                runs,
-                seed,
-                encoding,
-                evaluations,
-                limits: agripath::track::SafetyLimits {
-                    min_clearance_m: min_clearance,
-                    vehicle_radius_m: vehicle_radius,
-                },
-            },
-            allow_unsafe,
-            &out,
-        ),
-        Command::Validate { inputs, json } => validate(&inputs, json),
-        Command::Terrain { action } => terrain(action),
+        } => runs::track(&track.request(), allow_unsafe, &out),
+        Command::Validate { inputs, json } => {
+            emit_text(&request::validate(&inputs.request(), json)?);
+            Ok(())
+        }
+        Command::Terrain { action } => {
+            emit_text(&match action {
+                TerrainAction::Info {
+                    terrain,
+                    cell,
+                    json,
+                } => terrain::info(&terrain, cell, json)?,
+                TerrainAction::Sample {
+                    terrain,
+                    coordinates,
+                    cell,
+                } => terrain::sample(&terrain, cell, &coordinates)?,
+                TerrainAction::Hillshade {
+                    terrain,
+                    out,
+                    size,
+                    exaggeration,
+                    extent,
+                    cell,
+                } => terrain::write_hillshade(
+                    &terrain,
+                    cell,
+                    size,
+                    exaggeration,
+                    extent.as_deref(),
+                    &out,
+                )?,
+            });
+            Ok(())
+        }
     }
 }
 
-fn output_failure(path: &Path, error: std::io::Error) -> Failure {
-    Failure::Output(format!("{}: cannot write: {error}", path.display()))
-}
-
-/// Writes every file into a staged folder and moves it into place.
-fn write_folder<Name: AsRef<str>>(
-    out: &Path,
-    files: &[(Name, Vec<u8>)],
-) -> Result<PathBuf, Failure> {
-    let staged = StagedFolder::new(out).map_err(|error| output_failure(out, error))?;
-    for (name, bytes) in files {
-        staged
-            .write(name.as_ref(), bytes)
-            .map_err(|error| output_failure(out, error))?;
+/// Ends a command as the library's outcome says: its text, then its folder when `out` is
+/// given (the folder's report and what it holds), its warning, and exit 3 on failures.
+fn finish(out: Option<&Path>, outcome: Outcome) -> Result<(), Failure> {
+    emit_text(&outcome.text);
+    if let (Some(out), Some(folder)) = (out, &outcome.folder) {
+        let written = write_folder(out, &folder.files)?;
+        emit_text(&folder.report);
+        emit_text(&folder.wrote_line(&written));
     }
-    staged.commit().map_err(|error| output_failure(out, error))
+    if let Some(warning) = &outcome.warning {
+        emitln!("{warning}");
+    }
+    if outcome.failures.is_empty() {
+        Ok(())
+    } else {
+        Err(Failure::Unsafe(outcome.failures))
+    }
 }
 
 fn view(folder: &Path, port: u16, open: bool) -> Result<(), Failure> {

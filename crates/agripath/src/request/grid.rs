@@ -1,0 +1,97 @@
+//! Fewest-turn grid coverage of one field as asked for (seed 004): the field file, which
+//! field, the method, the cell width; planned, checked and rendered.
+
+use std::path::{Path, PathBuf};
+
+use super::{Failure, Outcome};
+use crate::grid_cover::{cell_width_m, grid_method, render, PointGrid, GRID_METHODS};
+use crate::input::CoordinateChoice;
+use crate::{Fault, InputError};
+
+/// What `agripath grid` is asked, as given.
+#[derive(Debug, Clone)]
+pub struct GridRequest {
+    /// The field file (GeoJSON, KML or KMZ).
+    pub fields: PathBuf,
+    /// Which field, by name; `None`: the first.
+    pub field: Option<String>,
+    /// The method's key: one of [`GRID_METHODS`].
+    pub method: String,
+    /// Path-point spacing, metres; `None`: the file's swath width, else 5.
+    pub swath_width_m: Option<f64>,
+    /// Read the coordinates as local metres, whatever the file says.
+    pub local_coordinates: bool,
+    /// Seed of the stochastic methods.
+    pub seed: u64,
+}
+
+impl GridRequest {
+    /// Plans the field's route and renders its folder; unsafe, with nothing to write, when
+    /// a move of the route crosses an obstacle.
+    pub fn plan(&self) -> Result<Outcome, Failure> {
+        let fields = self.fields.as_path();
+        let choice = if self.local_coordinates {
+            CoordinateChoice::Local
+        } else {
+            CoordinateChoice::FromFile
+        };
+        let farm = crate::input::read_farm(fields, choice)?;
+        let index = match &self.field {
+            None => 0,
+            Some(name) => farm
+                .fields
+                .iter()
+                .position(|field| &field.name == name)
+                .ok_or_else(|| {
+                    InputError::new(fields, Fault::Structure(format!("no field named '{name}'")))
+                })?,
+        };
+        let width = cell_width_m(self.swath_width_m, &farm).map_err(|fault| {
+            // A width given on the command line is the option's fault, not the file's.
+            let named = if self.swath_width_m.is_some() {
+                Path::new("--swath-width")
+            } else {
+                fields
+            };
+            InputError::new(named, fault)
+        })?;
+        let grid =
+            PointGrid::new(&farm, index, width).map_err(|fault| InputError::new(fields, fault))?;
+        let method = self.method.as_str();
+        let started = std::time::Instant::now();
+        let planner = grid_method(method, self.seed).ok_or_else(|| {
+            InputError::new(
+                "--method",
+                Fault::InvalidValue {
+                    what: "--method".into(),
+                    value: method.into(),
+                    why: format!("expected {}", GRID_METHODS.join(", ")),
+                },
+            )
+        })?;
+        let route = planner.plan(&grid);
+        let runtime_s = started.elapsed().as_secs_f64();
+        // The grid route's preflight: a move that crosses an obstacle is not flown.
+        let crossings = route.measure(&grid).crossings;
+        if crossings > 0 {
+            return Err(Failure::Unsafe(vec![format!(
+                "{crossings} move(s) of the {method} route cross an obstacle and no clear way round was found"
+            )]));
+        }
+        let (files, title) = render(&farm, index, &grid, &route, method, runtime_s);
+        let files = files
+            .into_iter()
+            .map(|(name, bytes)| (name.to_string(), bytes))
+            .collect();
+        let mut outcome =
+            Outcome::with_folder(String::new(), files, "plan.geojson, report.json, plan.svg");
+        if let Some(folder) = outcome.folder.as_mut() {
+            folder.report = format!(
+                "{title} ({} points, planned in {:.3} s)\n",
+                grid.points.len(),
+                runtime_s
+            );
+        }
+        Ok(outcome)
+    }
+}

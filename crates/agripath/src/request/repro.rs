@@ -1,0 +1,161 @@
+//! A table of the papers as asked for (`agripath repro TABLE`): the table's key, runs and
+//! seed, checked into a [`ReproJob`] whose outcome is the text printed and the folder.
+
+use super::{Failure, Outcome};
+use crate::bench::functions::FunctionBench;
+use crate::repro::{printed, seed000_table2, tracks};
+use crate::InputError;
+
+/// How the scenarios of the track tables are named in errors.
+const TRACK_LABEL: &str = "embedded track scenario";
+
+/// A checked request for one table.
+pub struct ReproJob {
+    table: Table,
+    seed: u64,
+}
+
+/// The tables, by what they need to run.
+enum Table {
+    /// Seed 000 Table 2: a function bench.
+    Functions(FunctionBench),
+    /// A track table (its key) with its runs per planner.
+    Tracks(&'static str, u64),
+    /// A table computed without runs to count (its key).
+    Other(&'static str),
+}
+
+/// The keys of the tables, as `agripath repro` takes them.
+pub const TABLES: [&str; 9] = [
+    "seed000-table2",
+    "seed003-table4",
+    "seed004",
+    "seed001-table7",
+    "seed000-table4",
+    "seed000-table5",
+    "seed002",
+    "spso",
+    "seed001-table8",
+];
+
+impl ReproJob {
+    /// Checks the runs for `key` (one of [`TABLES`]): `runs` defaults to the paper's.
+    pub fn new(key: &str, runs: Option<u64>, seed: u64) -> Result<Self, InputError> {
+        let key = TABLES
+            .iter()
+            .copied()
+            .find(|table| *table == key)
+            .ok_or_else(|| {
+                super::bad_value("TABLE", key, format!("expected {}", TABLES.join(", ")))
+            })?;
+        let table = match key {
+            "seed000-table2" => {
+                let settings = seed000_table2::settings(runs.unwrap_or(50), seed);
+                super::bench::check(&settings)?;
+                Table::Functions(settings)
+            }
+            "seed000-table4" | "seed000-table5" | "seed002" | "spso" => {
+                Table::Tracks(key, super::track::check_runs(runs.unwrap_or(10))?)
+            }
+            other => Table::Other(other),
+        };
+        Ok(Self { table, seed })
+    }
+
+    /// The runs to make and what they are called, for a progress bar; `None` when the table
+    /// has no runs to count.
+    pub fn progress(&self) -> Option<(u64, &'static str)> {
+        match &self.table {
+            Table::Functions(settings) => Some((settings.total_runs(), "bench")),
+            Table::Tracks(key, runs) => Some((tracks::total_runs(key, *runs), "runs")),
+            Table::Other(_) => None,
+        }
+    }
+
+    /// Computes the table, `tick` after each counted run; its folder's files only when
+    /// `with_files` (an `--out` folder is given), as they take time to draw.
+    pub fn run(&self, with_files: bool, tick: &(dyn Fn() + Sync)) -> Result<Outcome, Failure> {
+        let seed = self.seed;
+        match &self.table {
+            Table::Functions(settings) => {
+                let table = super::bench::run(settings, tick)?;
+                let comparison = seed000_table2::comparison(&table);
+                let mut files = if with_files {
+                    table.files()
+                } else {
+                    Vec::new()
+                };
+                files.push(("comparison.md".into(), comparison.clone().into_bytes()));
+                let contents = "comparison.md, table.md, table.csv, convergence_*.svg";
+                Ok(Outcome::with_folder(comparison, files, contents))
+            }
+            Table::Tracks(key, runs) => track_table(key, *runs, seed, with_files, tick),
+            Table::Other("seed003-table4") => Ok(Outcome::text(printed::seed003_table4(seed)?)),
+            Table::Other("seed004") => {
+                let settings = crate::grid_cover::hybrid_pso::HpsoSettings {
+                    seed,
+                    ..Default::default()
+                };
+                let (rows, table, text) = printed::seed004(&settings)?;
+                let mut files: Vec<(String, Vec<u8>)> =
+                    vec![("seed004.txt".into(), table.into_bytes())];
+                if with_files {
+                    for row in &rows {
+                        let map = crate::repro::seed004::map_svg(row);
+                        files.push((format!("{}.svg", row.name), map.into_bytes()));
+                    }
+                }
+                Ok(Outcome::with_folder(
+                    text,
+                    files,
+                    "seed004.txt and a map per field",
+                ))
+            }
+            Table::Other("seed001-table8") => Ok(Outcome::text(printed::seed001_table8(seed)?)),
+            Table::Other(_) => Ok(Outcome::text(printed::seed001_table7()?)),
+        }
+    }
+}
+
+/// A track table: its text and, with `with_files`, each case's track files (numbered when
+/// the table has several cases) beside `table.md`.
+fn track_table(
+    key: &str,
+    runs: u64,
+    seed: u64,
+    with_files: bool,
+    tick: &(dyn Fn() + Sync),
+) -> Result<Outcome, Failure> {
+    let input = |fault| InputError::new(TRACK_LABEL, fault);
+    let (text, cases) = match key {
+        "seed000-table4" => tracks::seed000_table4(runs, seed, tick).map_err(input)?,
+        other => {
+            let (text, scenario, results) = match other {
+                "seed000-table5" => tracks::seed000_table5(runs, seed, tick),
+                "seed002" => tracks::seed002(runs, seed, tick),
+                _ => tracks::spso(runs, seed, tick),
+            }
+            .map_err(input)?;
+            (text, vec![(scenario, results)])
+        }
+    };
+    let mut files: Vec<(String, Vec<u8>)> = vec![("table.md".into(), text.clone().into_bytes())];
+    for (index, (scenario, results)) in cases.iter().enumerate().filter(|_| with_files) {
+        let suffix = if cases.len() > 1 {
+            format!("_{}", index + 1)
+        } else {
+            String::new()
+        };
+        for (name, bytes) in
+            crate::track::files::files(scenario, results, seed, false).map_err(Failure::Output)?
+        {
+            if name == "table.md" {
+                continue;
+            }
+            let (stem, extension) = name.rsplit_once('.').unwrap_or((&name, ""));
+            files.push((format!("{stem}{suffix}.{extension}"), bytes));
+        }
+    }
+    let contents = "table.md, track, report, top views, profiles, convergence";
+    Ok(Outcome::with_folder(text, files, contents))
+}
