@@ -360,6 +360,74 @@ impl SortiePlanner {
     }
 }
 
+/// The shared check of a split (Fields2Cover's checkers, issue 18): the sorties fly the route
+/// end to end, each starting where the last returned; the breaks are those junctions, strictly
+/// increasing inside the route; and every sortie is flown on one tank and one battery by
+/// `model`'s own accounting. Used by the property tests of every planner.
+pub fn check_sorties(
+    plan: &SortiePlan,
+    route: &WorkRoute,
+    model: &SortieModel,
+) -> Result<(), String> {
+    if route.len() < 2 {
+        return Ok(());
+    }
+    let (Some(first), Some(last)) = (plan.sorties.first(), plan.sorties.last()) else {
+        return Err("no sortie for a route of two or more points".into());
+    };
+    if first.first != 0 || last.last != route.len() - 1 {
+        return Err(format!(
+            "the sorties fly points {}..={} of 0..={}",
+            first.first,
+            last.last,
+            route.len() - 1
+        ));
+    }
+    for (index, pair) in plan.sorties.windows(2).enumerate() {
+        if pair[0].last != pair[1].first {
+            return Err(format!(
+                "sortie {} ends at {} but the next starts at {}",
+                index + 1,
+                pair[0].last,
+                pair[1].first
+            ));
+        }
+        if plan.breaks.get(index) != Some(&pair[0].last) {
+            return Err(format!(
+                "break {} is not where sortie {} returns",
+                index + 1,
+                index + 1
+            ));
+        }
+    }
+    if plan.breaks.len() + 1 != plan.sorties.len() {
+        return Err(format!(
+            "{} breaks for {} sorties",
+            plan.breaks.len(),
+            plan.sorties.len()
+        ));
+    }
+    for (index, sortie) in plan.sorties.iter().enumerate() {
+        if sortie.first >= sortie.last {
+            return Err(format!(
+                "sortie {} flies {}..={}",
+                index + 1,
+                sortie.first,
+                sortie.last
+            ));
+        }
+        if !model.feasible(route, sortie.first, sortie.last) {
+            return Err(format!(
+                "sortie {} ({}..={}) does not fit one tank and one battery",
+                index + 1,
+                sortie.first,
+                sortie.last
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Refuses routes where one step already cannot be flown on one tank and one battery.
 fn unreachable_points(route: &WorkRoute, model: &SortieModel) -> Result<(), Fault> {
     for index in 1..route.len() {
@@ -577,13 +645,28 @@ mod tests {
                         prop_assert!(sortie.spray_m <= 300.0 + 1e-6);
                         prop_assert!(sortie.flight_s <= 600.0 + 1e-6);
                     }
-                    // The sorties cover the route end to end.
-                    prop_assert_eq!(plan.sorties.first().unwrap().first, 0);
-                    prop_assert_eq!(plan.sorties.last().unwrap().last, route.len() - 1);
-                    prop_assert!(plan.sorties.windows(2).all(|pair| pair[0].last == pair[1].first));
+                    // The sorties cover the route end to end, within tank and battery.
+                    prop_assert_eq!(check_sorties(&plan, &route, &model), Ok(()), "{}", planner);
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_sortie_checker_catches_a_gap_a_wrong_break_and_an_overfull_sortie() {
+        let route = lawnmower(20, 600.0, 5.0);
+        let model = model(2700.0, 1500.0);
+        let plan = plan_sorties(&route, &model, SortiePlanner::Exact, 1).unwrap();
+        assert!(plan.sorties.len() >= 2, "the test needs a return");
+        assert_eq!(check_sorties(&plan, &route, &model), Ok(()));
+        let mut gap = plan.clone();
+        gap.sorties[1].first += 1;
+        assert!(check_sorties(&gap, &route, &model).is_err());
+        let mut wrong_break = plan.clone();
+        wrong_break.breaks[0] += 1;
+        assert!(check_sorties(&wrong_break, &route, &model).is_err());
+        let whole = model.evaluate(&route, SortiePlanner::Exact, vec![]);
+        assert!(check_sorties(&whole, &route, &model).is_err(), "one sortie for 20 long swaths");
     }
 
     #[test]
