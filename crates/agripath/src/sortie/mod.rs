@@ -666,7 +666,10 @@ mod tests {
         wrong_break.breaks[0] += 1;
         assert!(check_sorties(&wrong_break, &route, &model).is_err());
         let whole = model.evaluate(&route, SortiePlanner::Exact, vec![]);
-        assert!(check_sorties(&whole, &route, &model).is_err(), "one sortie for 20 long swaths");
+        assert!(
+            check_sorties(&whole, &route, &model).is_err(),
+            "one sortie for 20 long swaths"
+        );
     }
 
     #[test]
