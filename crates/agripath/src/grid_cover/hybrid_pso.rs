@@ -185,6 +185,9 @@ pub struct HybridPso {
     costs: Vec<f64>,
     personal: Vec<Vec<usize>>,
     personal_costs: Vec<f64>,
+    /// The swarm's best as the seed keeps it: updated after each particle's three moves, so
+    /// a particle's c2 crossover follows the best of the particles before it. Not the
+    /// Runner's best, which may already hold this particle's first move.
     global: Vec<usize>,
     global_cost: f64,
 }

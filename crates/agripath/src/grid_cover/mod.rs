@@ -542,6 +542,15 @@ pub fn axis_lower_bound(grid: &PointGrid) -> usize {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn every_listed_grid_method_is_registered_under_its_own_key() {
+        for key in GRID_METHODS {
+            let method = grid_method(key, 1).expect("a listed method is registered");
+            assert_eq!(method.key(), key);
+        }
+        assert!(grid_method("nearest", 1).is_none());
+    }
+
     use proptest::prelude::*;
 
     use super::*;

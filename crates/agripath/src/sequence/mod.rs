@@ -325,6 +325,15 @@ pub fn route(
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn every_listed_sequencer_is_registered_under_its_own_key() {
+        for key in Sequencer::KEYS {
+            let sequencer = Sequencer::from_key(key, 1, 5, 5).expect("a listed key is registered");
+            assert_eq!(sequencer.sequencer().key(), key);
+        }
+        assert!(Sequencer::from_key("lkh", 1, 5, 5).is_none());
+    }
+
     use super::*;
     use crate::coverage::{plan_coverage, CoverageSettings};
     use proptest::prelude::*;

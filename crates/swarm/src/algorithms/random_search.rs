@@ -6,7 +6,7 @@
 //! swath order with its entry ends, and on a grid route: whatever the problem declares as
 //! its solution.
 
-use crate::problem::Problem;
+use crate::problem::{as_solution, Problem};
 use crate::runner::{Optimizer, Search};
 
 use super::Algorithm;
@@ -33,7 +33,7 @@ impl RandomSearch {
     fn sample<P: Problem + ?Sized>(&self, search: &mut Search<P>) {
         for _ in 0..self.samples {
             let solution = search.random_solution();
-            search.evaluate(std::borrow::Borrow::borrow(&solution));
+            search.evaluate(as_solution::<P>(&solution));
         }
     }
 }

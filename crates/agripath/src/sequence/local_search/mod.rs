@@ -148,8 +148,6 @@ pub struct IteratedLocalSearch<'g> {
     seed: u64,
     neighbours: Vec<Vec<End>>,
     group_of: Vec<usize>,
-    incumbent: Vec<Step>,
-    incumbent_cost: f64,
 }
 
 impl<'g> IteratedLocalSearch<'g> {
@@ -160,8 +158,6 @@ impl<'g> IteratedLocalSearch<'g> {
             seed,
             neighbours: Vec::new(),
             group_of: Vec::new(),
-            incumbent: Vec::new(),
-            incumbent_cost: f64::INFINITY,
         }
     }
 
@@ -232,8 +228,6 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
             let tour = self.descend(problem, start, 0..n, 50 * n + 10_000);
             run.evaluate(&tour);
         }
-        self.incumbent = run.best_solution().to_vec();
-        self.incumbent_cost = run.best_cost();
         if n < 8 {
             // Too few passes for a double bridge's three cuts.
             run.declare_converged();
@@ -242,8 +236,10 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
 
     fn step(&mut self, run: &mut swarm::Search<OrderingProblem<'a>>) {
         let problem = run.problem();
-        let n = self.incumbent.len();
-        let Some((kicked, [a, b, c])) = double_bridge(&self.incumbent, run.stream()) else {
+        // The incumbent is the Runner's best: only kicks that beat it reach the Runner.
+        let incumbent = run.best_solution().to_vec();
+        let n = incumbent.len();
+        let Some((kicked, [a, b, c])) = double_bridge(&incumbent, run.stream()) else {
             return;
         };
         let touched: Vec<usize> = [0, a - 1, a, b - 1, b, c - 1, c, n - 1]
@@ -252,12 +248,10 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
             .collect();
         let tour = self.descend(problem, kicked, touched, KICK_MOVES);
         // Only a kick kept is handed to the Runner: a closed tour and its rotation cost the
-        // same up to float noise but fly different open routes, so the Runner's best must be
-        // the incumbent, not a tour a nanometre cheaper by summation order.
-        let cost = problem.tour_cost(&tour);
-        if cost < self.incumbent_cost - 1e-9 {
-            self.incumbent_cost = run.evaluate(&tour);
-            self.incumbent = tour;
+        // same up to float noise but fly different open routes, so the Runner's best must
+        // stay the incumbent, not a tour a nanometre cheaper by summation order.
+        if problem.tour_cost(&tour) < run.best_cost() - 1e-9 {
+            run.evaluate(&tour);
         }
     }
 }
