@@ -1,3 +1,4 @@
 //! Benchmarks users run from the command line (`agripath bench …`).
 
+pub mod farms;
 pub mod functions;

@@ -1,0 +1,176 @@
+//! Random irregular farms for the routing benchmarks (issue 19): inputs the planners were not
+//! designed around. A farm has 2-5 fields; each field is a star-shaped ring of 4-12 vertices
+//! (simple, and concave: one vertex is pulled in towards the centre), with 0-2 convex holes
+//! well inside and apart; fields lie on a row with gaps between them. Sizes are drawn so that
+//! the farm has about the asked number of swaths of the asked width.
+
+use geo::{Contains, Coord, Intersects, LineString, Polygon};
+use swarm::random::{below, run_stream, uniform};
+use swarm::RunStream;
+
+use crate::model::{CoordinateSystem, Farm, Field};
+
+fn between(stream: &mut RunStream, low: f64, high: f64) -> f64 {
+    low + (high - low) * uniform(stream)
+}
+
+/// A star-shaped closed ring about `centre`: `count` vertices at sorted random angles, radii in
+/// `low..high`.
+fn star(
+    stream: &mut RunStream,
+    centre: Coord<f64>,
+    low: f64,
+    high: f64,
+    count: usize,
+) -> Vec<Coord<f64>> {
+    // Angles jittered inside equal sectors, so that no two vertices come close in angle.
+    (0..count)
+        .map(|index| {
+            let sector = std::f64::consts::TAU / count as f64;
+            let angle = sector * (index as f64 + between(stream, 0.15, 0.85));
+            let radius = between(stream, low, high);
+            Coord {
+                x: centre.x + radius * angle.cos(),
+                y: centre.y + radius * angle.sin(),
+            }
+        })
+        .collect()
+}
+
+fn closed(mut ring: Vec<Coord<f64>>) -> LineString<f64> {
+    ring.push(ring[0]);
+    LineString::new(ring)
+}
+
+/// One irregular field of mean radius `radius` about `centre`, with 0-2 holes.
+fn irregular_field(stream: &mut RunStream, name: String, centre: Coord<f64>, radius: f64) -> Field {
+    let count = 4 + below(stream, 9);
+    let mut ring = star(stream, centre, 0.8 * radius, 1.2 * radius, count);
+    // Concave: the vertex whose neighbours are nearest in angle (under 180° apart, as the
+    // gaps of all such pairs sum to 720°) moves to halfway between their chord's midpoint and
+    // the centre, which is on the far side of the chord: the vertex becomes reflex.
+    let angle = |point: Coord<f64>| (point.y - centre.y).atan2(point.x - centre.x);
+    let gap = |index: usize| {
+        let before = ring[(index + count - 1) % count];
+        let after = ring[(index + 1) % count];
+        (angle(after) - angle(before)).rem_euclid(std::f64::consts::TAU)
+    };
+    let dent = (0..count)
+        .min_by(|&a, &b| gap(a).total_cmp(&gap(b)))
+        .expect("four or more vertices");
+    let (before, after) = (ring[(dent + count - 1) % count], ring[(dent + 1) % count]);
+    let middle = Coord {
+        x: 0.5 * (before.x + after.x),
+        y: 0.5 * (before.y + after.y),
+    };
+    let pulled = between(stream, 0.3, 0.7);
+    ring[dent] = Coord {
+        x: middle.x + pulled * (centre.x - middle.x),
+        y: middle.y + pulled * (centre.y - middle.y),
+    };
+    let boundary = Polygon::new(closed(ring), vec![]);
+    let wanted = below(stream, 3);
+    let mut holes: Vec<Polygon<f64>> = Vec::new();
+    for _attempt in 0..40 {
+        if holes.len() == wanted {
+            break;
+        }
+        let size = between(stream, 0.06, 0.14) * radius;
+        let offset = between(stream, 0.0, 0.3) * radius;
+        let angle = between(stream, 0.0, std::f64::consts::TAU);
+        let hole_centre = Coord {
+            x: centre.x + offset * angle.cos(),
+            y: centre.y + offset * angle.sin(),
+        };
+        let hole = Polygon::new(closed(star(stream, hole_centre, size, size, 6)), vec![]);
+        // Well inside the boundary (a swath's worth of margin) and apart from the others.
+        let grown = Polygon::new(
+            closed(star(stream, hole_centre, 1.6 * size, 1.6 * size, 12)),
+            vec![],
+        );
+        if boundary.contains(&grown) && holes.iter().all(|other| !other.intersects(&grown)) {
+            holes.push(hole);
+        }
+    }
+    let interiors = holes.into_iter().map(|hole| hole.exterior().clone());
+    Field::new(
+        name,
+        Polygon::new(boundary.exterior().clone(), interiors.collect()),
+    )
+}
+
+/// A random farm of 2-5 irregular fields (local metres, flat), seeded by `seed`, sized for
+/// about `swaths` swaths of `swath_width_m`.
+pub fn irregular_farm(seed: u64, swaths: usize, swath_width_m: f64) -> Farm {
+    let mut stream = run_stream(seed, 0);
+    let count = 2 + below(&mut stream, 4);
+    // Field i's share of the swaths, each field about 2 · radius / w swaths across.
+    let shares: Vec<f64> = (0..count).map(|_| between(&mut stream, 0.5, 1.5)).collect();
+    let total: f64 = shares.iter().sum();
+    let mut fields = Vec::with_capacity(count);
+    let mut x = 0.0;
+    for (index, share) in shares.iter().enumerate() {
+        let radius = 0.5 * swaths as f64 * swath_width_m * share / total;
+        let gap = between(&mut stream, 30.0, 200.0);
+        x += 1.2 * radius;
+        let centre = Coord {
+            x,
+            y: between(&mut stream, -0.5, 0.5) * radius,
+        };
+        x += 1.2 * radius + gap;
+        fields.push(irregular_field(
+            &mut stream,
+            format!("F{}", index + 1),
+            centre,
+            radius,
+        ));
+    }
+    Farm {
+        source: format!("random irregular farm {seed}").into(),
+        coordinate_system: CoordinateSystem::Local,
+        fields,
+        obstacles: vec![],
+        markers: vec![],
+        embedded_terrain: None,
+        stated_swath_width_m: None,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use geo::{Area, Validation};
+
+    #[test]
+    fn random_farms_are_valid_irregular_and_repeatable() {
+        let mut holes = 0;
+        for seed in 0..30 {
+            let farm = irregular_farm(seed, 200, 5.0);
+            assert!((2..=5).contains(&farm.fields.len()));
+            for field in &farm.fields {
+                assert!(field.polygon.is_valid(), "seed {seed}: {}", field.name);
+                let vertices = field.polygon.exterior().0.len() - 1;
+                assert!((4..=12).contains(&vertices));
+                assert!(field.polygon.interiors().len() <= 2);
+                holes += field.polygon.interiors().len();
+                // Not convex: the hull is larger than the field.
+                use geo::ConvexHull;
+                let outline = Polygon::new(field.polygon.exterior().clone(), vec![]);
+                assert!(
+                    outline.convex_hull().unsigned_area() > 1.005 * outline.unsigned_area(),
+                    "seed {seed} {} {vertices} {:?}",
+                    field.name,
+                    outline.exterior().0
+                );
+            }
+            // Fields do not touch.
+            for (i, a) in farm.fields.iter().enumerate() {
+                for b in &farm.fields[i + 1..] {
+                    assert!(!a.polygon.intersects(&b.polygon));
+                }
+            }
+            assert_eq!(farm.fields, irregular_farm(seed, 200, 5.0).fields);
+        }
+        assert!(holes > 10, "holes are drawn: {holes}");
+    }
+}
