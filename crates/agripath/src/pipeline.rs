@@ -18,10 +18,11 @@ use crate::plot::plan_html::{plan_html, Overlay};
 use crate::plot::raster::svg_to_png;
 use crate::report::Report;
 use crate::scenario::Scenario;
-use crate::sequence::{route, Route, TransferModel};
+use crate::sequence::{ordering_problem, passes_of, route, route_of_tour, Route, TransferModel};
 use crate::settings::PlanSettings;
+use crate::sortie::joint::{JointProblem, JointSettings};
 use crate::sortie::route::{RoutePoint, Speeds, WorkRoute};
-use crate::sortie::{plan_sorties, PlannedSorties, SortieModel, SortieSettings};
+use crate::sortie::{plan_sorties, PlannedSorties, SortieModel, SortiePlanner, SortieSettings};
 use crate::terrain::hillshade::hillshade;
 use crate::terrain::Extent;
 
@@ -94,6 +95,72 @@ pub struct PlannedMission {
     pub settings: PlanSettings,
 }
 
+/// The sortie model of the scenario's vehicle with supply point `supply`: returns fly at the
+/// safe height, as transfers that leave the field do (decision 0008), and the battery keeps a
+/// reserve for the climbs and descents.
+fn sortie_model(scenario: &Scenario, supply: RoutePoint) -> SortieModel {
+    let vehicle = &scenario.vehicle;
+    let mut model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
+    // The mission climbs and descends at climb speed (takeoff to the cruise height, down to
+    // spray height, up again, landing), which seed 003's eq. 2 charges at transit speed: keep
+    // that time out of the battery the split may use, so that the files fly within it
+    // (the preflight recomputes it from the files; decision 0012).
+    let cruise_m = vehicle.spray_height_m + vehicle.safe_height_m.max(5.0);
+    let vertical_m = 4.0 * cruise_m - 2.0 * vehicle.spray_height_m;
+    let reserve_s = vertical_m / vehicle.climb_speed_mps - vertical_m / vehicle.transit_speed_mps;
+    model.battery_reserve_s = reserve_s.clamp(0.0, 0.5 * model.endurance_s);
+    model
+}
+
+fn speeds_of(vehicle: &crate::model::Vehicle) -> Speeds {
+    Speeds {
+        spray_mps: vehicle.spray_speed_mps,
+        turn_mps: vehicle.turn_speed_mps,
+        transit_mps: vehicle.transit_speed_mps,
+    }
+}
+
+/// The `joint` planner's route: the sequencer's order from the supply point (the launch
+/// point, else the first point of the route flown without one), improved by the joint search
+/// of order and returns ([`crate::sortie::joint`]).
+fn joint_route(
+    scenario: &Scenario,
+    coverage: &CoveragePlan,
+    model: &TransferModel,
+    start: Option<GroundPoint>,
+    settings: &PlanSettings,
+) -> Route {
+    let supply = start.or_else(|| {
+        let free = route(coverage, model, None, &settings.sequencer);
+        free.visits.first().map(|visit| visit.points[0])
+    });
+    let Some(supply) = supply else {
+        return route(coverage, model, start, &settings.sequencer);
+    };
+    let (problem, groups) = ordering_problem(coverage, model, Some(supply));
+    let ordered = settings.sequencer.sequencer().order(&problem, &groups);
+    let sorties = sortie_model(
+        scenario,
+        RoutePoint {
+            x: supply.x,
+            y: supply.y,
+            ground_m: supply.ground_m,
+        },
+    );
+    let points: Vec<&[GroundPoint]> = passes_of(coverage)
+        .into_iter()
+        .map(|(_, points)| points)
+        .collect();
+    let vehicle = &scenario.vehicle;
+    let joint = JointProblem::new(&problem, &points, &sorties, speeds_of(vehicle));
+    let joint_settings = JointSettings {
+        seed: settings.sorties.seed,
+        ..JointSettings::default()
+    };
+    let tour = crate::sortie::joint::improve(&joint, ordered, &joint_settings);
+    route_of_tour(coverage, model, Some(supply), &problem, &tour)
+}
+
 /// Splits the route into sorties at the launch point (or the route's first point).
 fn split_into_sorties(
     scenario: &Scenario,
@@ -104,31 +171,18 @@ fn split_into_sorties(
     let Some(planner) = settings.planner else {
         return Ok(None);
     };
-    let vehicle = &scenario.vehicle;
-    let speeds = Speeds {
-        spray_mps: vehicle.spray_speed_mps,
-        turn_mps: vehicle.turn_speed_mps,
-        transit_mps: vehicle.transit_speed_mps,
-    };
-    let work_route = WorkRoute::from_route(route, speeds);
+    let work_route = WorkRoute::from_route(route, speeds_of(&scenario.vehicle));
     let Some(first) = work_route.points().first().copied() else {
         return Ok(None);
     };
-    let supply = start.map_or(first, |point| RoutePoint {
-        x: point.x,
-        y: point.y,
-        ground_m: point.ground_m,
-    });
-    // Returns fly at the safe height, as transfers that leave the field do (decision 0008).
-    let mut model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
-    // The mission climbs and descends at climb speed (takeoff to the cruise height, down to
-    // spray height, up again, landing), which seed 003's eq. 2 charges at transit speed: keep
-    // that time out of the battery the split may use, so that the files fly within it
-    // (the preflight recomputes it from the files; decision 0012).
-    let cruise_m = vehicle.spray_height_m + vehicle.safe_height_m.max(5.0);
-    let vertical_m = 4.0 * cruise_m - 2.0 * vehicle.spray_height_m;
-    let reserve_s = vertical_m / vehicle.climb_speed_mps - vertical_m / vehicle.transit_speed_mps;
-    model.battery_reserve_s = reserve_s.clamp(0.0, 0.5 * model.endurance_s);
+    let supply = start
+        .or(route.launch.map(|leg| leg.from))
+        .map_or(first, |point| RoutePoint {
+            x: point.x,
+            y: point.y,
+            ground_m: point.ground_m,
+        });
+    let model = sortie_model(scenario, supply);
     let plan = plan_sorties(&work_route, &model, planner, settings.seed)?;
     let visit_offsets = route
         .visits
@@ -159,7 +213,11 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
         &settings.coverage,
     )?;
     let model = TransferModel::new(&scenario.farm, scenario.vehicle.safe_height_m);
-    let route = route(&coverage, &model, start, &settings.sequencer);
+    let route = if settings.sorties.planner == Some(SortiePlanner::Joint) {
+        joint_route(scenario, &coverage, &model, start, settings)
+    } else {
+        route(&coverage, &model, start, &settings.sequencer)
+    };
     let sorties = split_into_sorties(scenario, &route, start, &settings.sorties)?;
     let runtime_s = crate::numbers::round(started.elapsed().as_secs_f64(), 1e-4);
     let report = Report::new(

@@ -264,7 +264,7 @@ pub struct OrderArgs {
     pub ants: usize,
     /// Return points for refill and battery swap (seed 003): `exact` (ours, optimal),
     /// `gsa` (the seed's gravitational search), `simple`, `unplanned`, or `none` (one flight).
-    #[arg(long, default_value = "exact", value_parser = ["exact", "gsa", "simple", "unplanned", "none"])]
+    #[arg(long, default_value = "exact", value_parser = ["joint", "exact", "gsa", "simple", "unplanned", "none"])]
     pub sorties: String,
 }
 

@@ -258,6 +258,19 @@ pub fn route(
     start: Option<GroundPoint>,
     sequencer: &Sequencer,
 ) -> Route {
+    let (problem, groups) = ordering_problem(plan, model, start);
+    let tour: Vec<Step> = sequencer.sequencer().order(&problem, &groups);
+    route_of_tour(plan, model, start, &problem, &tour)
+}
+
+/// The ordering problem of the plan's passes ([`passes_of`]'s numbering) from `start`, and
+/// the groups for the constructions that fly a field as a block: per field, its edge passes
+/// then its swaths by scan line.
+pub fn ordering_problem<'m>(
+    plan: &CoveragePlan,
+    model: &'m TransferModel<'m>,
+    start: Option<GroundPoint>,
+) -> (OrderingProblem<'m>, Vec<Vec<usize>>) {
     let passes = passes_of(plan);
     let ends: Vec<[GroundPoint; 2]> = passes
         .iter()
@@ -271,7 +284,6 @@ pub fn route(
         .collect();
     let problem =
         OrderingProblem::with_fields(ends, fields, start.map_or(Start::Free, Start::Fixed), model);
-    // Groups for the boustrophedon construction: per field, edge passes then swaths by line.
     let mut groups: Vec<Vec<usize>> = vec![Vec::new(); plan.fields.len()];
     for (index, (pass, _)) in passes.iter().enumerate() {
         let field = match pass {
@@ -285,9 +297,21 @@ pub fn route(
             Pass::Swath { swath, .. } => (1, plan.fields[field].swaths[swath].line),
         });
     }
-    let tour: Vec<Step> = sequencer.sequencer().order(&problem, &groups);
-    debug_assert_eq!(tour::check_order(&tour, passes.len()), Ok(()));
-    let tour_cost_m = problem.tour_cost(&tour);
+    (problem, groups)
+}
+
+/// The flight that flies `problem`'s passes in the order of `tour`, from and back to `start`
+/// when there is one.
+pub fn route_of_tour(
+    plan: &CoveragePlan,
+    model: &TransferModel,
+    start: Option<GroundPoint>,
+    problem: &OrderingProblem,
+    tour: &[Step],
+) -> Route {
+    let passes = passes_of(plan);
+    debug_assert_eq!(tour::check_order(tour, passes.len()), Ok(()));
+    let tour_cost_m = problem.tour_cost(tour);
     let visits: Vec<Visit> = tour
         .iter()
         .map(|step| {

@@ -22,6 +22,7 @@
 pub mod exact;
 pub mod grid;
 pub mod gsa;
+pub mod joint;
 pub mod route;
 pub mod simple;
 pub mod unplanned;
@@ -50,15 +51,18 @@ pub enum SortiePlanner {
     Gsa,
     /// Ours: the breaks that minimise E, by a shortest path over the route's points.
     Exact,
+    /// Ours: the order of the passes and the returns together ([`joint`]), then `exact`.
+    Joint,
 }
 
 impl SortiePlanner {
-    /// Every planner: unplanned, simple, gsa, exact.
-    pub const ALL: [SortiePlanner; 4] = [
+    /// Every planner: unplanned, simple, gsa, exact, joint.
+    pub const ALL: [SortiePlanner; 5] = [
         SortiePlanner::Unplanned,
         SortiePlanner::Simple,
         SortiePlanner::Gsa,
         SortiePlanner::Exact,
+        SortiePlanner::Joint,
     ];
 
     /// The planner's name on the command line and in `report.json`.
@@ -68,6 +72,7 @@ impl SortiePlanner {
             SortiePlanner::Simple => "simple",
             SortiePlanner::Gsa => "gsa",
             SortiePlanner::Exact => "exact",
+            SortiePlanner::Joint => "joint",
         }
     }
 }
@@ -86,7 +91,9 @@ impl FromStr for SortiePlanner {
             .into_iter()
             .find(|planner| planner.key() == text.trim().to_ascii_lowercase())
             .ok_or_else(|| {
-                format!("unknown sortie planner '{text}' (known: unplanned, simple, gsa, exact)")
+                format!(
+                    "unknown sortie planner '{text}' (known: unplanned, simple, gsa, exact, joint)"
+                )
             })
     }
 }
@@ -438,7 +445,9 @@ impl SortiePlanner {
             SortiePlanner::Unplanned => Box::new(Planned(unplanned::breaks)),
             SortiePlanner::Simple => Box::new(Planned(simple::breaks)),
             SortiePlanner::Gsa => Box::new(gsa::GsaSettings::default()),
-            SortiePlanner::Exact => Box::new(Exact),
+            // The joint planner reorders the route first (the pipeline's job); its returns
+            // on the route it keeps are the exact split's.
+            SortiePlanner::Exact | SortiePlanner::Joint => Box::new(Exact),
         }
     }
 }

@@ -28,7 +28,8 @@ use super::greedy::greedy_with_starts;
 use super::tour::{End, OrderingProblem, Start, Step};
 #[cfg(test)]
 use construction::{block_steps, boustrophedon_by_grid};
-use moves::{nearest_ends, Search};
+pub use moves::nearest_ends;
+use moves::Search;
 
 /// Positions examined after a kick before giving up on it.
 const KICK_MOVES: usize = 400;

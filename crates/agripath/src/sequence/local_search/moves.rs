@@ -252,7 +252,7 @@ impl Search<'_, '_> {
 
 /// For every end, its `count` nearest ends that `accept(end, other)` lets through, by planar
 /// distance, through a uniform grid.
-pub(super) fn nearest_ends(
+pub fn nearest_ends(
     problem: &OrderingProblem,
     count: usize,
     accept: impl Fn(End, End) -> bool,

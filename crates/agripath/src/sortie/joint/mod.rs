@@ -1,0 +1,239 @@
+//! `joint` (ours): the order of the passes and the returns to the supply point, optimised
+//! together for what the operator pays, the total non-spray time (issue 19).
+//!
+//! Order first, then split (`exact` after `best`) minimises the transfers and then places the
+//! returns where that order lets them fall; the order that is cheapest to fly in one piece
+//! is rarely the one whose sorties end near the supply point. Route first, cluster second
+//! (Beasley 1983; Prins 2004) searches over giant tours with the optimal split as the
+//! evaluation: here a giant tour of oriented passes, scored by its optimal split in linear
+//! time ([`split::TourSplit`]: every sortie's legs out and home, the transfers it flies, the
+//! service before it; a return at a pass's end skips the transfer to the next pass, a return
+//! inside a pass resumes there), improved by [`search::JointSearch`]: relocations of chains
+//! of passes, reversals and flips, each scored through the split, and seeded kicks, on
+//! `swarm`'s Runner like every other search. The tour kept is split by the exact planner
+//! ([`super::exact`]), which finds the same returns (tested).
+
+pub mod search;
+pub mod split;
+
+use std::sync::Mutex;
+
+use swarm::RunStream;
+
+use crate::coverage::drape::GroundPoint;
+use crate::sequence::tour::{OrderingProblem, Step};
+use split::{PassProfile, SplitBuffers, SplitLimits, TourSplit};
+
+use super::route::Speeds;
+use super::SortieModel;
+
+/// The joint problem: a giant tour of the ordering problem's passes, costed by its split.
+pub struct JointProblem<'a> {
+    /// The passes, their ends and the transfer costs between them.
+    pub ordering: &'a OrderingProblem<'a>,
+    profiles: Vec<PassProfile>,
+    limits: SplitLimits,
+    speeds: Speeds,
+    buffers: Mutex<SplitBuffers>,
+}
+
+impl<'a> JointProblem<'a> {
+    /// The problem of flying `ordering`'s passes, whose draped points are `points` (by pass
+    /// number), in sorties of `model` at `speeds`.
+    pub fn new(
+        ordering: &'a OrderingProblem<'a>,
+        points: &[&[GroundPoint]],
+        model: &SortieModel,
+        speeds: Speeds,
+    ) -> Self {
+        let profiles = points
+            .iter()
+            .map(|points| {
+                let mut spray_m = Vec::with_capacity(points.len());
+                let mut total = 0.0;
+                for (index, point) in points.iter().enumerate() {
+                    if index > 0 {
+                        total += distance_3d(&points[index - 1], point);
+                    }
+                    spray_m.push(total);
+                }
+                let leg_s = points
+                    .iter()
+                    .map(|point| {
+                        model.leg_m(&super::route::RoutePoint {
+                            x: point.x,
+                            y: point.y,
+                            ground_m: point.ground_m,
+                        }) / model.transit_mps
+                    })
+                    .collect();
+                PassProfile { spray_m, leg_s }
+            })
+            .collect();
+        Self {
+            ordering,
+            profiles,
+            limits: SplitLimits {
+                tank_m: model.spray_per_tank_m.unwrap_or(f64::INFINITY),
+                usable_s: model.usable_s(),
+                spray_mps: speeds.spray_mps,
+                battery_swap_s: model.battery_swap_s,
+                refill_base_s: model.refill_base_s,
+                refill_max_s: model.refill_max_s,
+            },
+            speeds,
+            buffers: Mutex::new(SplitBuffers::default()),
+        }
+    }
+
+    /// Seconds of the transfer from `from`'s exit to `to`'s entry: at transit speed when it
+    /// climbs out of the field (eq. 8 adds 2h), else at turn speed, as
+    /// [`super::route::WorkRoute::from_route`] times it.
+    pub fn transfer_s(&self, from: Step, to: Step) -> f64 {
+        let (exit, entry) = (from.exit(), to.entry());
+        let cost = self.ordering.cost(exit, entry);
+        let straight = distance_3d(&self.ordering.point(exit), &self.ordering.point(entry));
+        if cost > straight + 1e-6 {
+            cost / self.speeds.transit_mps
+        } else {
+            cost / self.speeds.turn_mps
+        }
+    }
+
+    /// Transfer metres between the passes of `tour` (eq. 8).
+    pub fn transfer_m(&self, tour: &[Step]) -> f64 {
+        tour.windows(2)
+            .map(|pair| self.ordering.cost(pair[0].exit(), pair[1].entry()))
+            .sum()
+    }
+}
+
+fn distance_3d(a: &GroundPoint, b: &GroundPoint) -> f64 {
+    ((a.x - b.x).powi(2) + (a.y - b.y).powi(2) + (a.ground_m - b.ground_m).powi(2)).sqrt()
+}
+
+impl swarm::Problem for JointProblem<'_> {
+    type Solution = [Step];
+
+    /// Non-spray seconds of the tour's best split.
+    fn evaluate(&self, tour: &[Step]) -> f64 {
+        let transfer = |from: Step, to: Step| self.transfer_s(from, to);
+        let split = TourSplit {
+            profiles: &self.profiles,
+            transfer_s: &transfer,
+            limits: self.limits,
+        };
+        let mut buffers = self
+            .buffers
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        split.cost(tour, &mut buffers)
+    }
+
+    fn first_solution(&self) -> Vec<Step> {
+        swarm::Problem::first_solution(self.ordering)
+    }
+
+    fn random_solution(&self, stream: &mut RunStream) -> Vec<Step> {
+        swarm::Problem::random_solution(self.ordering, stream)
+    }
+}
+
+/// `joint`'s settings.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct JointSettings {
+    /// Evaluations through the split per pass (the budget is this × passes + 2,000).
+    pub evaluations_per_pass: u64,
+    /// Seed of the kicks (run 0 of this seed).
+    pub seed: u64,
+}
+
+impl Default for JointSettings {
+    fn default() -> Self {
+        Self {
+            evaluations_per_pass: 30,
+            seed: 1,
+        }
+    }
+}
+
+/// The joint search from `start` (a tour of `problem`'s passes, e.g. the best order from the
+/// supply point): the cheapest tour found within the budget.
+pub fn improve(problem: &JointProblem, start: Vec<Step>, settings: &JointSettings) -> Vec<Step> {
+    let passes = start.len() as u64;
+    if passes < 2 {
+        return start;
+    }
+    let budget = settings.evaluations_per_pass * passes + 2000;
+    let runner = swarm::Runner::new(swarm::Termination::evaluations(budget), settings.seed)
+        .expect("a budget of at least one evaluation");
+    let mut search = search::JointSearch::new(start);
+    runner
+        .run_problem(&mut search, problem, 0, &mut ())
+        .best_solution
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coverage::{plan_coverage, CoverageSettings};
+    use crate::sequence::{ordering_problem, passes_of, route_of_tour, Sequencer, TransferModel};
+    use crate::sortie::route::{RoutePoint, WorkRoute};
+    use crate::sortie::{plan_sorties, SortiePlanner};
+    use swarm::Problem;
+
+    #[test]
+    fn the_linear_split_equals_the_exact_split_with_the_first_and_last_legs() {
+        let scenario = crate::demo::scenario().unwrap();
+        let vehicle = &scenario.vehicle;
+        let coverage = plan_coverage(
+            &scenario.farm,
+            scenario.terrain.as_ref(),
+            vehicle,
+            &CoverageSettings::default(),
+        )
+        .unwrap();
+        let model = TransferModel::new(&scenario.farm, vehicle.safe_height_m);
+        let supply = GroundPoint {
+            x: 0.0,
+            y: 0.0,
+            ground_m: scenario.terrain.height_m(0.0, 0.0).unwrap(),
+        };
+        let (problem, groups) = ordering_problem(&coverage, &model, Some(supply));
+        let speeds = Speeds {
+            spray_mps: vehicle.spray_speed_mps,
+            turn_mps: vehicle.turn_speed_mps,
+            transit_mps: vehicle.transit_speed_mps,
+        };
+        let sortie_model = SortieModel::new(
+            vehicle,
+            RoutePoint {
+                x: supply.x,
+                y: supply.y,
+                ground_m: supply.ground_m,
+            },
+            2.0 * vehicle.safe_height_m,
+        );
+        let points: Vec<&[GroundPoint]> = passes_of(&coverage)
+            .into_iter()
+            .map(|(_, points)| points)
+            .collect();
+        let joint = JointProblem::new(&problem, &points, &sortie_model, speeds);
+        let mut stream = swarm::run_stream(3, 0);
+        let mut tours = vec![Sequencer::default().sequencer().order(&problem, &groups)];
+        tours.extend((0..3).map(|_| joint.random_solution(&mut stream)));
+        for tour in tours {
+            let linear = joint.evaluate(&tour);
+            let flight = route_of_tour(&coverage, &model, Some(supply), &problem, &tour);
+            let work = WorkRoute::from_route(&flight, speeds);
+            let plan = plan_sorties(&work, &sortie_model, SortiePlanner::Exact, 1).unwrap();
+            let ends = sortie_model.leg_m(&work.points()[0])
+                + sortie_model.leg_m(&work.points()[work.len() - 1]);
+            let exact = plan.objective_s() + ends / sortie_model.transit_mps;
+            assert!(
+                (exact - linear).abs() < 1e-6,
+                "exact {exact} against the linear split {linear}"
+            );
+        }
+    }
+}

@@ -1,0 +1,328 @@
+//! The joint search: local search on the giant tour with every move scored through the
+//! split (Prins 2004), then seeded kicks (iterated local search), on `swarm`'s Runner.
+//!
+//! Moves, on oriented passes, generated from lists of the nearest pass ends as the ordering
+//! search does ([`crate::sequence::local_search`]): flipping one pass; 2-opt reversals (a
+//! stretch flown backwards, each of its passes the other way); relocating a chain of 1-3
+//! passes next to a near end, either way round. Splitting a tour costs far more than costing
+//! its transfers, so at each position the moves are ranked by their change in transfer
+//! metres and only the `SCORED_PER_POSITION` best are scored through the split: a move that
+//! lengthens the transfers can still pay (a sortie that now ends near the supply point),
+//! which is why they are not discarded outright. The first move that lowers the split's
+//! cost is made, and the passes around it are looked at again.
+//!
+//! Each Runner iteration is one kick: a double bridge within `KICK_SPAN` positions of the
+//! incumbent (the Runner's best), then the local search around its cuts. The budget is the
+//! Runner's evaluation count.
+
+use swarm::{below, Optimizer, Search};
+
+use super::JointProblem;
+use crate::sequence::local_search::nearest_ends;
+use crate::sequence::tour::{End, Step};
+
+/// Moves scored through the split at each position.
+const SCORED_PER_POSITION: usize = 4;
+/// Nearest ends of other passes per end.
+const NEIGHBOURS: usize = 8;
+/// Positions a kick's three cuts lie within.
+const KICK_SPAN: usize = 30;
+
+/// A change of the tour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Move {
+    /// Fly positions `from..=to` backwards.
+    Reverse { from: usize, to: usize },
+    /// Move positions `from..=to` to before position `gap` of the tour as it was (`gap` not
+    /// in `from..=to + 1`), turned round when `flip`.
+    Relocate {
+        from: usize,
+        to: usize,
+        gap: usize,
+        flip: bool,
+    },
+}
+
+/// The joint search's state: its starting tour and the neighbour lists.
+pub struct JointSearch {
+    start: Vec<Step>,
+    neighbours: Vec<Vec<End>>,
+}
+
+impl JointSearch {
+    /// The search starting from `start`.
+    pub fn new(start: Vec<Step>) -> Self {
+        Self {
+            start,
+            neighbours: Vec::new(),
+        }
+    }
+}
+
+/// The tour with `change` made.
+fn apply(tour: &[Step], change: Move) -> Vec<Step> {
+    let mut changed = tour.to_vec();
+    match change {
+        Move::Reverse { from, to } => {
+            changed[from..=to].reverse();
+            changed[from..=to]
+                .iter_mut()
+                .for_each(|step| *step = step.flipped());
+        }
+        Move::Relocate {
+            from,
+            to,
+            gap,
+            flip,
+        } => {
+            let mut chain: Vec<Step> = changed.drain(from..=to).collect();
+            if flip {
+                chain.reverse();
+                chain.iter_mut().for_each(|step| *step = step.flipped());
+            }
+            let at = if gap > to { gap - chain.len() } else { gap };
+            changed.splice(at..at, chain);
+        }
+    }
+    changed
+}
+
+struct Moves<'t, 'p> {
+    tour: &'t [Step],
+    position: &'t [usize],
+    problem: &'t JointProblem<'p>,
+    neighbours: &'t [Vec<End>],
+}
+
+impl Moves<'_, '_> {
+    /// Eq. (8) from end `from` to end `to`; 0 where either is off the tour's ends.
+    fn edge(&self, from: Option<End>, to: Option<End>) -> f64 {
+        match (from, to) {
+            (Some(from), Some(to)) => self.problem.ordering.cost(from, to),
+            _ => 0.0,
+        }
+    }
+
+    fn exit_before(&self, position: usize) -> Option<End> {
+        position
+            .checked_sub(1)
+            .map(|before| self.tour[before].exit())
+    }
+
+    fn entry_after(&self, position: usize) -> Option<End> {
+        self.tour.get(position + 1).map(Step::entry)
+    }
+
+    /// Change in transfer metres of `change`.
+    fn delta(&self, change: Move) -> f64 {
+        let tour = self.tour;
+        match change {
+            Move::Reverse { from, to } => {
+                let (before, after) = (self.exit_before(from), self.entry_after(to));
+                self.edge(before, Some(tour[to].exit()))
+                    + self.edge(Some(tour[from].entry()), after)
+                    - self.edge(before, Some(tour[from].entry()))
+                    - self.edge(Some(tour[to].exit()), after)
+            }
+            Move::Relocate {
+                from,
+                to,
+                gap,
+                flip,
+            } => {
+                let (before, after) = (self.exit_before(from), self.entry_after(to));
+                let (entry, exit) = (tour[from].entry(), tour[to].exit());
+                let removed = self.edge(before, Some(entry)) + self.edge(Some(exit), after)
+                    - self.edge(before, after);
+                let left = gap.checked_sub(1).map(|k| tour[k].exit());
+                let right = tour.get(gap).map(Step::entry);
+                let (first, last) = if flip { (exit, entry) } else { (entry, exit) };
+                let added = self.edge(left, Some(first)) + self.edge(Some(last), right)
+                    - self.edge(left, right);
+                added - removed
+            }
+        }
+    }
+
+    /// The moves around position `p`.
+    fn around(&self, p: usize) -> Vec<Move> {
+        let n = self.tour.len();
+        let mut moves = vec![Move::Reverse { from: p, to: p }];
+        for q in [p, p + 1].into_iter().filter(|&q| q < n) {
+            // Reversals that join the flight before q to a near exit, or a near entry to q.
+            if let Some(before) = self.exit_before(q) {
+                for &end in &self.neighbours[before] {
+                    let other = self.position[end / 2];
+                    if other > q && self.tour[other].exit() == end {
+                        moves.push(Move::Reverse { from: q, to: other });
+                    }
+                }
+            }
+            for &end in &self.neighbours[self.tour[q].entry()] {
+                let other = self.position[end / 2];
+                if other + 1 < q && self.tour[other].entry() == end {
+                    moves.push(Move::Reverse {
+                        from: other,
+                        to: q - 1,
+                    });
+                }
+            }
+        }
+        for length in 1..=3usize {
+            let to = p + length - 1;
+            if to >= n || length >= n {
+                break;
+            }
+            let ends = [self.tour[p].entry(), self.tour[to].exit()];
+            for end in ends {
+                for &near in &self.neighbours[end] {
+                    let other = self.position[near / 2];
+                    for gap in [other, other + 1] {
+                        if (p..=to + 1).contains(&gap) || gap > n {
+                            continue;
+                        }
+                        for flip in [false, true] {
+                            moves.push(Move::Relocate {
+                                from: p,
+                                to,
+                                gap,
+                                flip,
+                            });
+                        }
+                    }
+                }
+            }
+        }
+        moves
+    }
+}
+
+impl JointSearch {
+    /// Local search from `tour` (of split cost `cost`) around the passes `active`, while the
+    /// budget lasts: the tour reached and its cost.
+    fn descend(
+        &self,
+        run: &mut Search<JointProblem<'_>>,
+        mut tour: Vec<Step>,
+        mut cost: f64,
+        active: impl IntoIterator<Item = usize>,
+    ) -> (Vec<Step>, f64) {
+        let n = tour.len();
+        let mut position = vec![0; n];
+        let reindex = |tour: &[Step], position: &mut Vec<usize>| {
+            for (index, step) in tour.iter().enumerate() {
+                position[step.pass] = index;
+            }
+        };
+        reindex(&tour, &mut position);
+        let mut queued = vec![false; n];
+        let mut queue: Vec<usize> = Vec::new();
+        for pass in active {
+            if !std::mem::replace(&mut queued[pass], true) {
+                queue.push(pass);
+            }
+        }
+        while let Some(pass) = queue.pop() {
+            queued[pass] = false;
+            if run.progress() >= 1.0 {
+                break;
+            }
+            let p = position[pass];
+            let moves = Moves {
+                tour: &tour,
+                position: &position,
+                problem: run.problem(),
+                neighbours: &self.neighbours,
+            };
+            let mut ranked: Vec<(f64, Move)> = moves
+                .around(p)
+                .into_iter()
+                .map(|change| (moves.delta(change), change))
+                .collect();
+            ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
+            ranked.dedup_by(|a, b| a.1 == b.1);
+            for &(_, change) in ranked.iter().take(SCORED_PER_POSITION) {
+                let candidate = apply(&tour, change);
+                let candidate_cost = run.evaluate(&candidate);
+                if candidate_cost < cost - 1e-9 {
+                    let (low, high) = match change {
+                        Move::Reverse { from, to } => (from, to),
+                        Move::Relocate { from, to, gap, .. } => (from.min(gap), to.max(gap)),
+                    };
+                    tour = candidate;
+                    cost = candidate_cost;
+                    reindex(&tour, &mut position);
+                    for index in [
+                        low.saturating_sub(1),
+                        low,
+                        high.min(n - 1),
+                        (high + 1).min(n - 1),
+                    ] {
+                        let touched = tour[index].pass;
+                        if !std::mem::replace(&mut queued[touched], true) {
+                            queue.push(touched);
+                        }
+                    }
+                    if !std::mem::replace(&mut queued[pass], true) {
+                        queue.push(pass);
+                    }
+                    break;
+                }
+            }
+        }
+        (tour, cost)
+    }
+}
+
+impl<'a> Optimizer<JointProblem<'a>> for JointSearch {
+    fn name(&self) -> &'static str {
+        "joint order and returns (ours)"
+    }
+
+    fn start(&mut self, run: &mut Search<JointProblem<'a>>) {
+        let problem = run.problem();
+        self.neighbours = nearest_ends(problem.ordering, NEIGHBOURS, |end, other| {
+            other / 2 != end / 2
+        });
+        let start = std::mem::take(&mut self.start);
+        let cost = run.evaluate(&start);
+        let n = start.len();
+        self.descend(run, start, cost, 0..n);
+        if n < 8 {
+            run.declare_converged();
+        }
+    }
+
+    fn step(&mut self, run: &mut Search<JointProblem<'a>>) {
+        let incumbent = run.best_solution().to_vec();
+        let n = incumbent.len();
+        let span = KICK_SPAN.min(n - 2);
+        let first = 1 + below(run.stream(), n - 1 - span);
+        let mut cuts: Vec<usize> = (0..3)
+            .map(|k| {
+                if k == 0 {
+                    first
+                } else {
+                    first + 1 + below(run.stream(), span)
+                }
+            })
+            .collect();
+        cuts.sort_unstable();
+        cuts.dedup();
+        let [a, b, c] = cuts[..] else {
+            return;
+        };
+        let c = c.min(n);
+        let mut kicked = Vec::with_capacity(n);
+        kicked.extend_from_slice(&incumbent[..a]);
+        kicked.extend_from_slice(&incumbent[b..c]);
+        kicked.extend_from_slice(&incumbent[a..b]);
+        kicked.extend_from_slice(&incumbent[c..]);
+        let touched: Vec<usize> = [a - 1, a, b - 1, b.min(n - 1), c - 1, c.min(n - 1)]
+            .iter()
+            .map(|&index| kicked[index].pass)
+            .collect();
+        let cost = run.evaluate(&kicked);
+        self.descend(run, kicked, cost, touched);
+    }
+}

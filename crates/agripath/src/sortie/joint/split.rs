@@ -1,0 +1,270 @@
+//! The optimal split of a giant tour into sorties in O(points), fast enough to score every
+//! move of the joint search (Prins 2004: a giant tour is evaluated by its optimal split;
+//! Vidal 2016's linear split for the same reason).
+//!
+//! The tour's points p_0 … p_N (every draped point of every pass, in flying order) carry
+//! S_i, the spray metres from p_0, and T_i, the non-spray seconds from p_0 (the transfers
+//! between passes, at their speeds). A sortie flies p_s … p_e and costs, in non-spray seconds,
+//!
+//! c(s, e) = leg(s) + (T_e − T_s) + leg(e) + \[s > 0\]·max(T_e', t_b + α (S_e − S_s)),
+//!
+//! with leg(P) = (‖P, P0‖ + H + 2h) / v_off, T_e' the battery swap and t_b + α x the refill
+//! of eq. 5 (α = (T_pmax − t_b) / D_max); it is flyable when S_e − S_s ≤ D_max and
+//! leg(s) + (S_e − S_s)/v + (T_e − T_s) + leg(e) ≤ the usable battery. After a sortie ending
+//! at e the next starts at e (a return from inside a pass, resumed there) or, where p_e ends
+//! a pass, at e + 1: the transfer between the passes is not flown. This is the exact split
+//! ([`super::super::exact`]) with the first leg out and the last leg home counted (they depend
+//! on the tour), and the same value.
+//!
+//! With end(e) = min_s start(s) + leg(s) − T_s + service(s, e) + T_e, the service is the
+//! swap while S_e − S_s < σ* = (T_e' − t_b)/α, and the refill beyond: the starts in reach of e
+//! fall in two windows that only move forward with e, each minimised by a monotone queue
+//! (keys start(s) + leg(s) − T_s, and the same − α S_s). The battery limit is not monotone
+//! in s: where a queue's best start breaks it (rare: the tank binds first), the window is
+//! scanned.
+
+use std::collections::VecDeque;
+
+use crate::sequence::tour::Step;
+
+/// One pass's profile: per point (in the pass's own order, A to B) the spray metres from
+/// point A and the one-way return time to the supply point.
+#[derive(Debug, Clone)]
+pub struct PassProfile {
+    /// Cumulative 3D spray metres from the first point.
+    pub spray_m: Vec<f64>,
+    /// One-way leg to the supply point from each point, seconds.
+    pub leg_s: Vec<f64>,
+}
+
+impl PassProfile {
+    fn length(&self) -> f64 {
+        *self.spray_m.last().expect("a pass has points")
+    }
+}
+
+/// The limits and speeds the split obeys.
+#[derive(Debug, Clone, Copy)]
+pub struct SplitLimits {
+    /// Spray metres per tank (`f64::INFINITY` when the tank does not limit a sortie).
+    pub tank_m: f64,
+    /// Usable battery seconds per sortie.
+    pub usable_s: f64,
+    /// Spray speed, m/s.
+    pub spray_mps: f64,
+    /// T_e: battery swap, seconds.
+    pub battery_swap_s: f64,
+    /// t_b: refill of an empty sortie, seconds.
+    pub refill_base_s: f64,
+    /// T_pmax: refill of a full tank, seconds.
+    pub refill_max_s: f64,
+}
+
+impl SplitLimits {
+    /// α of the refill line, seconds per spray metre.
+    fn refill_slope(&self) -> f64 {
+        if self.tank_m.is_finite() && self.tank_m > 0.0 {
+            ((self.refill_max_s - self.refill_base_s) / self.tank_m).max(0.0)
+        } else {
+            0.0
+        }
+    }
+
+    fn service_s(&self, spray_m: f64) -> f64 {
+        let spray_m = spray_m.min(self.tank_m);
+        self.battery_swap_s
+            .max(self.refill_base_s + self.refill_slope() * spray_m)
+    }
+}
+
+/// Reused buffers of one evaluation.
+#[derive(Debug, Default)]
+pub struct SplitBuffers {
+    spray: Vec<f64>,
+    transfer: Vec<f64>,
+    leg: Vec<f64>,
+    /// Whether the segment after a point is a transfer between passes.
+    between: Vec<bool>,
+    start: Vec<f64>,
+    swap_window: VecDeque<usize>,
+    refill_window: VecDeque<usize>,
+}
+
+/// The split of tours of given passes.
+pub struct TourSplit<'a> {
+    /// Every pass's profile, by pass number.
+    pub profiles: &'a [PassProfile],
+    /// Transfer seconds from the exit of one step to the entry of the next.
+    pub transfer_s: &'a dyn Fn(Step, Step) -> f64,
+    /// The limits.
+    pub limits: SplitLimits,
+}
+
+/// Slack on the limits, as the sortie planners use.
+const SLACK: f64 = 1e-6;
+
+impl TourSplit<'_> {
+    /// Lays out the points of `tour` in flying order.
+    fn lay_out(&self, tour: &[Step], buffers: &mut SplitBuffers) {
+        let SplitBuffers {
+            spray,
+            transfer,
+            leg,
+            between,
+            ..
+        } = buffers;
+        spray.clear();
+        transfer.clear();
+        leg.clear();
+        between.clear();
+        let (mut spray_before, mut transfer_before) = (0.0, 0.0);
+        for (position, step) in tour.iter().enumerate() {
+            let profile = &self.profiles[step.pass];
+            let length = profile.length();
+            let count = profile.spray_m.len();
+            for index in 0..count {
+                let (along, one_way) = if step.reversed {
+                    let mirrored = count - 1 - index;
+                    (length - profile.spray_m[mirrored], profile.leg_s[mirrored])
+                } else {
+                    (profile.spray_m[index], profile.leg_s[index])
+                };
+                spray.push(spray_before + along);
+                transfer.push(transfer_before);
+                leg.push(one_way);
+                between.push(false);
+            }
+            spray_before += length;
+            if let Some(next) = tour.get(position + 1) {
+                transfer_before += (self.transfer_s)(*step, *next);
+                *between.last_mut().expect("a pass has points") = true;
+            }
+        }
+    }
+
+    /// The least non-spray seconds of any split of `tour` (`f64::INFINITY` when none is
+    /// flyable).
+    pub fn cost(&self, tour: &[Step], buffers: &mut SplitBuffers) -> f64 {
+        if tour.is_empty() {
+            return 0.0;
+        }
+        self.lay_out(tour, buffers);
+        let SplitBuffers {
+            spray,
+            transfer,
+            leg,
+            between,
+            start,
+            swap_window,
+            refill_window,
+        } = buffers;
+        let count = spray.len();
+        let limits = self.limits;
+        let tank = limits.tank_m + SLACK;
+        let usable = limits.usable_s + SLACK;
+        let slope = limits.refill_slope();
+        // Spray metres of a sortie beyond which the refill outlasts the battery swap.
+        let threshold = if slope > 0.0 {
+            ((limits.battery_swap_s - limits.refill_base_s) / slope).max(0.0)
+        } else {
+            f64::INFINITY
+        };
+        let flight = |s: usize, e: usize| {
+            (spray[e] - spray[s]) / limits.spray_mps + transfer[e] - transfer[s]
+        };
+        start.clear();
+        start.resize(count + 1, f64::INFINITY);
+        start[0] = 0.0;
+        swap_window.clear();
+        refill_window.clear();
+        let key = |s: usize, start: &[f64]| start[s] + leg[s] - transfer[s];
+        let refill_key = |s: usize, start: &[f64]| key(s, start) - slope * spray[s];
+        let mut lowest = 1;
+        for e in 1..count {
+            // Start e − 1 is final: it enters the swap window (s = 0, the first sortie,
+            // pays no service and is costed on its own below).
+            let entering = e - 1;
+            if entering > 0 && start[entering].is_finite() {
+                let entering_key = key(entering, start);
+                while swap_window
+                    .back()
+                    .is_some_and(|&s| key(s, start) >= entering_key)
+                {
+                    swap_window.pop_back();
+                }
+                swap_window.push_back(entering);
+            }
+            // Starts far enough back that the refill outlasts the swap move to the refill
+            // window (in order of s); starts out of a tank's or the battery's reach leave.
+            while let Some(&s) = swap_window.front() {
+                if spray[e] - spray[s] < threshold {
+                    break;
+                }
+                swap_window.pop_front();
+                let moving_key = refill_key(s, start);
+                while refill_window
+                    .back()
+                    .is_some_and(|&r| refill_key(r, start) >= moving_key)
+                {
+                    refill_window.pop_back();
+                }
+                refill_window.push_back(s);
+            }
+            while lowest < e && (spray[e] - spray[lowest] > tank || flight(lowest, e) > usable) {
+                lowest += 1;
+            }
+            for window in [&mut *swap_window, &mut *refill_window] {
+                while window.front().is_some_and(|&s| s < lowest) {
+                    window.pop_front();
+                }
+            }
+            let sortie = |s: usize, start: &[f64]| {
+                let service = if s == 0 {
+                    0.0
+                } else {
+                    limits.service_s(spray[e] - spray[s])
+                };
+                start[s] + leg[s] + transfer[e] - transfer[s] + service
+            };
+            let flyable =
+                |s: usize| spray[e] - spray[s] <= tank && leg[s] + flight(s, e) + leg[e] <= usable;
+            let mut best = f64::INFINITY;
+            let mut scan = false;
+            for front in [swap_window.front(), refill_window.front()]
+                .into_iter()
+                .flatten()
+            {
+                if flyable(*front) {
+                    best = best.min(sortie(*front, start));
+                } else {
+                    scan = true;
+                }
+            }
+            if scan {
+                // The battery breaks at a queue's best start: every start in reach, directly.
+                for s in lowest.max(1)..e {
+                    if start[s].is_finite() && flyable(s) {
+                        best = best.min(sortie(s, start));
+                    }
+                }
+            }
+            if flyable(0) {
+                best = best.min(sortie(0, start));
+            }
+            if e == count - 1 {
+                return best + leg[e];
+            }
+            if !best.is_finite() {
+                continue;
+            }
+            // Back to the supply point from e; out again to e, or past the transfer.
+            let back = best + leg[e];
+            if between[e] {
+                start[e + 1] = start[e + 1].min(back);
+            }
+            start[e] = start[e].min(back);
+        }
+        // A tour of one point.
+        0.0
+    }
+}
