@@ -9,7 +9,8 @@
 //!
 //! ```sh
 //! cargo run --release -p agripath --example bench_joint -- \
-//!     [--planner exact] [--farms 10] [--runs 3] [--export DIR]
+//!     [--planner exact] [--farms 10] [--runs 3] [--export DIR] [--free-start-demo] \
+//!     [--headland N]
 //! ```
 //!
 //! Farms: the seed 001 farm (`agripath::demo::scenario()`, supply point = its launch point
@@ -17,7 +18,11 @@
 //! through 120, 150, 180, 210, 240 swaths, flat ground, default vehicle and coverage, kept
 //! when the plan has 100-250 interior swaths, until `--farms` are kept. A random farm's supply
 //! point is 30 m south of the middle of the south side of the farm's bounding box: outside
-//! every field, and a place a truck could stand by a farm's edge.
+//! every field, and a place a truck could stand by a farm's edge. `--free-start-demo` adds the
+//! seed 001 farm as `agripath demo` plans it (no launch point: the supply point is the first
+//! point of the route, issue 19's old rule); `--headland N` sets the edge passes around each
+//! boundary and hole (default 1; issue 19's seed 001 figures are those of `--headland 0
+//! --free-start-demo`, seed 001's own layout with the old supply rule).
 
 use std::path::PathBuf;
 use std::str::FromStr;
@@ -25,6 +30,7 @@ use std::time::Instant;
 
 use agripath::bench::farms::irregular_farm;
 use agripath::coverage::drape::GroundPoint;
+use agripath::coverage::CoverageSettings;
 use agripath::pipeline::{plan_mission, PlannedMission};
 use agripath::scenario::{Scenario, ScenarioParts};
 use agripath::sequence::tour::{OrderingProblem, Start};
@@ -51,10 +57,16 @@ struct Options {
     farms: usize,
     runs: usize,
     export: Option<PathBuf>,
+    free_start_demo: bool,
+    /// Edge passes around each boundary and hole; `None`: the library's default.
+    headland: Option<usize>,
 }
 
 fn usage() -> ! {
-    eprintln!("usage: bench_joint [--planner KEY] [--farms N] [--runs N] [--export DIR]");
+    eprintln!(
+        "usage: bench_joint [--planner KEY] [--farms N] [--runs N] [--export DIR] \
+         [--free-start-demo] [--headland N]"
+    );
     std::process::exit(2)
 }
 
@@ -64,9 +76,15 @@ fn options() -> Options {
         farms: 10,
         runs: 3,
         export: None,
+        free_start_demo: false,
+        headland: None,
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
+        if flag == "--free-start-demo" {
+            options.free_start_demo = true;
+            continue;
+        }
         let value = args.next().unwrap_or_else(|| usage());
         match flag.as_str() {
             // Parsed by the library, so a planner added there is known here without a change.
@@ -78,6 +96,7 @@ fn options() -> Options {
             }
             "--farms" => options.farms = value.parse().unwrap_or_else(|_| usage()),
             "--runs" => options.runs = value.parse().unwrap_or_else(|_| usage()),
+            "--headland" => options.headland = Some(value.parse().unwrap_or_else(|_| usage())),
             "--export" => options.export = Some(PathBuf::from(value)),
             _ => usage(),
         }
@@ -86,23 +105,31 @@ fn options() -> Options {
     options
 }
 
-/// A benchmark farm: its name, the scenario, and the supply point in planning metres.
+/// A benchmark farm: its name, the scenario, and the supply point in planning metres (`None`:
+/// the library's own rule, a launch marker, else the first point of the route).
 struct Farm {
     name: String,
     scenario: Scenario,
-    supply: [f64; 2],
+    supply: Option<[f64; 2]>,
 }
 
-/// The default plan settings with `planner` splitting the route and the drone starting (and
-/// refilling) at `supply`.
-fn settings(planner: SortiePlanner, supply: [f64; 2]) -> PlanSettings {
+/// The default plan settings with the asked planner splitting the route (and the asked edge
+/// passes, if any), the drone starting and refilling at `supply`.
+fn settings(options: &Options, supply: Option<[f64; 2]>) -> PlanSettings {
+    let defaults = PlanSettings::default();
     PlanSettings {
-        start: Some(supply),
+        start: supply,
+        coverage: CoverageSettings {
+            headland_passes: options
+                .headland
+                .unwrap_or(defaults.coverage.headland_passes),
+            ..defaults.coverage
+        },
         sorties: SortieSettings {
-            planner: Some(planner),
+            planner: Some(options.planner),
             ..SortieSettings::default()
         },
-        ..PlanSettings::default()
+        ..defaults
     }
 }
 
@@ -110,16 +137,26 @@ fn interior_swaths(mission: &PlannedMission) -> usize {
     mission.coverage.fields.iter().map(|f| f.swaths.len()).sum()
 }
 
-/// The seed 001 farm, then random irregular farms of 100-250 swaths until `count` of them.
-fn farms(count: usize, planner: SortiePlanner) -> Vec<Farm> {
-    let demo = agripath::demo::scenario().expect("the embedded demo farm");
+/// The seed 001 farm (and, with `free_start_demo`, the same farm planned as `agripath demo`
+/// plans it: no launch point, so the supply point is the first point of the route), then
+/// random irregular farms of 100-250 swaths until `count` of them.
+fn farms(options: &Options) -> Vec<Farm> {
+    let demo = || agripath::demo::scenario().expect("the embedded demo farm");
     let mut farms = vec![Farm {
         name: "seed001".into(),
-        scenario: demo,
-        supply: [0.0, 0.0],
+        scenario: demo(),
+        supply: Some([0.0, 0.0]),
     }];
+    if options.free_start_demo {
+        farms.push(Farm {
+            name: "seed001_free_start".into(),
+            scenario: demo(),
+            supply: None,
+        });
+    }
+    let wanted = farms.len() + options.farms;
     let mut seed = 0;
-    while farms.len() < count + 1 && seed < MAX_SEEDS {
+    while farms.len() < wanted && seed < MAX_SEEDS {
         seed += 1;
         let target = TARGETS[(seed as usize - 1) % TARGETS.len()];
         let farm = irregular_farm(seed, target, 5.0);
@@ -130,7 +167,7 @@ fn farms(count: usize, planner: SortiePlanner) -> Vec<Farm> {
         ];
         let scenario = Scenario::with_farm(farm, ScenarioParts::default())
             .expect("a random farm is valid");
-        let Ok(mission) = plan_mission(&scenario, &settings(planner, supply)) else {
+        let Ok(mission) = plan_mission(&scenario, &settings(options, Some(supply))) else {
             eprintln!("seed {seed}: no plan, skipped");
             continue;
         };
@@ -139,7 +176,7 @@ fn farms(count: usize, planner: SortiePlanner) -> Vec<Farm> {
             farms.push(Farm {
                 name: format!("random_s{seed}_{swaths}"),
                 scenario,
-                supply,
+                supply: Some(supply),
             });
         }
     }
@@ -463,8 +500,8 @@ fn main() {
         "runtime"
     );
     let mut failed = false;
-    for farm in farms(options.farms, options.planner) {
-        let plan_settings = settings(options.planner, farm.supply);
+    for farm in farms(&options) {
+        let plan_settings = settings(&options, farm.supply);
         let mut times = Vec::new();
         let mut planned = None;
         for _ in 0..options.runs {
