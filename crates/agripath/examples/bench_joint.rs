@@ -204,6 +204,7 @@ fn fine(value: f64) -> f64 {
 /// What the acceptance measures of a plan, computed from each sortie's own first and last
 /// route points (so it stays right when a sortie starts past the previous one's return).
 struct Measured {
+    /// Flights from the supply point and back.
     sorties: usize,
     /// Transfers and turns flown inside the sorties, metres.
     transfers_m: f64,
@@ -214,8 +215,9 @@ struct Measured {
     /// Spray metres over all sorties.
     spray_m: f64,
     /// Route turns and transfers between one sortie's last point and the next one's first
-    /// (none while every sortie starts where the last returned), metres and seconds.
+    /// (none while every sortie starts where the last returned), metres…
     skipped_m: f64,
+    /// …and their seconds.
     skipped_s: f64,
 }
 
@@ -312,6 +314,27 @@ fn check(mission: &PlannedMission, split: &PlannedSorties, measured: &Measured) 
     failures
 }
 
+/// Eq. 8 between every two pass ends (end 2p is pass p's first point, 2p + 1 its last), and
+/// whether each leg climbs (0 or 1).
+fn transfer_matrices(problem: &OrderingProblem) -> (Vec<Vec<f64>>, Vec<Vec<u8>>) {
+    let count = 2 * problem.passes();
+    let mut transfer_m = vec![vec![0.0; count]; count];
+    let mut climbs = vec![vec![0u8; count]; count];
+    for from in 0..count {
+        for to in 0..count {
+            if from != to {
+                let cost = problem.cost(from, to);
+                transfer_m[from][to] = fine(cost);
+                // Eq. 8 adds 2h to a leg that leaves the field: that leg is flown at transit
+                // speed, one that stays in the field at turn speed (WorkRoute::from_route).
+                let straight = length_3d(&problem.point(from), &problem.point(to));
+                climbs[from][to] = u8::from(cost > straight + 1e-6);
+            }
+        }
+    }
+    (transfer_m, climbs)
+}
+
 /// The exported instance: passes, the transfer matrix between their ends, the supply legs of
 /// each end, the vehicle limits, and our result.
 fn instance(
@@ -341,22 +364,9 @@ fn instance(
         ground_m: split.supply.ground_m,
     };
     let problem = OrderingProblem::with_fields(ends.clone(), fields, Start::Fixed(supply), &model);
+    let (transfer_m, climbs) = transfer_matrices(&problem);
     let count = 2 * passes.len();
     let end_point = |end: usize| ends[end / 2][end % 2];
-    let mut transfer_m = vec![vec![0.0; count]; count];
-    let mut climbs = vec![vec![0u8; count]; count];
-    for from in 0..count {
-        for to in 0..count {
-            if from != to {
-                let cost = problem.cost(from, to);
-                transfer_m[from][to] = fine(cost);
-                // Eq. 8 adds 2h to a leg that leaves the field: that leg is flown at transit
-                // speed, one that stays in the field at turn speed (WorkRoute::from_route).
-                climbs[from][to] =
-                    u8::from(cost > length_3d(&end_point(from), &end_point(to)) + 1e-6);
-            }
-        }
-    }
     let spray_mps = vehicle.spray_speed_mps;
     let pass_values: Vec<Value> = passes
         .iter()
@@ -414,6 +424,7 @@ fn instance(
             "non_spray_m": measured.transfers_m + measured.supply_legs_m,
             "transfers_m": measured.transfers_m,
             "supply_legs_m": measured.supply_legs_m,
+            "skipped_transfers_m": measured.skipped_m,
             "non_spray_s": measured.non_spray_s,
             "runtime_s": runtime_s,
             "order": order,
