@@ -36,7 +36,7 @@ use agripath::scenario::{Scenario, ScenarioParts};
 use agripath::sequence::tour::{OrderingProblem, Start};
 use agripath::sequence::{passes_of, Pass, TransferModel};
 use agripath::settings::PlanSettings;
-use agripath::sortie::route::RoutePoint;
+use agripath::sortie::route::{RoutePoint, Segment};
 use agripath::sortie::{PlannedSorties, SortiePlanner, SortieSettings};
 use serde_json::{json, Value};
 
@@ -165,8 +165,8 @@ fn farms(options: &Options) -> Vec<Farm> {
             0.5 * (bounds.min().x + bounds.max().x),
             bounds.min().y - SUPPLY_SOUTH_M,
         ];
-        let scenario = Scenario::with_farm(farm, ScenarioParts::default())
-            .expect("a random farm is valid");
+        let scenario =
+            Scenario::with_farm(farm, ScenarioParts::default()).expect("a random farm is valid");
         let Ok(mission) = plan_mission(&scenario, &settings(options, Some(supply))) else {
             eprintln!("seed {seed}: no plan, skipped");
             continue;
@@ -425,6 +425,7 @@ fn instance(
             "transfers_m": measured.transfers_m,
             "supply_legs_m": measured.supply_legs_m,
             "skipped_transfers_m": measured.skipped_m,
+            "mid_pass_returns": mid_pass_returns(split),
             "non_spray_s": measured.non_spray_s,
             "runtime_s": runtime_s,
             "order": order,
@@ -433,6 +434,26 @@ fn instance(
             "report_runtime_s": mission.report.runtime_s,
         },
     })
+}
+
+/// Returns where the drone breaks off in the middle of a pass (spraying before and after the
+/// return point): what PyVRP's model, which returns at pass ends only, cannot do.
+fn mid_pass_returns(split: &PlannedSorties) -> usize {
+    let segments = split.work_route.segments();
+    // Every sortie but the last returns at its last point.
+    split
+        .plan
+        .sorties
+        .iter()
+        .rev()
+        .skip(1)
+        .filter(|sortie| {
+            let at = sortie.last;
+            at > 0
+                && segments[at - 1] == Segment::Spray
+                && segments.get(at) == Some(&Segment::Spray)
+        })
+        .count()
 }
 
 /// The route's passes as `[pass index, reversed]` in the numbering of `passes_of` (per field:
