@@ -64,7 +64,9 @@ fn main() {
     let mut returns = 0;
     for _ in 0..21 {
         let started = Instant::now();
-        returns = exact::breaks(&route, &model).expect("a split exists").len();
+        returns = exact::returns(&route, &model)
+            .expect("a split exists")
+            .len();
         times.push(started.elapsed().as_secs_f64() * 1e3);
     }
     println!(

@@ -170,13 +170,15 @@ pub fn plan_geojson(
         ));
         seq += 1;
         if let Some(split) = sorties {
-            for &at in split
+            for (&at, &resume) in split
                 .plan
                 .breaks
                 .iter()
-                .filter(|&&b| b >= offset && b <= last_point)
+                .zip(&split.plan.resumes)
+                .filter(|(&b, _)| b >= offset && b <= last_point)
             {
                 let point = split.work_route.points()[at];
+                let again = split.work_route.points()[resume];
                 let sortie = split.sortie_at(at);
                 let mut properties = Map::new();
                 properties.insert("kind".into(), json!("return"));
@@ -191,27 +193,47 @@ pub fn plan_geojson(
                 properties.insert("role".into(), json!("leg"));
                 properties.insert("seq".into(), json!(seq));
                 properties.insert("sortie".into(), json!(sortie));
-                let one_way = split.model.leg_m(&point);
+                // Out and back: to the supply point, and out again to where the next sortie
+                // starts (the same point, or the next pass when the return skips a transfer).
+                let round_trip = split.model.leg_m(&point) + split.model.leg_m(&again);
                 properties.insert(
                     "length_m".into(),
-                    json!(crate::numbers::round(2.0 * one_way, 1e-4)),
+                    json!(crate::numbers::round(round_trip, 1e-4)),
                 );
                 let at_height = |x: f64, y: f64, z: f64| position(system, x, y, Some(z));
                 let cruise =
                     point.ground_m.max(split.supply.ground_m) + spray_height_m + safe_height_m;
+                let mut coordinates = vec![
+                    at_height(point.x, point.y, point.ground_m + spray_height_m),
+                    at_height(point.x, point.y, cruise),
+                    at_height(split.supply.x, split.supply.y, cruise),
+                    at_height(split.supply.x, split.supply.y, split.supply.ground_m),
+                ];
+                if resume != at {
+                    let cruise =
+                        again.ground_m.max(split.supply.ground_m) + spray_height_m + safe_height_m;
+                    coordinates.extend([
+                        at_height(split.supply.x, split.supply.y, cruise),
+                        at_height(again.x, again.y, cruise),
+                        at_height(again.x, again.y, again.ground_m + spray_height_m),
+                    ]);
+                }
                 features.push(feature(
                     properties,
-                    json!({"type": "LineString", "coordinates": [
-                        at_height(point.x, point.y, point.ground_m + spray_height_m),
-                        at_height(point.x, point.y, cruise),
-                        at_height(split.supply.x, split.supply.y, cruise),
-                        at_height(split.supply.x, split.supply.y, split.supply.ground_m),
-                    ]}),
+                    json!({"type": "LineString", "coordinates": coordinates}),
                 ));
                 seq += 1;
             }
         }
-        if let Some(transfer) = route.transfers.get(index) {
+        let skipped = sorties.is_some_and(|split| {
+            split
+                .plan
+                .breaks
+                .iter()
+                .zip(&split.plan.resumes)
+                .any(|(&at, &resume)| at == last_point && resume == last_point + 1)
+        });
+        if let Some(transfer) = route.transfers.get(index).filter(|_| !skipped) {
             features.push(leg_feature(transfer, "between", seq, sortie_at(last_point)));
             seq += 1;
         }

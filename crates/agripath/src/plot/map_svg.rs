@@ -217,13 +217,14 @@ pub fn plan_svg(
             svg,
             r##"<g id="returns" fill="none" stroke="#6a1b9a" stroke-width="1.2" stroke-dasharray="7 4">"##
         );
-        for &at in &split.plan.breaks {
+        for (&at, &resume) in split.plan.breaks.iter().zip(&split.plan.resumes) {
             let point = split.work_route.points()[at];
+            let again = split.work_route.points()[resume];
             let _ = writeln!(
                 svg,
                 r##"<path d="{}"/><circle cx="{:.2}" cy="{:.2}" r="4" fill="#6a1b9a" stroke="white" stroke-dasharray="none"/>"##,
                 canvas.path(
-                    [(point.x, point.y), (supply.x, supply.y)].into_iter(),
+                    [(point.x, point.y), (supply.x, supply.y), (again.x, again.y)].into_iter(),
                     false
                 ),
                 canvas.x(point.x),

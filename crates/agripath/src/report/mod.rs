@@ -72,7 +72,8 @@ pub struct Report {
     /// Edge passes, metres.
     pub edge_length_m: f64,
     /// Every leg flown (from the launch point, between passes, home) with their 2h climbs
-    /// (seed 001 eq. 8), metres.
+    /// (seed 001 eq. 8), metres; a transfer that a return to the supply point replaces is not
+    /// flown and not counted.
     pub transfer_length_m: f64,
     /// What the sequencer minimised: from the launch point through every pass (no leg home),
     /// or the closed tour for a free start (seed 001 Table 8's measure), metres.
@@ -89,8 +90,11 @@ pub struct Report {
     pub sorties: usize,
     /// How the returns were chosen (`null`: not split).
     pub sortie_planner: Option<SortiePlanner>,
-    /// Σ 2 (‖P_n, P0‖ + H_n) over the returns, metres.
+    /// Σ over the returns of the legs to the supply point and back out (2 (‖P_n, P0‖ + H_n)
+    /// when the sortie resumes where it returned), metres.
     pub return_length_m: f64,
+    /// What the operator pays in distance: `transfer_length_m + return_length_m`, metres.
+    pub non_spray_length_m: f64,
     /// Return round trips plus max(battery swap, refill) at each return (seed 003 Table 4's
     /// non-spraying time), seconds.
     pub return_time_s: f64,
@@ -142,9 +146,9 @@ pub struct SortieReport {
 
 /// Flight time of the transfers: legs inside a field at turn speed; climbing legs at transit
 /// speed plus the 2h climb and descent at climb speed.
-pub fn transfer_time_s(route: &Route, vehicle: &Vehicle) -> f64 {
-    route
-        .legs()
+pub fn transfer_time_s(route: &Route, sorties: Option<&PlannedSorties>, vehicle: &Vehicle) -> f64 {
+    flown_legs(route, sorties)
+        .into_iter()
         .map(|transfer| {
             if transfer.climbs {
                 (transfer.cost_m - 2.0 * vehicle.safe_height_m) / vehicle.transit_speed_mps
@@ -154,6 +158,18 @@ pub fn transfer_time_s(route: &Route, vehicle: &Vehicle) -> f64 {
             }
         })
         .sum()
+}
+
+/// The legs flown between passes: every leg of the route, less the transfers a return to the
+/// supply point skipped.
+pub fn flown_legs<'r>(
+    route: &'r Route,
+    sorties: Option<&PlannedSorties>,
+) -> Vec<&'r crate::sequence::Transfer> {
+    match sorties {
+        Some(split) => split.flown_legs(route).collect(),
+        None => route.legs().collect(),
+    }
 }
 
 impl Report {
@@ -201,7 +217,7 @@ impl Report {
         let (turns, u_turns) = route.turns();
         let spray_time_s = (spray_length_m + edge_length_m) / vehicle.spray_speed_mps;
         let return_time_s = sorties.map_or(0.0, |split| split.plan.return_time_s);
-        let non_spray_time_s = transfer_time_s(route, vehicle) + return_time_s;
+        let non_spray_time_s = transfer_time_s(route, sorties, vehicle) + return_time_s;
         let sortie_details = sorties.map_or_else(Vec::new, |split| {
             split
                 .plan
@@ -250,15 +266,32 @@ impl Report {
             fields,
             spray_length_m: round(spray_length_m, 1e-4),
             edge_length_m: round(edge_length_m, 1e-4),
-            transfer_length_m: round(route.transfer_length_m(), 1e-4),
+            transfer_length_m: round(
+                flown_legs(route, sorties)
+                    .iter()
+                    .map(|leg| leg.cost_m)
+                    .sum(),
+                1e-4,
+            ),
             tour_cost_m: round(route.tour_cost_m, 1e-4),
-            transfers: route.legs().count(),
-            climbing_transfers: route.legs().filter(|transfer| transfer.climbs).count(),
+            transfers: flown_legs(route, sorties).len(),
+            climbing_transfers: flown_legs(route, sorties)
+                .iter()
+                .filter(|transfer| transfer.climbs)
+                .count(),
             turns,
             u_turns,
             sorties: sorties.map_or(1, |split| split.plan.sorties.len()),
             sortie_planner: sorties.map(|split| split.plan.planner),
             return_length_m: round(sorties.map_or(0.0, |split| split.plan.round_trip_m), 1e-4),
+            non_spray_length_m: round(
+                flown_legs(route, sorties)
+                    .iter()
+                    .map(|leg| leg.cost_m)
+                    .sum::<f64>()
+                    + sorties.map_or(0.0, |split| split.plan.round_trip_m),
+                1e-4,
+            ),
             return_time_s: round(return_time_s, 1e-3),
             sortie_details,
             sprayable_area_m2: round(sprayable, 1e-4),

@@ -195,12 +195,17 @@ pub fn build_missions(
         turn_mps: vehicle.turn_speed_mps,
         transit_mps: vehicle.transit_speed_mps,
     };
-    let (work_route, supply, bounds) = match sorties {
+    // Each sortie's first and last route point: a sortie may resume at the point after the
+    // last one's return, skipping the turn or transfer between them.
+    let (work_route, supply, spans) = match sorties {
         Some(split) => {
-            let mut bounds: Vec<usize> = vec![0];
-            bounds.extend(split.plan.breaks.iter().copied());
-            bounds.push(split.work_route.len().saturating_sub(1));
-            (split.work_route.clone(), split.supply, bounds)
+            let spans: Vec<(usize, usize)> = split
+                .plan
+                .sorties
+                .iter()
+                .map(|sortie| (sortie.first, sortie.last))
+                .collect();
+            (split.work_route.clone(), split.supply, spans)
         }
         None => {
             let launch = route.launch;
@@ -216,7 +221,7 @@ pub fn build_missions(
                 return Ok(vec![]);
             };
             let last = route.len().saturating_sub(1);
-            (route, supply, vec![0, last])
+            (route, supply, vec![(0, last)])
         }
     };
     if work_route.len() < 2 {
@@ -250,8 +255,7 @@ pub fn build_missions(
     let points = work_route.points();
     let segments = work_route.segments();
     let mut missions = Vec::new();
-    for (sortie, pair) in bounds.windows(2).enumerate() {
-        let (first, last) = (pair[0], pair[1]);
+    for (sortie, &(first, last)) in spans.iter().enumerate() {
         let out = transit(&supply, &points[first], scenario, &obstacles, cruise)?;
         let mut items = vec![
             level(Action::Takeoff, &supply, out.altitude_m),
