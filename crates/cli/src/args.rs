@@ -262,9 +262,11 @@ pub struct OrderArgs {
     /// Ants per batch (seed 001: 50).
     #[arg(long, default_value_t = 50)]
     pub ants: usize,
-    /// Return points for refill and battery swap (seed 003): `exact` (ours, optimal),
-    /// `gsa` (the seed's gravitational search), `simple`, `unplanned`, or `none` (one flight).
-    #[arg(long, default_value = "exact", value_parser = ["joint", "exact", "gsa", "simple", "unplanned", "none"])]
+    /// Return points for refill and battery swap: `joint` (ours: the order of the passes and
+    /// the returns optimised together), `exact` (ours: the optimal returns for the order the
+    /// sequencer chose), the seed 003 planners `gsa` (gravitational search), `simple`,
+    /// `unplanned`, or `none` (one flight).
+    #[arg(long, default_value = "joint", value_parser = ["joint", "exact", "gsa", "simple", "unplanned", "none"])]
     pub sorties: String,
 }
 

@@ -559,7 +559,7 @@ pub struct SortieSettings {
 impl Default for SortieSettings {
     fn default() -> Self {
         Self {
-            planner: Some(SortiePlanner::Exact),
+            planner: Some(SortiePlanner::Joint),
             seed: 1,
         }
     }
