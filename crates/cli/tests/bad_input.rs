@@ -446,7 +446,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         flag(
             &["--sorties", "bogus"],
             "arguments",
-            "possible values: exact, gsa",
+            "possible values: joint, exact, gsa",
         ),
         flag(
             &["--altitude", "sea-level"],
