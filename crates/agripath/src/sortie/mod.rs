@@ -19,6 +19,7 @@
 //! thresholds, one search per number of returns) and `exact` (ours: the optimal breaks by a
 //! shortest path over the route's points).
 
+pub mod breakers;
 pub mod exact;
 pub mod grid;
 pub mod gsa;
@@ -34,6 +35,7 @@ use serde::Serialize;
 
 use crate::error::Fault;
 use crate::model::Vehicle;
+pub use breakers::BreakRoute;
 use route::{RoutePoint, WorkRoute};
 
 /// Slack for comparing metres and seconds against limits.
@@ -375,81 +377,6 @@ pub fn plan_sorties(
     unreachable_points(route, model)?;
     let returns = planner.breaker().returns(route, model, seed)?;
     Ok(model.evaluate_returns(route, planner, &returns))
-}
-
-/// A way to split a route into sorties: the one signature every sortie planner has. The
-/// result is the returns to the supply point, in route order.
-pub trait BreakRoute {
-    /// Where the vehicle returns and resumes; `seed` drives the stochastic planners.
-    fn returns(
-        &self,
-        route: &WorkRoute,
-        model: &SortieModel,
-        seed: u64,
-    ) -> Result<Vec<Return>, Fault>;
-}
-
-/// The seed's planners: they break the route at points and resume where they broke off.
-struct Planned(fn(&WorkRoute, &SortieModel) -> Result<Vec<usize>, Fault>);
-
-/// Returns that resume where they broke off.
-fn resuming_in_place(breaks: Vec<usize>) -> Vec<Return> {
-    breaks
-        .into_iter()
-        .map(|at| Return { at, resume: at })
-        .collect()
-}
-
-impl BreakRoute for Planned {
-    fn returns(
-        &self,
-        route: &WorkRoute,
-        model: &SortieModel,
-        _seed: u64,
-    ) -> Result<Vec<Return>, Fault> {
-        (self.0)(route, model).map(resuming_in_place)
-    }
-}
-
-impl BreakRoute for gsa::GsaSettings {
-    fn returns(
-        &self,
-        route: &WorkRoute,
-        model: &SortieModel,
-        seed: u64,
-    ) -> Result<Vec<Return>, Fault> {
-        Ok(resuming_in_place(
-            gsa::search(route, model, self, seed)?.breaks,
-        ))
-    }
-}
-
-/// Ours: the optimal returns, skipping the turn or transfer after a return where that pays.
-struct Exact;
-
-impl BreakRoute for Exact {
-    fn returns(
-        &self,
-        route: &WorkRoute,
-        model: &SortieModel,
-        _seed: u64,
-    ) -> Result<Vec<Return>, Fault> {
-        exact::returns(route, model)
-    }
-}
-
-impl SortiePlanner {
-    /// The planner itself: the registry of [`BreakRoute`] implementations.
-    pub fn breaker(self) -> Box<dyn BreakRoute> {
-        match self {
-            SortiePlanner::Unplanned => Box::new(Planned(unplanned::breaks)),
-            SortiePlanner::Simple => Box::new(Planned(simple::breaks)),
-            SortiePlanner::Gsa => Box::new(gsa::GsaSettings::default()),
-            // The joint planner reorders the route first (the pipeline's job); its returns
-            // on the route it keeps are the exact split's.
-            SortiePlanner::Exact | SortiePlanner::Joint => Box::new(Exact),
-        }
-    }
 }
 
 /// The shared check of a split (Fields2Cover's checkers, issue 18): the sorties fly the route
