@@ -222,6 +222,18 @@ mod tests {
         let mut stream = swarm::run_stream(3, 0);
         let mut tours = vec![Sequencer::default().sequencer().order(&problem, &groups)];
         tours.extend((0..3).map(|_| joint.random_solution(&mut stream)));
+        // The engine's conformance suite: repeatable, within budget, every tour a permutation;
+        // and the search never ends above its start.
+        let start = tours[0].clone();
+        let passes = start.len();
+        let outcome = swarm::conformance::check_problem(
+            || search::JointSearch::new(start.clone()),
+            &joint,
+            600,
+            |tour: &[Step]| crate::sequence::tour::check_order(tour, passes),
+        )
+        .unwrap();
+        assert!(outcome.best_cost <= joint.evaluate(&start));
         for tour in tours {
             let linear = joint.evaluate(&tour);
             let flight = route_of_tour(&coverage, &model, Some(supply), &problem, &tour);
@@ -235,5 +247,136 @@ mod tests {
                 "exact {exact} against the linear split {linear}"
             );
         }
+    }
+
+    /// Random passes (short polylines) in random orders and directions, with tanks and
+    /// batteries tight enough that both bind (and the battery breaks the queues' best starts):
+    /// the linear split equals the exact split with the first and last legs.
+    #[test]
+    fn the_linear_split_equals_the_exact_split_on_random_tours_and_tight_limits() {
+        let farm = crate::demo::scenario().unwrap().farm;
+        let model = TransferModel::new(&farm, 10.0);
+        let speeds = Speeds {
+            spray_mps: 3.0,
+            turn_mps: 2.0,
+            transit_mps: 6.0,
+        };
+        let (mut split, mut refused) = (0, 0);
+        for seed in 0..60u64 {
+            let mut stream = swarm::run_stream(seed, 0);
+            let passes = 3 + swarm::below(&mut stream, 12);
+            let mut lines: Vec<Vec<GroundPoint>> = Vec::new();
+            for _ in 0..passes {
+                let (x, y) = (
+                    400.0 * swarm::uniform(&mut stream),
+                    400.0 * swarm::uniform(&mut stream),
+                );
+                let angle = std::f64::consts::TAU * swarm::uniform(&mut stream);
+                let count = 2 + swarm::below(&mut stream, 5);
+                lines.push(
+                    (0..count)
+                        .map(|k| GroundPoint {
+                            x: x + 15.0 * k as f64 * angle.cos(),
+                            y: y + 15.0 * k as f64 * angle.sin(),
+                            ground_m: 2.0 * swarm::uniform(&mut stream),
+                        })
+                        .collect(),
+                );
+            }
+            let ends: Vec<[GroundPoint; 2]> = lines
+                .iter()
+                .map(|line| [line[0], line[line.len() - 1]])
+                .collect();
+            let supply = GroundPoint {
+                x: 200.0,
+                y: -30.0,
+                ground_m: 0.0,
+            };
+            let problem =
+                OrderingProblem::new(ends, crate::sequence::tour::Start::Fixed(supply), &model);
+            let sortie_model = SortieModel {
+                supply: RoutePoint {
+                    x: supply.x,
+                    y: supply.y,
+                    ground_m: supply.ground_m,
+                },
+                spray_per_tank_m: Some(60.0 + 120.0 * swarm::uniform(&mut stream)),
+                endurance_s: 400.0 + 400.0 * swarm::uniform(&mut stream),
+                battery_reserve_s: 0.0,
+                battery_swap_s: 30.0 + 60.0 * swarm::uniform(&mut stream),
+                refill_base_s: 20.0,
+                refill_max_s: 120.0,
+                transit_mps: 6.0,
+                return_climb_m: 20.0,
+                litres_per_m: None,
+            };
+            let points: Vec<&[GroundPoint]> = lines.iter().map(Vec::as_slice).collect();
+            let joint = JointProblem::new(&problem, &points, &sortie_model, speeds);
+            let tour = joint.random_solution(&mut stream);
+            // The flight of the tour, as the pipeline builds it.
+            let mut route_points = Vec::new();
+            let mut segments = Vec::new();
+            let mut extra = Vec::new();
+            for (position, step) in tour.iter().enumerate() {
+                let mut line = lines[step.pass].clone();
+                if step.reversed {
+                    line.reverse();
+                }
+                if position > 0 {
+                    let from: GroundPoint = *route_points.last().unwrap();
+                    let cost = problem.cost(tour[position - 1].exit(), step.entry());
+                    let straight = distance_3d(&from, &line[0]);
+                    if cost > straight + 1e-6 {
+                        segments.push(crate::sortie::route::Segment::Transfer);
+                        extra.push(cost - straight);
+                    } else {
+                        segments.push(crate::sortie::route::Segment::Turn);
+                        extra.push(0.0);
+                    }
+                }
+                for (k, point) in line.iter().enumerate() {
+                    if k > 0 {
+                        segments.push(crate::sortie::route::Segment::Spray);
+                        extra.push(0.0);
+                    }
+                    route_points.push(*point);
+                }
+            }
+            let work = WorkRoute::new(
+                route_points
+                    .iter()
+                    .map(|point| RoutePoint {
+                        x: point.x,
+                        y: point.y,
+                        ground_m: point.ground_m,
+                    })
+                    .collect(),
+                segments,
+                Some(extra),
+                speeds,
+            );
+            let linear = joint.evaluate(&tour);
+            match plan_sorties(&work, &sortie_model, SortiePlanner::Exact, 1) {
+                Ok(plan) => {
+                    let ends = sortie_model.leg_m(&work.points()[0])
+                        + sortie_model.leg_m(&work.points()[work.len() - 1]);
+                    let exact = plan.objective_s() + ends / sortie_model.transit_mps;
+                    assert!(
+                        (exact - linear).abs() < 1e-6,
+                        "seed {seed}: exact {exact} linear {linear}"
+                    );
+                    split += usize::from(plan.returns() >= 2);
+                }
+                Err(_) => {
+                    assert!(linear.is_infinite(), "seed {seed}: linear {linear}");
+                    refused += 1;
+                }
+            }
+        }
+        // Not vacuous: most tours need several returns, and few cannot be flown at all.
+        assert!(
+            split >= 30 && refused <= 10,
+            "{split} split, {refused} refused"
+        );
     }
 }
