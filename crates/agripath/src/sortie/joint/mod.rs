@@ -222,18 +222,6 @@ mod tests {
         let mut stream = swarm::run_stream(3, 0);
         let mut tours = vec![Sequencer::default().sequencer().order(&problem, &groups)];
         tours.extend((0..3).map(|_| joint.random_solution(&mut stream)));
-        // The engine's conformance suite: repeatable, within budget, every tour a permutation;
-        // and the search never ends above its start.
-        let start = tours[0].clone();
-        let passes = start.len();
-        let outcome = swarm::conformance::check_problem(
-            || search::JointSearch::new(start.clone()),
-            &joint,
-            600,
-            |tour: &[Step]| crate::sequence::tour::check_order(tour, passes),
-        )
-        .unwrap();
-        assert!(outcome.best_cost <= joint.evaluate(&start));
         for tour in tours {
             let linear = joint.evaluate(&tour);
             let flight = route_of_tour(&coverage, &model, Some(supply), &problem, &tour);
@@ -261,7 +249,7 @@ mod tests {
             turn_mps: 2.0,
             transit_mps: 6.0,
         };
-        let (mut split, mut refused) = (0, 0);
+        let (mut split, mut refused, mut conformed) = (0, 0, false);
         for seed in 0..60u64 {
             let mut stream = swarm::run_stream(seed, 0);
             let passes = 3 + swarm::below(&mut stream, 12);
@@ -356,6 +344,20 @@ mod tests {
                 speeds,
             );
             let linear = joint.evaluate(&tour);
+            if passes >= 10 && linear.is_finite() && !conformed {
+                // The engine's conformance suite: repeatable for a seed, different across
+                // runs, within budget, every tour evaluated a permutation; and the search
+                // never ends above its start.
+                let outcome = swarm::conformance::check_problem(
+                    || search::JointSearch::new(tour.clone()),
+                    &joint,
+                    400,
+                    |candidate: &[Step]| crate::sequence::tour::check_order(candidate, passes),
+                )
+                .unwrap();
+                assert!(outcome.best_cost <= linear);
+                conformed = true;
+            }
             match plan_sorties(&work, &sortie_model, SortiePlanner::Exact, 1) {
                 Ok(plan) => {
                     let ends = sortie_model.leg_m(&work.points()[0])

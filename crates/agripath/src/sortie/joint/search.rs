@@ -22,7 +22,7 @@ use crate::sequence::local_search::nearest_ends;
 use crate::sequence::tour::{End, Step};
 
 /// Moves scored through the split at each position.
-const SCORED_PER_POSITION: usize = 4;
+const SCORED_PER_POSITION: usize = 16;
 /// Nearest ends of other passes per end.
 const NEIGHBOURS: usize = 8;
 /// Positions a kick's three cuts lie within.
@@ -297,20 +297,29 @@ impl<'a> Optimizer<JointProblem<'a>> for JointSearch {
         let incumbent = run.best_solution().to_vec();
         let n = incumbent.len();
         let span = KICK_SPAN.min(n - 2);
-        let first = 1 + below(run.stream(), n - 1 - span);
-        let mut cuts: Vec<usize> = (0..3)
-            .map(|k| {
-                if k == 0 {
-                    first
-                } else {
-                    first + 1 + below(run.stream(), span)
-                }
-            })
-            .collect();
-        cuts.sort_unstable();
-        cuts.dedup();
-        let [a, b, c] = cuts[..] else {
-            return;
+        // Three distinct cuts (a step that evaluates nothing would end the run).
+        let mut tries = 0;
+        let (a, b, c) = loop {
+            tries += 1;
+            if tries > 100 {
+                run.evaluate(&incumbent);
+                return;
+            }
+            let first = 1 + below(run.stream(), n - 1 - span);
+            let mut cuts: Vec<usize> = (0..3)
+                .map(|k| {
+                    if k == 0 {
+                        first
+                    } else {
+                        first + 1 + below(run.stream(), span)
+                    }
+                })
+                .collect();
+            cuts.sort_unstable();
+            cuts.dedup();
+            if let [a, b, c] = cuts[..] {
+                break (a, b, c);
+            }
         };
         let c = c.min(n);
         let mut kicked = Vec::with_capacity(n);
