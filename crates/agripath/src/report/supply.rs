@@ -20,7 +20,7 @@ pub struct ReportedPoint {
 impl ReportedPoint {
     fn new(x: f64, y: f64, frame: CoordinateSystem) -> Self {
         Self {
-            point_m: [round(x, 1e-4), round(y, 1e-4)],
+            point_m: [round(x, 1e-6), round(y, 1e-6)],
             lon_lat: match frame {
                 CoordinateSystem::Local => None,
                 CoordinateSystem::Utm(_) => {
@@ -58,6 +58,8 @@ pub struct AutoReport {
     pub evaluator: String,
     /// The old rule's point: the first point of the route planned without a start point.
     pub first_point: CandidateReport,
+    /// Whether a vehicle could stand there (a pass end lies on or in a field, as a rule).
+    pub first_point_stands: bool,
     /// The old rule's cost less the chosen point's, seconds (≥ 0 when auto wins).
     pub saving_s: f64,
     /// The saving as a share of the old rule's cost, percent.
@@ -103,6 +105,7 @@ impl SupplyReport {
             AutoReport {
                 evaluator: auto.evaluator.to_string(),
                 first_point: CandidateReport::new(&auto.first_point, frame),
+                first_point_stands: auto.first_point_stands,
                 saving_s: round(saving, 1e-3),
                 saving_percent: round(
                     if old.is_finite() && old > 0.0 {
@@ -147,12 +150,23 @@ impl SupplyReport {
         };
         match &self.auto {
             Some(auto) => format!(
-                "supply point (auto{}): {place}; {:.0} s not spraying by the split of the route planned without a start, against {:.0} s from the route's first point (the old rule): {:.0} s ({:.1}%) saved; {:.0} s as planned from it{}\n",
+                "supply point (auto{}): {place}; {:.0} s not spraying by the split of the route planned without a start, against {:.0} s from the route's first point (the old rule{}): {}; {:.0} s as planned from it{}\n",
                 if auto.on_access { ", on access features" } else { "" },
                 self.cost_s.unwrap_or(f64::NAN),
                 auto.first_point.cost_s,
-                auto.saving_s,
-                auto.saving_percent,
+                if auto.first_point_stands {
+                    ""
+                } else {
+                    ", where no vehicle can stand"
+                },
+                if auto.saving_s >= 0.0 {
+                    format!("{:.0} s ({:.1}%) saved", auto.saving_s, auto.saving_percent)
+                } else {
+                    format!(
+                        "{:.0} s ({:.1}%) more",
+                        -auto.saving_s, -auto.saving_percent
+                    )
+                },
                 self.planned_cost_s,
                 if !auto.candidates.is_empty() {
                     format!("; {} candidates in report.json", auto.candidates.len())

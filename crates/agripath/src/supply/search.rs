@@ -149,10 +149,13 @@ fn pattern_search(
     at
 }
 
+/// A surrogate shared between the screen and the polish of its place.
+type Shared<'a> = Rc<dyn Fn(Coord<f64>) -> f64 + 'a>;
+
 /// The places the evaluator has scored, with their surrogates.
 struct Scored<'a> {
     cost: &'a dyn SupplyCost,
-    places: Vec<(ScoredPoint, Rc<dyn Fn(Coord<f64>) -> f64 + 'a>)>,
+    places: Vec<(ScoredPoint, Shared<'a>)>,
 }
 
 impl<'a> Scored<'a> {
@@ -168,7 +171,7 @@ impl<'a> Scored<'a> {
     }
 
     /// The surrogate around a scored place.
-    fn surrogate(&self, point: Coord<f64>) -> Rc<dyn Fn(Coord<f64>) -> f64 + 'a> {
+    fn surrogate(&self, point: Coord<f64>) -> Shared<'a> {
         let (_, surrogate) = self
             .places
             .iter()

@@ -14,7 +14,7 @@
 //!   smallest among the fields, so r only binds where fields lie far apart.
 //!
 //! With access features (roads, tracks, yards the operator drew), P may stand only on them:
-//! within [`ON_LINE_M`] of a line, or inside a yard, and not inside a field's outer boundary or
+//! within [`ON_LINE_M`] of a line or a yard's boundary, or inside a yard, and not inside a field's outer boundary or
 //! an obstacle. No margin and no reach apply there: a road along a field edge is where the
 //! truck parks, and the operator has said where vehicles go.
 //!
@@ -222,7 +222,13 @@ impl StandingRule {
                 || self
                     .lines
                     .iter()
-                    .any(|line| nearest_on_polyline(p, line).1 <= ON_LINE_M);
+                    .map(Vec::as_slice)
+                    .chain(
+                        self.yards
+                            .iter()
+                            .flat_map(|rings| rings.iter().map(|ring| ring.points.as_slice())),
+                    )
+                    .any(|points| nearest_on_polyline(p, points).1 <= ON_LINE_M);
         }
         self.blocked
             .iter()
