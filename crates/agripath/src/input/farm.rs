@@ -132,9 +132,14 @@ pub fn build(
                 position: project(*position).map_err(fault_here)?,
             }),
             RawGeometry::Lines(lines) => {
+                if kind == "field" {
+                    return Err(fault_here(Fault::Structure(
+                        "geometry type 'LineString' cannot be a field: use Polygon or MultiPolygon (Point for markers; a line is a road or track of kind 'access')".into(),
+                    )));
+                }
                 if kind != "access" {
                     return Err(fault_here(Fault::Structure(format!(
-                        "properties.kind is '{kind}': a line (LineString) can only be an 'access' road or track; a field is a Polygon or MultiPolygon"
+                        "properties.kind is '{kind}': a line (LineString) can only be a road or track of kind 'access'"
                     ))));
                 }
                 for (part, line) in lines.iter().enumerate() {
