@@ -159,8 +159,13 @@ impl SupplyReport {
                 } else {
                     ", where no vehicle can stand"
                 },
-                if auto.saving_s >= 0.0 {
-                    format!("{:.0} s ({:.1}%) saved", auto.saving_s, auto.saving_percent)
+                // Under half a second either way reads as a tie, not as "-0 s saved".
+                if auto.saving_s > -0.5 {
+                    format!(
+                        "{:.0} s ({:.1}%) saved",
+                        auto.saving_s.max(0.0),
+                        auto.saving_percent.max(0.0)
+                    )
                 } else {
                     format!(
                         "{:.0} s ({:.1}%) more",
