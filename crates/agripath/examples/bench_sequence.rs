@@ -61,6 +61,7 @@ fn random_farm(fields: usize, swaths: usize, seed: u64) -> Farm {
         fields: polygons,
         obstacles: vec![],
         markers: vec![],
+        access: vec![],
         embedded_terrain: None,
         stated_swath_width_m: None,
     }

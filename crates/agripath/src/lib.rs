@@ -29,6 +29,7 @@ pub mod sequence;
 pub mod settings;
 pub mod sortie;
 pub mod summary;
+pub mod supply;
 pub mod terrain;
 pub mod track;
 pub mod view;

@@ -23,16 +23,22 @@ use crate::settings::PlanSettings;
 use crate::sortie::joint::{JointProblem, JointSettings};
 use crate::sortie::route::{RoutePoint, Speeds, WorkRoute};
 use crate::sortie::{plan_sorties, PlannedSorties, SortieModel, SortiePlanner, SortieSettings};
+use crate::supply::evaluator::{plan_cost_s, FixedRouteSplit};
+use crate::supply::{SupplyChoice, SupplyRequest, SupplySource};
 use crate::terrain::hillshade::hillshade;
 use crate::terrain::Extent;
 
-/// The start point of the flight: the given one, else the field file's launch marker (a
-/// point named or typed launch, home, takeoff, supply, base or start), else none (free
-/// start). Two launch markers and no `--start` are an error naming both.
+/// The start point the inputs give: the given one, else the field file's launch marker (a
+/// point named or typed launch, home, takeoff, supply, base or start), else none (the supply
+/// point is chosen by [`supply_point`], or the start is free). Two launch markers and no
+/// `--start` are an error naming both. `--supply auto` ignores markers: none.
 pub fn start_point(
     scenario: &Scenario,
     settings: &PlanSettings,
 ) -> Result<Option<GroundPoint>, Fault> {
+    if settings.start.is_none() && matches!(settings.supply, SupplyRequest::Auto { .. }) {
+        return Ok(None);
+    }
     let launches: Vec<&crate::model::Marker> = scenario
         .farm
         .markers
@@ -95,11 +101,18 @@ pub struct PlannedMission {
     pub settings: PlanSettings,
 }
 
-/// The sortie model of the scenario's vehicle with supply point `supply`: returns fly at the
-/// safe height, as transfers that leave the field do (decision 0008), and the battery keeps a
-/// reserve for the climbs and descents.
-fn sortie_model(scenario: &Scenario, supply: RoutePoint) -> SortieModel {
-    let vehicle = &scenario.vehicle;
+/// The speeds a route of `vehicle` is timed with.
+fn speeds(vehicle: &crate::model::Vehicle) -> Speeds {
+    Speeds {
+        spray_mps: vehicle.spray_speed_mps,
+        turn_mps: vehicle.turn_speed_mps,
+        transit_mps: vehicle.transit_speed_mps,
+    }
+}
+
+/// The sortie model the plans of `vehicle` are split with, from `supply`.
+fn sortie_model(vehicle: &crate::model::Vehicle, supply: RoutePoint) -> SortieModel {
+    // Returns fly at the safe height, as transfers that leave the field do (decision 0008).
     let mut model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
     // The mission climbs and descends at climb speed (takeoff to the cruise height, down to
     // spray height, up again, landing), which seed 003's eq. 2 charges at transit speed: keep
@@ -110,14 +123,6 @@ fn sortie_model(scenario: &Scenario, supply: RoutePoint) -> SortieModel {
     let reserve_s = vertical_m / vehicle.climb_speed_mps - vertical_m / vehicle.transit_speed_mps;
     model.battery_reserve_s = reserve_s.clamp(0.0, 0.5 * model.endurance_s);
     model
-}
-
-fn speeds_of(vehicle: &crate::model::Vehicle) -> Speeds {
-    Speeds {
-        spray_mps: vehicle.spray_speed_mps,
-        turn_mps: vehicle.turn_speed_mps,
-        transit_mps: vehicle.transit_speed_mps,
-    }
 }
 
 /// The `joint` planner's route: the sequencer's order from the supply point (the launch
@@ -140,7 +145,7 @@ fn joint_route(
     let (problem, groups) = ordering_problem(coverage, model, Some(supply));
     let ordered = settings.sequencer.sequencer().order(&problem, &groups);
     let sorties = sortie_model(
-        scenario,
+        &scenario.vehicle,
         RoutePoint {
             x: supply.x,
             y: supply.y,
@@ -152,13 +157,93 @@ fn joint_route(
         .map(|(_, points)| points)
         .collect();
     let vehicle = &scenario.vehicle;
-    let joint = JointProblem::new(&problem, &points, &sorties, speeds_of(vehicle));
+    let joint = JointProblem::new(&problem, &points, &sorties, speeds(vehicle));
     let joint_settings = JointSettings {
         seed: settings.sorties.seed,
         ..JointSettings::default()
     };
     let tour = crate::sortie::joint::improve(&joint, ordered, &joint_settings);
     route_of_tour(coverage, model, Some(supply), &problem, &tour)
+}
+
+/// The supply point of the plan and the rule that chose it ([`crate::supply`]): the point
+/// `given` by [`start_point`] (`given` or `marker`); else, when the plan has sorties or
+/// `--supply auto` asks, the `auto` search over the route planned without a start point,
+/// scored by [`FixedRouteSplit`]; else `None` (a free start).
+pub fn supply_point(
+    scenario: &Scenario,
+    settings: &PlanSettings,
+    coverage: &CoveragePlan,
+    transfers: &TransferModel,
+    given: Option<GroundPoint>,
+) -> Result<Option<SupplyChoice>, Fault> {
+    let listed = match (given, settings.supply) {
+        (Some(point), _) => {
+            return Ok(Some(SupplyChoice {
+                source: if settings.start.is_some() {
+                    SupplySource::Given
+                } else {
+                    SupplySource::Marker
+                },
+                point,
+                auto: None,
+            }))
+        }
+        (None, SupplyRequest::Auto { listed }) => listed,
+        (None, SupplyRequest::FromInputs) if settings.sorties.planner.is_some() => 0,
+        (None, SupplyRequest::FromInputs) => return Ok(None),
+    };
+    let vehicle = &scenario.vehicle;
+    let free = route(coverage, transfers, None, &settings.sequencer);
+    let work_route = WorkRoute::from_route(&free, speeds(vehicle));
+    let Some(&first) = work_route.points().first() else {
+        return Ok(None);
+    };
+    let ground = |x: f64, y: f64| scenario.terrain.height_m(x, y).ok();
+    let evaluator = FixedRouteSplit::new(
+        &work_route,
+        sortie_model(vehicle, first),
+        settings.sorties.planner.is_some(),
+        &ground,
+    );
+    let auto = crate::supply::choose_auto(&scenario.farm, &work_route, &evaluator, listed)?;
+    let best = auto.best().point;
+    Ok(Some(SupplyChoice {
+        source: SupplySource::Auto,
+        point: GroundPoint {
+            x: best.x,
+            y: best.y,
+            ground_m: scenario.terrain.height_m(best.x, best.y)?,
+        },
+        auto: Some(auto),
+    }))
+}
+
+/// The evaluator's measure (non-spray seconds: the split's E plus the first leg out and the
+/// last home) on the route as planned from the supply point.
+fn planned_cost_s(
+    scenario: &Scenario,
+    route: &Route,
+    sorties: Option<&PlannedSorties>,
+    supply: GroundPoint,
+) -> f64 {
+    match sorties {
+        Some(split) => plan_cost_s(&split.work_route, &split.model, &split.plan),
+        None => {
+            let vehicle = &scenario.vehicle;
+            let work_route = WorkRoute::from_route(route, speeds(vehicle));
+            let model = sortie_model(
+                vehicle,
+                RoutePoint {
+                    x: supply.x,
+                    y: supply.y,
+                    ground_m: supply.ground_m,
+                },
+            );
+            let plan = model.evaluate(&work_route, crate::sortie::SortiePlanner::Exact, vec![]);
+            plan_cost_s(&work_route, &model, &plan)
+        }
+    }
 }
 
 /// Splits the route into sorties at the launch point (or the route's first point).
@@ -171,7 +256,8 @@ fn split_into_sorties(
     let Some(planner) = settings.planner else {
         return Ok(None);
     };
-    let work_route = WorkRoute::from_route(route, speeds_of(&scenario.vehicle));
+    let vehicle = &scenario.vehicle;
+    let work_route = WorkRoute::from_route(route, speeds(vehicle));
     let Some(first) = work_route.points().first().copied() else {
         return Ok(None);
     };
@@ -182,7 +268,7 @@ fn split_into_sorties(
             y: point.y,
             ground_m: point.ground_m,
         });
-    let model = sortie_model(scenario, supply);
+    let model = sortie_model(vehicle, supply);
     let plan = plan_sorties(&work_route, &model, planner, settings.seed)?;
     let visit_offsets = route
         .visits
@@ -205,7 +291,7 @@ fn split_into_sorties(
 /// Plans the scenario's fields with `settings`.
 pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<PlannedMission, Fault> {
     let started = Instant::now();
-    let start = start_point(scenario, settings)?;
+    let given = start_point(scenario, settings)?;
     let coverage = plan_coverage(
         &scenario.farm,
         scenario.terrain.as_ref(),
@@ -213,6 +299,8 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
         &settings.coverage,
     )?;
     let model = TransferModel::new(&scenario.farm, scenario.vehicle.safe_height_m);
+    let supply = supply_point(scenario, settings, &coverage, &model, given)?;
+    let start = supply.as_ref().map(|choice| choice.point);
     let route = if settings.sorties.planner == Some(SortiePlanner::Joint) {
         joint_route(scenario, &coverage, &model, start, settings)
     } else {
@@ -220,7 +308,7 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
     };
     let sorties = split_into_sorties(scenario, &route, start, &settings.sorties)?;
     let runtime_s = crate::numbers::round(started.elapsed().as_secs_f64(), 1e-4);
-    let report = Report::new(
+    let mut report = Report::new(
         scenario,
         &coverage,
         &route,
@@ -228,6 +316,10 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
         settings,
         runtime_s,
     );
+    report.supply = supply.as_ref().map(|choice| {
+        let planned = planned_cost_s(scenario, &route, sorties.as_ref(), choice.point);
+        crate::report::supply::SupplyReport::new(choice, scenario.farm.coordinate_system, planned)
+    });
     Ok(PlannedMission {
         coverage,
         route,

@@ -5,6 +5,7 @@ use crate::coverage::CoverageSettings;
 use crate::mission::flight::MissionSettings;
 use crate::sequence::Sequencer;
 use crate::sortie::SortieSettings;
+use crate::supply::SupplyRequest;
 
 /// Everything a coverage plan is asked for.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
@@ -13,9 +14,12 @@ pub struct PlanSettings {
     pub coverage: CoverageSettings,
     /// How the passes are ordered.
     pub sequencer: Sequencer,
-    /// Launch point in planning metres; `None`: a `launch` or `supply` marker of the field
-    /// file, else a free start.
+    /// The supply point given (`--start`, `--supply X,Y`) in planning metres: the drone
+    /// takes off, refills and lands there. `None`: as [`PlanSettings::supply`] says.
     pub start: Option<[f64; 2]>,
+    /// How the supply point is chosen when none is given: the field file's launch marker, else
+    /// `auto` when the plan has sorties (the default), or `auto` whatever the file marks.
+    pub supply: SupplyRequest,
     /// How the route is split into sorties.
     pub sorties: SortieSettings,
     /// What the mission files are written with.

@@ -33,6 +33,8 @@ pub struct ScenarioSummary {
     pub fields: Vec<FieldSummary>,
     /// Number of obstacles (no-spray zones).
     pub obstacles: usize,
+    /// Number of access features (roads, tracks, yards where the supply point may stand).
+    pub access: usize,
     /// Each marker as "name (kind)".
     pub markers: Vec<String>,
     /// Total area of the fields less their holes, m².
@@ -96,6 +98,7 @@ impl ScenarioSummary {
             coordinate_system: farm.coordinate_system.describe(),
             fields,
             obstacles: farm.obstacles.len(),
+            access: farm.access.len(),
             markers: farm
                 .markers
                 .iter()
@@ -147,10 +150,15 @@ impl ScenarioSummary {
             ));
         }
         text.push_str(&format!(
-            "          {} field(s), {:.3} ha, {} obstacle(s){}\n",
+            "          {} field(s), {:.3} ha, {} obstacle(s){}{}\n",
             self.fields.len(),
             self.total_area_m2 / 10_000.0,
             self.obstacles,
+            if self.access == 0 {
+                String::new()
+            } else {
+                format!(", {} access feature(s)", self.access)
+            },
             if self.markers.is_empty() {
                 String::new()
             } else {

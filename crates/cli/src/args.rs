@@ -249,10 +249,17 @@ pub struct OrderArgs {
     /// `best` (ours: local search), `greedy` or `aco` (seed 001's ant colony).
     #[arg(long, default_value = "best", value_parser = agripath::sequence::Sequencer::KEYS)]
     pub sequencer: String,
-    /// Launch point X,Y in the input's coordinates (lon,lat or local metres); default: the
-    /// field file's `launch`/`supply` marker, else a free start (closed tour).
+    /// Launch point X,Y in the input's coordinates (lon,lat or local metres): the supply
+    /// point, as `--supply X,Y`; default: the field file's `launch`/`supply` marker, else
+    /// `--supply auto` (with sorties) or a free start.
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub start: Option<Vec<f64>>,
+    /// Supply point (take-off, refills, battery swaps, landing): `auto` (the place a vehicle
+    /// can stand, on the file's access features if any, that saves most non-spray time; the
+    /// default without a launch marker), `auto:N` (also list the N best in report.json), or
+    /// X,Y in the input's coordinates.
+    #[arg(long, allow_hyphen_values = true)]
+    pub supply: Option<String>,
     /// Seed of the stochastic sequencers (same seed, same plan).
     #[arg(long, default_value_t = 1)]
     pub seed: u64,
@@ -460,6 +467,7 @@ pub fn plan_options(
         obstacle_margin_m: coverage.obstacle_margin,
         sequencer: order.sequencer.clone(),
         start: order.start.clone(),
+        supply: order.supply.clone(),
         seed: order.seed,
         batches: order.batches,
         ants: order.ants,

@@ -131,6 +131,7 @@ pub fn irregular_farm(seed: u64, swaths: usize, swath_width_m: f64) -> Farm {
         fields,
         obstacles: vec![],
         markers: vec![],
+        access: vec![],
         embedded_terrain: None,
         stated_swath_width_m: None,
     }

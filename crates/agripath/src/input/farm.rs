@@ -12,7 +12,7 @@ use crate::limits::{
     MAX_FARM_EXTENT_M, MAX_FARM_LONGITUDE_SPAN_DEG, MAX_LOCAL_COORDINATE_M, MAX_POLYGONS,
     MAX_VERTICES,
 };
-use crate::model::{CoordinateSystem, Farm, Field, Marker, Obstacle};
+use crate::model::{Access, AccessShape, CoordinateSystem, Farm, Field, Marker, Obstacle};
 use crate::terrain::TerrainSpec;
 
 /// Rings as read: the first is the outer boundary, the rest are holes; positions are
@@ -26,6 +26,9 @@ pub enum RawGeometry {
     Polygons(Vec<RawRings>),
     /// A single position, `[x, y]` or `[lon, lat]`: it becomes a [`Marker`].
     Point([f64; 2]),
+    /// One or more lines (a MultiLineString has several), positions as read: only an
+    /// `access` feature (a road or track) may be a line.
+    Lines(Vec<Vec<[f64; 2]>>),
 }
 
 /// One feature of a field file, before any checking.
@@ -35,7 +38,8 @@ pub struct RawFeature {
     pub place: String,
     /// The feature's name, when the file gives one.
     pub name: Option<String>,
-    /// `properties.kind`: `field` when absent, `obstacle` for no-spray zones.
+    /// `properties.kind`: `field` when absent, `obstacle` for no-spray zones, `access` for
+    /// roads, tracks and yards.
     pub kind: Option<String>,
     /// The feature's geometry.
     pub geometry: RawGeometry,
@@ -53,7 +57,7 @@ pub fn build(
         .iter()
         .map(|feature| match &feature.geometry {
             RawGeometry::Polygons(polygons) => polygons.len(),
-            RawGeometry::Point(_) => 0,
+            RawGeometry::Point(_) | RawGeometry::Lines(_) => 0,
         })
         .sum();
     if polygon_count > MAX_POLYGONS {
@@ -69,6 +73,7 @@ pub fn build(
         .map(|feature| match &feature.geometry {
             RawGeometry::Polygons(polygons) => polygons.iter().flatten().map(Vec::len).sum(),
             RawGeometry::Point(_) => 1,
+            RawGeometry::Lines(lines) => lines.iter().map(Vec::len).sum(),
         })
         .sum();
     if vertex_count > MAX_VERTICES {
@@ -116,6 +121,7 @@ pub fn build(
     let mut fields = Vec::new();
     let mut obstacles = Vec::new();
     let mut markers = Vec::new();
+    let mut access = Vec::new();
     for feature in features {
         let kind = feature.kind.clone().unwrap_or_else(|| "field".to_string());
         let fault_here = |fault: Fault| InputError::new(path, fault).at(feature.place.clone());
@@ -125,6 +131,36 @@ pub fn build(
                 name: feature.name.clone().unwrap_or_else(|| kind.clone()),
                 position: project(*position).map_err(fault_here)?,
             }),
+            RawGeometry::Lines(lines) => {
+                if kind == "field" {
+                    return Err(fault_here(Fault::Structure(
+                        "geometry type 'LineString' cannot be a field: use Polygon or MultiPolygon (Point for markers; a line is a road or track of kind 'access')".into(),
+                    )));
+                }
+                if kind != "access" {
+                    return Err(fault_here(Fault::Structure(format!(
+                        "properties.kind is '{kind}': a line (LineString) can only be a road or track of kind 'access'"
+                    ))));
+                }
+                for (part, line) in lines.iter().enumerate() {
+                    let shape = build_line(line, &project).map_err(|fault| {
+                        let error = fault_here(fault);
+                        if lines.len() > 1 {
+                            error.at(format!("line {}", part + 1))
+                        } else {
+                            error
+                        }
+                    })?;
+                    let number = access.len() + 1;
+                    access.push(Access {
+                        name: feature
+                            .name
+                            .clone()
+                            .unwrap_or_else(|| format!("access {number}")),
+                        shape: AccessShape::Line(shape),
+                    });
+                }
+            }
             RawGeometry::Polygons(polygons) => {
                 let several = polygons.len() > 1;
                 for (part, rings) in polygons.iter().enumerate() {
@@ -155,9 +191,16 @@ pub fn build(
                                 polygon,
                             });
                         }
+                        "access" => {
+                            let number = access.len() + 1;
+                            access.push(Access {
+                                name: base_name.unwrap_or_else(|| format!("access {number}")),
+                                shape: AccessShape::Area(polygon),
+                            });
+                        }
                         other => {
                             return Err(fault_here(Fault::Structure(format!(
-                                "properties.kind is '{other}': a polygon must be a 'field' or an 'obstacle'"
+                                "properties.kind is '{other}': a polygon must be a 'field', an 'obstacle' or an 'access' yard"
                             ))))
                         }
                     }
@@ -174,6 +217,7 @@ pub fn build(
         fields,
         obstacles,
         markers,
+        access,
         embedded_terrain,
         stated_swath_width_m: None,
     };
@@ -190,6 +234,26 @@ pub fn build(
         ));
     }
     Ok(farm)
+}
+
+/// A road or track in planning metres: repeated points dropped, at least two left.
+fn build_line(
+    positions: &[[f64; 2]],
+    project: &dyn Fn([f64; 2]) -> Result<Coord<f64>, Fault>,
+) -> Result<LineString<f64>, Fault> {
+    let mut points: Vec<Coord<f64>> = Vec::with_capacity(positions.len());
+    for &position in positions {
+        let point = project(position)?;
+        if points.last() != Some(&point) {
+            points.push(point);
+        }
+    }
+    if points.len() < 2 {
+        return Err(Fault::Structure(
+            "an access line needs at least two distinct positions".into(),
+        ));
+    }
+    Ok(LineString::new(points))
 }
 
 fn build_polygon(
@@ -228,6 +292,7 @@ fn zone_of(path: &Path, features: &[RawFeature]) -> Result<UtmZone, InputError> 
         let feature_positions: Box<dyn Iterator<Item = &[f64; 2]>> = match &feature.geometry {
             RawGeometry::Polygons(polygons) => Box::new(polygons.iter().flatten().flatten()),
             RawGeometry::Point(position) => Box::new(std::iter::once(position)),
+            RawGeometry::Lines(lines) => Box::new(lines.iter().flatten()),
         };
         for &[lon, lat] in feature_positions {
             if !lon.is_finite() || !lat.is_finite() {

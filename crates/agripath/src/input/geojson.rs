@@ -2,7 +2,9 @@
 //!
 //! Positions are WGS84 lon/lat unless the top-level object carries the member
 //! `"crs": "local"` (the data files of this project) or the caller forces local metres.
-//! A `properties.kind` of `obstacle` marks a no-spray zone; Points become markers.
+//! A `properties.kind` of `obstacle` marks a no-spray zone, `access` a road, track
+//! (LineString, MultiLineString) or yard (Polygon) where a vehicle can stand; Points become
+//! markers.
 
 use std::path::Path;
 
@@ -181,8 +183,18 @@ fn read_geometry(object: &Map<String, Value>) -> Result<RawGeometry, Fault> {
             ))
         }
         "Point" => Ok(RawGeometry::Point(read_position(coordinates()?)?)),
+        "LineString" => Ok(RawGeometry::Lines(vec![read_line(coordinates()?)?])),
+        "MultiLineString" => {
+            let parts = array(coordinates()?, "MultiLineString coordinates")?;
+            if parts.is_empty() {
+                return Err(Fault::Structure("MultiLineString has no lines".into()));
+            }
+            Ok(RawGeometry::Lines(
+                parts.iter().map(read_line).collect::<Result<_, _>>()?,
+            ))
+        }
         other => Err(Fault::Structure(format!(
-            "geometry type '{other}' cannot be a field: use Polygon or MultiPolygon (Point for markers)"
+            "geometry type '{other}' cannot be a field: use Polygon or MultiPolygon (Point for markers, LineString for access roads)"
         ))),
     }
 }
@@ -214,6 +226,13 @@ fn read_polygon(value: &Value) -> Result<RawRings, Fault> {
         result.push(positions);
     }
     Ok(result)
+}
+
+fn read_line(value: &Value) -> Result<Vec<[f64; 2]>, Fault> {
+    array(value, "LineString coordinates")?
+        .iter()
+        .map(read_position)
+        .collect()
 }
 
 fn read_position(value: &Value) -> Result<[f64; 2], Fault> {
@@ -255,6 +274,39 @@ mod tests {
         assert!((farm.fields[0].area_m2() - (10_000.0 - 50.0)).abs() < 1e-9);
         assert_eq!(farm.obstacles.len(), 1);
         assert_eq!(farm.markers[0].kind, "launch");
+    }
+
+    #[test]
+    fn access_lines_and_yards_are_read_and_a_plain_line_is_refused() {
+        let text = r#"{"type":"FeatureCollection","crs":"local","features":[
+          {"type":"Feature","properties":{"name":"A"},"geometry":{"type":"Polygon","coordinates":[
+            [[0,0],[100,0],[100,100],[0,100],[0,0]]]}},
+          {"type":"Feature","properties":{"kind":"access","name":"track"},"geometry":{"type":"LineString","coordinates":[[-10,0],[-10,0],[-10,100]]}},
+          {"type":"Feature","properties":{"kind":"access"},"geometry":{"type":"MultiLineString","coordinates":[[[0,-10],[100,-10]],[[0,110],[100,110]]]}},
+          {"type":"Feature","properties":{"kind":"Access","name":"yard"},"geometry":{"type":"Polygon","coordinates":[
+            [[110,0],[130,0],[130,20],[110,0]]]}}]}"#;
+        let read = farm(text).unwrap();
+        let names: Vec<&str> = read.access.iter().map(|a| a.name.as_str()).collect();
+        assert_eq!(names, ["track", "access 2", "access 3", "yard"]);
+        let crate::model::AccessShape::Line(track) = &read.access[0].shape else {
+            panic!("a line")
+        };
+        assert_eq!(track.0.len(), 2, "the repeated point is dropped");
+        let plain = r#"{"type":"FeatureCollection","crs":"local","features":[
+          {"type":"Feature","properties":{"name":"A"},"geometry":{"type":"Polygon","coordinates":[
+            [[0,0],[100,0],[100,100],[0,100],[0,0]]]}},
+          {"type":"Feature","properties":{"name":"path"},"geometry":{"type":"LineString","coordinates":[[-10,0],[-10,100]]}}]}"#;
+        let message = farm(plain).unwrap_err().to_string();
+        assert!(
+            message.contains("feature 1 (path)") && message.contains("'access'"),
+            "{message}"
+        );
+        let single = r#"{"type":"FeatureCollection","crs":"local","features":[
+          {"type":"Feature","properties":{"name":"A"},"geometry":{"type":"Polygon","coordinates":[
+            [[0,0],[100,0],[100,100],[0,100],[0,0]]]}},
+          {"type":"Feature","properties":{"kind":"access"},"geometry":{"type":"LineString","coordinates":[[-10,0],[-10,0]]}}]}"#;
+        let message = farm(single).unwrap_err().to_string();
+        assert!(message.contains("two distinct positions"), "{message}");
     }
 
     #[test]

@@ -1,7 +1,9 @@
 //! KML and KMZ field files (Google Earth, ground stations): Placemarks with Polygons or
 //! MultiGeometries, inner boundaries as holes. KML positions are always WGS84 lon/lat.
 //! A Placemark is an obstacle when its ExtendedData has `kind` = `obstacle` (as a GeoJSON
-//! property would be), or when it sits in a Folder named "obstacles".
+//! property would be), or when it sits in a Folder named "obstacles"; it is an access road,
+//! track (LineString) or yard (Polygon) when its `kind` is `access` or it sits in a Folder named
+//! "access". Other LineStrings (drawn paths) are skipped.
 //!
 //! The reader is a single pass over quick-xml events, not a document model: the `kml` crate
 //! loops forever on some truncated documents, and a planner must refuse those cleanly.
@@ -159,17 +161,30 @@ struct PlacemarkState {
     kind: Option<String>,
     polygons: Vec<RawRings>,
     point: Option<[f64; 2]>,
+    lines: Vec<Vec<[f64; 2]>>,
+}
+
+/// What the Folders around a Placemark make of it, by their names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum FolderKind {
+    /// No kind: the Placemark's own (a field by default).
+    Plain,
+    /// "obstacles".
+    Obstacles,
+    /// "access".
+    Access,
 }
 
 /// Walks the XML events once. Only the elements that make a field are read: Placemark
 /// (name, ExtendedData kind), Folder (name), Polygon with outer and inner LinearRings,
-/// MultiGeometry (by walking into it), Point; everything else is skipped.
+/// MultiGeometry (by walking into it), Point, LineString (for access features); everything
+/// else is skipped.
 fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
     let xml_fault = |message: String| (None, Fault::Kml(message));
     let mut reader = Reader::from_str(text);
     let mut stack: Vec<String> = Vec::new();
-    // Per open Folder: whether it (or a parent) is named "obstacles".
-    let mut folders: Vec<bool> = Vec::new();
+    // Per open Folder: the kind its name (or a parent's) gives.
+    let mut folders: Vec<FolderKind> = Vec::new();
     let mut placemark: Option<PlacemarkState> = None;
     let mut polygon: Option<RawRings> = None;
     let mut data_name: Option<String> = None;
@@ -189,7 +204,7 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
                 }
                 saw_kml |= name == "kml";
                 match name.as_str() {
-                    "Folder" => folders.push(folders.last().copied().unwrap_or(false)),
+                    "Folder" => folders.push(folders.last().copied().unwrap_or(FolderKind::Plain)),
                     "Placemark" => placemark = Some(PlacemarkState::default()),
                     "Polygon" => polygon = Some(Vec::new()),
                     "Data" | "SimpleData" => {
@@ -270,12 +285,17 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
                             state.name = Some(content.trim().to_string());
                         }
                     }
-                    "name"
-                        if parent == "Folder"
-                            && content.trim().eq_ignore_ascii_case("obstacles") =>
-                    {
-                        if let Some(last) = folders.last_mut() {
-                            *last = true;
+                    "name" if parent == "Folder" => {
+                        let named = content.trim();
+                        let kind = if named.eq_ignore_ascii_case("obstacles") {
+                            Some(FolderKind::Obstacles)
+                        } else if named.eq_ignore_ascii_case("access") {
+                            Some(FolderKind::Access)
+                        } else {
+                            None
+                        };
+                        if let (Some(kind), Some(last)) = (kind, folders.last_mut()) {
+                            *last = kind;
                         }
                     }
                     "value" | "SimpleData"
@@ -299,6 +319,11 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
                                     (placemark.as_mut(), positions.first())
                                 {
                                     state.point.get_or_insert(*first);
+                                }
+                            }
+                            _ if parent == "LineString" => {
+                                if let Some(state) = placemark.as_mut() {
+                                    state.lines.push(positions);
                                 }
                             }
                             _ => {}
@@ -329,20 +354,28 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
                             Some(name) => format!("Placemark {index} ({name})"),
                             None => format!("Placemark {index}"),
                         };
+                        let kind = state.kind.or(match folders.last() {
+                            Some(FolderKind::Obstacles) => Some("obstacle".to_string()),
+                            Some(FolderKind::Access) => Some("access".to_string()),
+                            _ => None,
+                        });
                         let geometry = match (state.polygons.is_empty(), state.point) {
                             (false, _) => Some(RawGeometry::Polygons(state.polygons)),
                             (true, Some(point)) => Some(RawGeometry::Point(point)),
-                            // A LineString placemark (a drawn path) is not an area: skip it.
+                            (true, None)
+                                if !state.lines.is_empty() && kind.as_deref() == Some("access") =>
+                            {
+                                Some(RawGeometry::Lines(state.lines))
+                            }
+                            // Any other LineString placemark (a drawn path) is not an area:
+                            // skip it.
                             (true, None) => None,
                         };
-                        let in_obstacle_folder = folders.last().copied().unwrap_or(false);
                         if let Some(geometry) = geometry {
                             features.push(RawFeature {
                                 place,
                                 name: state.name,
-                                kind: state
-                                    .kind
-                                    .or(in_obstacle_folder.then(|| "obstacle".to_string())),
+                                kind,
                                 geometry,
                             });
                         }
@@ -445,6 +478,37 @@ mod tests {
         std::fs::remove_dir_all(&folder).unwrap();
         assert_eq!(farm.fields.len(), 1);
         assert_eq!(farm.obstacles.len(), 1);
+    }
+
+    #[test]
+    fn access_roads_and_yards_are_read_and_other_paths_skipped() {
+        let text = r#"<?xml version="1.0" encoding="UTF-8"?>
+<kml xmlns="http://www.opengis.net/kml/2.2"><Document>
+  <Placemark><name>North</name><Polygon><outerBoundaryIs><LinearRing><coordinates>
+    8.50,47.30 8.51,47.30 8.51,47.31 8.50,47.31 8.50,47.30
+  </coordinates></LinearRing></outerBoundaryIs></Polygon></Placemark>
+  <Placemark><name>farm road</name>
+    <ExtendedData><Data name="kind"><value>access</value></Data></ExtendedData>
+    <LineString><coordinates>8.499,47.30 8.499,47.31</coordinates></LineString></Placemark>
+  <Folder><name>access</name>
+    <Placemark><name>yard</name><Polygon><outerBoundaryIs><LinearRing><coordinates>
+      8.511,47.30 8.512,47.30 8.512,47.301 8.511,47.30
+    </coordinates></LinearRing></outerBoundaryIs></Polygon></Placemark>
+  </Folder>
+  <Placemark><name>walk</name><LineString><coordinates>8.50,47.29 8.51,47.29</coordinates></LineString></Placemark>
+</Document></kml>"#;
+        let farm = parse(Path::new("f.kml"), text, CoordinateChoice::FromFile).unwrap();
+        assert_eq!(farm.fields.len(), 1);
+        let names: Vec<&str> = farm.access.iter().map(|a| a.name.as_str()).collect();
+        assert_eq!(names, ["farm road", "yard"]);
+        assert!(matches!(
+            farm.access[0].shape,
+            crate::model::AccessShape::Line(_)
+        ));
+        assert!(matches!(
+            farm.access[1].shape,
+            crate::model::AccessShape::Area(_)
+        ));
     }
 
     #[test]

@@ -1,8 +1,8 @@
 //! `plan.geojson`: the plan as a FeatureCollection (contract in MISSION.md and `docs/cli.md`).
 //!
-//! Features carry `properties.kind`: `field`, `obstacle`, `edge`, `swath`, `transfer`,
-//! `return` (a return point, `role: point`, and its leg to the supply point and back,
-//! `role: leg`), `supply`. Passes and legs carry `seq` (their place in the flight, from 0)
+//! Features carry `properties.kind`: `field`, `obstacle`, `access`, `edge`, `swath`,
+//! `transfer`, `return` (a return point, `role: point`, and its leg to the supply point and
+//! back, `role: leg`), `supply`. Passes and legs carry `seq` (their place in the flight, from 0)
 //! and `sortie` (from 0); a pass's coordinates
 //! run in the direction flown; positions are `[x, y, z]` in the input's coordinate system
 //! (lon/lat or local metres) with z the altitude above sea level (terrain + spray height).
@@ -91,6 +91,24 @@ pub fn plan_geojson(
         properties.insert("kind".into(), json!("obstacle"));
         properties.insert("name".into(), json!(obstacle.name));
         features.push(feature(properties, json!({"type": "Polygon", "coordinates": polygon_coordinates(system, &obstacle.polygon)})));
+    }
+    for access in &farm.access {
+        let mut properties = Map::new();
+        properties.insert("kind".into(), json!("access"));
+        properties.insert("name".into(), json!(access.name));
+        let geometry = match &access.shape {
+            crate::model::AccessShape::Line(line) => {
+                json!({"type": "LineString", "coordinates": line
+                .0
+                .iter()
+                .map(|point| position(system, point.x, point.y, None))
+                .collect::<Vec<_>>()})
+            }
+            crate::model::AccessShape::Area(polygon) => {
+                json!({"type": "Polygon", "coordinates": polygon_coordinates(system, polygon)})
+            }
+        };
+        features.push(feature(properties, geometry));
     }
     // The sortie flying a work-route point; everything is sortie 0 when the route is not split.
     let sortie_at = |index: usize| sorties.map_or(0, |split| split.sortie_at(index));

@@ -166,6 +166,8 @@ pub struct Farm {
     pub obstacles: Vec<Obstacle>,
     /// The named points, in file order.
     pub markers: Vec<Marker>,
+    /// Roads, tracks and yards where a vehicle can stand (kind `access`), in file order.
+    pub access: Vec<super::Access>,
     /// A terrain described inside the field file itself (the `terrain` member of the data
     /// files), used when no other terrain is given.
     pub embedded_terrain: Option<TerrainSpec>,

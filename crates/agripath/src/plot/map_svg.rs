@@ -11,7 +11,7 @@ use geo::{Centroid, Polygon};
 use super::line_chart::escape;
 use crate::coverage::drape::GroundPoint;
 use crate::coverage::CoveragePlan;
-use crate::model::Farm;
+use crate::model::{AccessShape, Farm};
 use crate::sequence::{Pass, Route};
 use crate::sortie::PlannedSorties;
 
@@ -105,7 +105,20 @@ pub fn plan_svg(
     underlay: Option<&Underlay>,
     title: &str,
 ) -> String {
-    let bounds = farm.bounds();
+    // The farm, and the supply point where it stands off the fields (it may be 200 m out).
+    let mut bounds = farm.bounds();
+    if let Some(supply) = route.launch.map(|leg| leg.from) {
+        bounds = geo::Rect::new(
+            geo::Coord {
+                x: bounds.min().x.min(supply.x),
+                y: bounds.min().y.min(supply.y),
+            },
+            geo::Coord {
+                x: bounds.max().x.max(supply.x),
+                y: bounds.max().y.max(supply.y),
+            },
+        );
+    }
     let span_x = bounds.width().max(1.0);
     let span_y = bounds.height().max(1.0);
     let scale = (WIDTH_PX - 2.0 * PAD_PX) / span_x;
@@ -163,6 +176,21 @@ pub fn plan_svg(
             r##"<path d="{}" fill="#c62828" fill-opacity="0.35" stroke="#8e0000" stroke-width="1"/>"##,
             canvas.polygon(&obstacle.polygon)
         );
+    }
+    // Roads and yards where the supply point may stand, in road grey.
+    for access in &farm.access {
+        let _ = match &access.shape {
+            AccessShape::Line(line) => writeln!(
+                svg,
+                r##"<path d="{}" fill="none" stroke="#8d8d8d" stroke-width="3" stroke-linecap="round"/>"##,
+                canvas.path(line.0.iter().map(|p| (p.x, p.y)), false)
+            ),
+            AccessShape::Area(polygon) => writeln!(
+                svg,
+                r##"<path d="{}" fill="#b0b0b0" fill-opacity="0.5" fill-rule="evenodd" stroke="#8d8d8d" stroke-width="1"/>"##,
+                canvas.polygon(polygon)
+            ),
+        };
     }
     let _ = writeln!(svg, "</g>");
     // Strips first, lines over them.

@@ -1,5 +1,7 @@
 //! `report.json`: the plan's figures per field and in total (contract in `docs/cli.md`).
 
+pub mod supply;
+
 use serde::Serialize;
 
 use crate::coverage::heading::HeadingObjective;
@@ -65,6 +67,8 @@ pub struct Report {
     pub sequencer: Sequencer,
     /// Launch point in the input's coordinates, when the flight has one.
     pub start: Option<[f64; 2]>,
+    /// The supply point, the rule that chose it and what it saves (`null`: a free start).
+    pub supply: Option<supply::SupplyReport>,
     /// Each field's figures, in the farm's order.
     pub fields: Vec<FieldReport>,
     /// Interior swaths, metres.
@@ -263,6 +267,7 @@ impl Report {
                     .to_input(leg.from.x, leg.from.y);
                 [round(x, 1e-9), round(y, 1e-9)]
             }),
+            supply: None,
             fields,
             spray_length_m: round(spray_length_m, 1e-4),
             edge_length_m: round(edge_length_m, 1e-4),
@@ -378,6 +383,9 @@ impl Report {
                 100.0 * field.covered_fraction,
                 field.overlap_m2
             ));
+        }
+        if let Some(supply) = &self.supply {
+            text.push_str(&supply.to_text());
         }
         if let Some(planner) = self.sortie_planner {
             text.push_str(&format!(

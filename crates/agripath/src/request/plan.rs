@@ -10,6 +10,7 @@ use crate::scenario::Scenario;
 use crate::sequence::Sequencer;
 use crate::settings::PlanSettings;
 use crate::sortie::SortieSettings;
+use crate::supply::{SupplyRequest, SupplyValue};
 use crate::{Fault, InputError};
 
 /// The options of a coverage plan, as given: names and numbers not yet checked.
@@ -33,6 +34,8 @@ pub struct PlanOptions {
     pub sequencer: String,
     /// Launch point X, Y in the input's coordinates.
     pub start: Option<Vec<f64>>,
+    /// `auto`, `auto:N` or `X,Y` (the supply point; `X,Y` is the same as `start`).
+    pub supply: Option<String>,
     /// Seed of the stochastic sequencers and sortie planners.
     pub seed: u64,
     /// Ant colony batches.
@@ -93,10 +96,12 @@ impl PlanOptions {
             }
             None => None,
         };
+        let (start, supply) = self.supply(start, scenario.farm.coordinate_system)?;
         let settings = PlanSettings {
             coverage: self.coverage_settings()?,
             sequencer: self.sequencer()?,
             start,
+            supply,
             sorties: SortieSettings {
                 planner: match self.sorties.as_str() {
                     "none" => None,
@@ -110,6 +115,34 @@ impl PlanOptions {
             mission,
         };
         Ok((scenario, settings))
+    }
+
+    /// `--supply` with `--start` (already in planning metres): one supply point at most.
+    fn supply(
+        &self,
+        start: Option<[f64; 2]>,
+        frame: crate::model::CoordinateSystem,
+    ) -> Result<(Option<[f64; 2]>, SupplyRequest), InputError> {
+        let Some(text) = &self.supply else {
+            return Ok((start, SupplyRequest::FromInputs));
+        };
+        let value: SupplyValue = text
+            .parse()
+            .map_err(|why: String| bad_value("--supply", text, why))?;
+        if start.is_some() {
+            return Err(bad_value(
+                "--supply",
+                text,
+                "--start already gives the supply point (the drone starts, refills and lands at one place): give one of --start and --supply",
+            ));
+        }
+        Ok(match value {
+            SupplyValue::Auto { listed } => (None, SupplyRequest::Auto { listed }),
+            SupplyValue::Point([x, y]) => {
+                let (x, y) = frame.to_plan(x, y);
+                (Some([x, y]), SupplyRequest::FromInputs)
+            }
+        })
     }
 
     fn coverage_settings(&self) -> Result<CoverageSettings, InputError> {

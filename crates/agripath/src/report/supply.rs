@@ -1,0 +1,188 @@
+//! The `supply` object of `report.json`: where the supply point is, which rule chose it, and
+//! for `auto` what it saves against the old rule (the first point of the route planned
+//! without a start point), both scored by the same evaluator (docs/decisions/0016).
+
+use serde::Serialize;
+
+use crate::model::CoordinateSystem;
+use crate::numbers::round;
+use crate::supply::{ScoredPoint, SupplyChoice};
+
+/// A point in planning metres, and in lon/lat when the farm is geographic.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReportedPoint {
+    /// [x, y] in planning metres (the UTM zone's for lon/lat input).
+    pub point_m: [f64; 2],
+    /// [lon, lat] when the field file was in lon/lat, else `null`.
+    pub lon_lat: Option<[f64; 2]>,
+}
+
+impl ReportedPoint {
+    fn new(x: f64, y: f64, frame: CoordinateSystem) -> Self {
+        Self {
+            point_m: [round(x, 1e-6), round(y, 1e-6)],
+            lon_lat: match frame {
+                CoordinateSystem::Local => None,
+                CoordinateSystem::Utm(_) => {
+                    let (lon, lat) = frame.to_input(x, y);
+                    Some([round(lon, 1e-9), round(lat, 1e-9)])
+                }
+            },
+        }
+    }
+}
+
+/// A candidate of `auto:N` with its cost.
+#[derive(Debug, Clone, Serialize)]
+pub struct CandidateReport {
+    /// Where it stands.
+    #[serde(flatten)]
+    pub at: ReportedPoint,
+    /// Non-spray seconds by the evaluator.
+    pub cost_s: f64,
+}
+
+impl CandidateReport {
+    fn new(scored: &ScoredPoint, frame: CoordinateSystem) -> Self {
+        Self {
+            at: ReportedPoint::new(scored.point.x, scored.point.y, frame),
+            cost_s: round(scored.cost_s, 1e-3),
+        }
+    }
+}
+
+/// The `auto` rule's figures.
+#[derive(Debug, Clone, Serialize)]
+pub struct AutoReport {
+    /// What the evaluator measures.
+    pub evaluator: String,
+    /// The old rule's point: the first point of the route planned without a start point.
+    pub first_point: CandidateReport,
+    /// Whether a vehicle could stand there (a pass end lies on or in a field, as a rule).
+    pub first_point_stands: bool,
+    /// The old rule's cost less the chosen point's, seconds (≥ 0 when auto wins).
+    pub saving_s: f64,
+    /// The saving as a share of the old rule's cost, percent.
+    pub saving_percent: f64,
+    /// Whether the candidates stood on the file's access features.
+    pub on_access: bool,
+    /// Distance kept from fields, holes and obstacles, metres (0 on access features).
+    pub margin_m: f64,
+    /// Farthest from the nearest field, metres (`null` on access features: no limit).
+    pub reach_m: Option<f64>,
+    /// Times the evaluator's cost was computed.
+    pub evaluations: usize,
+    /// With `auto:N`: the N best places found, best first, with their costs (empty otherwise).
+    pub candidates: Vec<CandidateReport>,
+}
+
+/// The `supply` object.
+#[derive(Debug, Clone, Serialize)]
+pub struct SupplyReport {
+    /// `marker`, `given` or `auto`.
+    pub rule: &'static str,
+    /// The supply point.
+    #[serde(flatten)]
+    pub at: ReportedPoint,
+    /// Its ground height, metres.
+    pub ground_m: f64,
+    /// For `auto`: its cost by the evaluator (on the route planned without a start point),
+    /// seconds; `null` for a point marked or given (not searched).
+    pub cost_s: Option<f64>,
+    /// The same measure on the route as planned from the point (re-ordered from it), seconds.
+    pub planned_cost_s: f64,
+    /// For `auto`: the search's figures.
+    pub auto: Option<AutoReport>,
+}
+
+impl SupplyReport {
+    /// The report of `choice` in `frame`; `planned_cost_s` is the measure on the route as
+    /// planned from it.
+    pub fn new(choice: &SupplyChoice, frame: CoordinateSystem, planned_cost_s: f64) -> Self {
+        let auto = choice.auto.as_ref().map(|auto| {
+            let (best, old) = (auto.best().cost_s, auto.first_point.cost_s);
+            let saving = old - best;
+            AutoReport {
+                evaluator: auto.evaluator.to_string(),
+                first_point: CandidateReport::new(&auto.first_point, frame),
+                first_point_stands: auto.first_point_stands,
+                saving_s: round(saving, 1e-3),
+                saving_percent: round(
+                    if old.is_finite() && old > 0.0 {
+                        100.0 * saving / old
+                    } else {
+                        0.0
+                    },
+                    1e-3,
+                ),
+                on_access: auto.on_access,
+                margin_m: auto.margin_m,
+                reach_m: auto.reach_m,
+                evaluations: auto.evaluations,
+                candidates: if auto.listed > 0 {
+                    auto.ranked
+                        .iter()
+                        .map(|scored| CandidateReport::new(scored, frame))
+                        .collect()
+                } else {
+                    Vec::new()
+                },
+            }
+        });
+        Self {
+            rule: choice.source.key(),
+            at: ReportedPoint::new(choice.point.x, choice.point.y, frame),
+            ground_m: round(choice.point.ground_m, 1e-4),
+            cost_s: choice
+                .auto
+                .as_ref()
+                .map(|auto| round(auto.best().cost_s, 1e-3)),
+            planned_cost_s: round(planned_cost_s, 1e-3),
+            auto,
+        }
+    }
+
+    /// The summary's line.
+    pub fn to_text(&self) -> String {
+        let place = match self.at.lon_lat {
+            Some([lon, lat]) => format!("{lon:.6}, {lat:.6}"),
+            None => format!("{:.1}, {:.1} m", self.at.point_m[0], self.at.point_m[1]),
+        };
+        match &self.auto {
+            Some(auto) => format!(
+                "supply point (auto{}): {place}; {:.0} s not spraying by the split of the route planned without a start, against {:.0} s from the route's first point (the old rule{}): {}; {:.0} s as planned from it{}\n",
+                if auto.on_access { ", on access features" } else { "" },
+                self.cost_s.unwrap_or(f64::NAN),
+                auto.first_point.cost_s,
+                if auto.first_point_stands {
+                    ""
+                } else {
+                    ", where no vehicle can stand"
+                },
+                // Under half a second either way reads as a tie, not as "-0 s saved".
+                if auto.saving_s > -0.5 {
+                    format!(
+                        "{:.0} s ({:.1}%) saved",
+                        auto.saving_s.max(0.0),
+                        auto.saving_percent.max(0.0)
+                    )
+                } else {
+                    format!(
+                        "{:.0} s ({:.1}%) more",
+                        -auto.saving_s, -auto.saving_percent
+                    )
+                },
+                self.planned_cost_s,
+                if !auto.candidates.is_empty() {
+                    format!("; {} candidates in report.json", auto.candidates.len())
+                } else {
+                    String::new()
+                }
+            ),
+            None => format!(
+                "supply point ({}): {place}; {:.0} s not spraying as planned from it\n",
+                self.rule, self.planned_cost_s
+            ),
+        }
+    }
+}

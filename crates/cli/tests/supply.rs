@@ -1,0 +1,190 @@
+//! End-to-end tests of the supply point (issue 19 item 2): `plan` without a launch marker
+//! chooses one (`auto`), `--supply X,Y` takes the one given, `--supply auto:N` lists N, a
+//! marker keeps today's rule, access features hold the point, bad values exit 2.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn agripath(arguments: &[&str], directory: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_agripath"))
+        .args(arguments)
+        .current_dir(directory)
+        .output()
+        .unwrap()
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let folder =
+        std::env::temp_dir().join(format!("agripath-supply-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&folder);
+    std::fs::create_dir_all(&folder).unwrap();
+    folder
+}
+
+fn stdout(output: &Output) -> String {
+    assert!(
+        output.status.success(),
+        "status {:?}: {}",
+        output.status.code(),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout.clone()).unwrap()
+}
+
+fn report(folder: &Path, out: &str) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(folder.join(out).join("report.json")).unwrap()).unwrap()
+}
+
+fn rectangle(x0: f64, y0: f64, width: f64, height: f64) -> String {
+    format!(
+        "[[[{x0},{y0}],[{x1},{y0}],[{x1},{y1}],[{x0},{y1}],[{x0},{y0}]]]",
+        x1 = x0 + width,
+        y1 = y0 + height
+    )
+}
+
+/// Two fields 300 m apart in local metres (about 10 km of swaths: several tanks), and
+/// `extra` features.
+fn farm_file(folder: &Path, name: &str, extra: &str) -> String {
+    let field = |name: &str, rings: String| {
+        format!(
+            r#"{{"type":"Feature","properties":{{"name":"{name}"}},"geometry":{{"type":"Polygon","coordinates":{rings}}}}}"#
+        )
+    };
+    let text = format!(
+        r#"{{"type":"FeatureCollection","crs":"local","features":[{},{}{extra}]}}"#,
+        field("west", rectangle(0.0, 0.0, 160.0, 150.0)),
+        field("east", rectangle(460.0, 0.0, 160.0, 150.0)),
+    );
+    std::fs::write(folder.join(name), text).unwrap();
+    name.to_string()
+}
+
+fn inside_a_field(x: f64, y: f64) -> bool {
+    (0.0..=150.0).contains(&y) && ((0.0..=160.0).contains(&x) || (460.0..=620.0).contains(&x))
+}
+
+#[test]
+fn without_a_marker_the_point_is_chosen_and_saves_against_the_first_point_rule() {
+    let folder = scratch("auto");
+    let fields = farm_file(&folder, "farm.geojson", "");
+    let text = stdout(&agripath(
+        &["plan", "--fields", &fields, "--out", "out"],
+        &folder,
+    ));
+    assert!(text.contains("supply point (auto)"), "{text}");
+    let report = report(&folder, "out");
+    let supply = &report["supply"];
+    assert_eq!(supply["rule"], "auto", "{supply}");
+    assert!(report["sorties"].as_u64().unwrap() > 1);
+    let [x, y] = [0, 1].map(|k| supply["point_m"][k].as_f64().unwrap());
+    assert!(!inside_a_field(x, y), "{supply}");
+    assert!(supply["lon_lat"].is_null(), "local metres: no lon/lat");
+    let auto = &supply["auto"];
+    assert!(auto["saving_s"].as_f64().unwrap() >= 0.0, "{supply}");
+    let cost = supply["cost_s"].as_f64().unwrap();
+    let old = auto["first_point"]["cost_s"].as_f64().unwrap();
+    assert!(
+        (old - cost - auto["saving_s"].as_f64().unwrap()).abs() < 0.01,
+        "{supply}"
+    );
+    assert_eq!(auto["margin_m"], 5.0);
+    assert_eq!(auto["reach_m"], 200.0);
+    // The flight starts and ends there.
+    assert!((report["start"][0].as_f64().unwrap() - x).abs() < 1e-5);
+    assert!((report["start"][1].as_f64().unwrap() - y).abs() < 1e-5);
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+#[test]
+fn a_point_given_is_used_and_auto_n_lists_candidates_best_first() {
+    let folder = scratch("given");
+    let fields = farm_file(&folder, "farm.geojson", "");
+    stdout(&agripath(
+        &[
+            "plan", "--fields", &fields, "--supply", "310,-20", "--out", "given",
+        ],
+        &folder,
+    ));
+    let given = report(&folder, "given");
+    assert_eq!(given["supply"]["rule"], "given");
+    assert_eq!(
+        given["supply"]["point_m"],
+        serde_json::json!([310.0, -20.0])
+    );
+    assert_eq!(given["start"], serde_json::json!([310.0, -20.0]));
+    assert!(given["supply"]["auto"].is_null() && given["supply"]["cost_s"].is_null());
+    stdout(&agripath(
+        &[
+            "plan", "--fields", &fields, "--supply", "auto:3", "--out", "listed",
+        ],
+        &folder,
+    ));
+    let listed = report(&folder, "listed");
+    let candidates = listed["supply"]["auto"]["candidates"].as_array().unwrap();
+    assert!((2..=3).contains(&candidates.len()), "{candidates:?}");
+    let costs: Vec<f64> = candidates
+        .iter()
+        .map(|candidate| candidate["cost_s"].as_f64().unwrap())
+        .collect();
+    assert!(costs.windows(2).all(|pair| pair[0] <= pair[1]), "{costs:?}");
+    assert_eq!(candidates[0]["point_m"], listed["supply"]["point_m"]);
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+#[test]
+fn a_marker_keeps_its_rule_and_access_features_hold_the_point() {
+    let folder = scratch("marker");
+    let marker = r#",{"type":"Feature","properties":{"kind":"launch","name":"truck"},"geometry":{"type":"Point","coordinates":[-20,75]}}"#;
+    let fields = farm_file(&folder, "marked.geojson", marker);
+    stdout(&agripath(
+        &["plan", "--fields", &fields, "--out", "marked"],
+        &folder,
+    ));
+    let marked = report(&folder, "marked");
+    assert_eq!(marked["supply"]["rule"], "marker");
+    assert_eq!(marked["start"], serde_json::json!([-20.0, 75.0]));
+    let road = r#",{"type":"Feature","properties":{"kind":"access","name":"farm road"},"geometry":{"type":"LineString","coordinates":[[-40,-30],[700,-30]]}}"#;
+    let fields = farm_file(&folder, "road.geojson", road);
+    stdout(&agripath(
+        &["plan", "--fields", &fields, "--out", "road"],
+        &folder,
+    ));
+    let on_road = report(&folder, "road");
+    let supply = &on_road["supply"];
+    assert_eq!(supply["rule"], "auto");
+    assert_eq!(supply["auto"]["on_access"], true);
+    assert!(
+        (supply["point_m"][1].as_f64().unwrap() + 30.0).abs() < 0.5,
+        "{supply}"
+    );
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+#[test]
+fn a_bad_supply_value_exits_2_with_one_line_naming_the_fault() {
+    let folder = scratch("bad");
+    let fields = farm_file(&folder, "farm.geojson", "");
+    for (arguments, fault) in [
+        (vec!["--supply", "nowhere"], "expected auto, auto:N"),
+        (vec!["--supply", "auto:0"], "'0' is not a count"),
+        (vec!["--supply", "1,inf"], "not two finite numbers"),
+        (
+            vec!["--supply", "auto", "--start", "0,-20"],
+            "give one of --start and --supply",
+        ),
+    ] {
+        let mut all = vec!["plan", "--fields", fields.as_str(), "--out", "out"];
+        all.extend(arguments.iter().copied());
+        let output = agripath(&all, &folder);
+        assert_eq!(output.status.code(), Some(2), "{arguments:?}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(stderr.lines().count(), 1, "{stderr}");
+        assert!(
+            stderr.contains("--supply") && stderr.contains(fault),
+            "{arguments:?}: {stderr}"
+        );
+        assert!(!folder.join("out").exists(), "nothing written");
+    }
+    std::fs::remove_dir_all(&folder).unwrap();
+}
