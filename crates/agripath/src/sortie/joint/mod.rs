@@ -151,7 +151,7 @@ pub struct JointSettings {
 impl Default for JointSettings {
     fn default() -> Self {
         Self {
-            evaluations_per_pass: 30,
+            evaluations_per_pass: 12,
             seed: 1,
         }
     }
