@@ -33,7 +33,8 @@ use agripath::coverage::drape::GroundPoint;
 use agripath::coverage::CoverageSettings;
 use agripath::pipeline::{plan_mission, PlannedMission};
 use agripath::scenario::{Scenario, ScenarioParts};
-use agripath::sequence::tour::{OrderingProblem, Start};
+use agripath::sequence::ordering_problem;
+use agripath::sequence::tour::OrderingProblem;
 use agripath::sequence::{passes_of, Pass, TransferModel};
 use agripath::settings::PlanSettings;
 use agripath::sortie::route::{RoutePoint, Segment};
@@ -340,12 +341,10 @@ fn transfer_matrices(problem: &OrderingProblem) -> (Vec<Vec<f64>>, Vec<Vec<u8>>)
     for from in 0..count {
         for to in 0..count {
             if from != to {
-                let cost = problem.cost(from, to);
-                transfer_m[from][to] = fine(cost);
-                // Eq. 8 adds 2h to a leg that leaves the field: that leg is flown at transit
-                // speed, one that stays in the field at turn speed (WorkRoute::from_route).
-                let straight = length_3d(&problem.point(from), &problem.point(to));
-                climbs[from][to] = u8::from(cost > straight + 1e-6);
+                transfer_m[from][to] = fine(problem.cost(from, to));
+                // A leg that leaves the field is flown at transit speed, one that stays in it
+                // at turn speed (WorkRoute::from_route).
+                climbs[from][to] = u8::from(problem.climbs(from, to));
             }
         }
     }
@@ -363,16 +362,6 @@ fn instance(
 ) -> Value {
     let vehicle = &farm.scenario.vehicle;
     let passes = passes_of(&mission.coverage);
-    let ends: Vec<[GroundPoint; 2]> = passes
-        .iter()
-        .map(|(_, points)| [points[0], points[points.len() - 1]])
-        .collect();
-    let fields: Vec<usize> = passes
-        .iter()
-        .map(|(pass, _)| match pass {
-            Pass::Swath { field, .. } | Pass::Edge { field, .. } => *field,
-        })
-        .collect();
     // The same transfer model and the same problem the sequencer costs its tours on.
     let model = TransferModel::new(&farm.scenario.farm, vehicle.safe_height_m);
     let supply = GroundPoint {
@@ -380,10 +369,10 @@ fn instance(
         y: split.supply.y,
         ground_m: split.supply.ground_m,
     };
-    let problem = OrderingProblem::with_fields(ends.clone(), fields, Start::Fixed(supply), &model);
+    let (problem, _) = ordering_problem(&mission.coverage, &model, Some(supply));
     let (transfer_m, climbs) = transfer_matrices(&problem);
     let count = 2 * passes.len();
-    let end_point = |end: usize| ends[end / 2][end % 2];
+    let end_point = |end: usize| problem.point(end);
     let spray_mps = vehicle.spray_speed_mps;
     let pass_values: Vec<Value> = passes
         .iter()

@@ -101,15 +101,6 @@ pub struct PlannedMission {
     pub settings: PlanSettings,
 }
 
-/// The speeds a route of `vehicle` is timed with.
-fn speeds(vehicle: &crate::model::Vehicle) -> Speeds {
-    Speeds {
-        spray_mps: vehicle.spray_speed_mps,
-        turn_mps: vehicle.turn_speed_mps,
-        transit_mps: vehicle.transit_speed_mps,
-    }
-}
-
 /// The sortie model the plans of `vehicle` are split with, from `supply`.
 fn sortie_model(vehicle: &crate::model::Vehicle, supply: RoutePoint) -> SortieModel {
     // Returns fly at the safe height, as transfers that leave the field do (decision 0008).
@@ -157,7 +148,7 @@ fn joint_route(
         .map(|(_, points)| points)
         .collect();
     let vehicle = &scenario.vehicle;
-    let joint = JointProblem::new(&problem, &points, &sorties, speeds(vehicle));
+    let joint = JointProblem::new(&problem, &points, &sorties, Speeds::of(vehicle));
     let joint_settings = JointSettings {
         seed: settings.sorties.seed,
         ..JointSettings::default()
@@ -195,7 +186,7 @@ pub fn supply_point(
     };
     let vehicle = &scenario.vehicle;
     let free = route(coverage, transfers, None, &settings.sequencer);
-    let work_route = WorkRoute::from_route(&free, speeds(vehicle));
+    let work_route = WorkRoute::from_route(&free, Speeds::of(vehicle));
     let Some(&first) = work_route.points().first() else {
         return Ok(None);
     };
@@ -231,7 +222,7 @@ fn planned_cost_s(
         Some(split) => plan_cost_s(&split.work_route, &split.model, &split.plan),
         None => {
             let vehicle = &scenario.vehicle;
-            let work_route = WorkRoute::from_route(route, speeds(vehicle));
+            let work_route = WorkRoute::from_route(route, Speeds::of(vehicle));
             let model = sortie_model(
                 vehicle,
                 RoutePoint {
@@ -257,7 +248,7 @@ fn split_into_sorties(
         return Ok(None);
     };
     let vehicle = &scenario.vehicle;
-    let work_route = WorkRoute::from_route(route, speeds(vehicle));
+    let work_route = WorkRoute::from_route(route, Speeds::of(vehicle));
     let Some(first) = work_route.points().first().copied() else {
         return Ok(None);
     };

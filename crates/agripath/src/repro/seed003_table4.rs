@@ -105,11 +105,7 @@ pub fn strip_route(terrain: &dyn Terrain) -> Result<(MotionRoute, SortieModel), 
     )?;
     let vehicle = Vehicle::from_toml(SPRAYER_TOML)
         .map_err(|fault| InputError::new("<embedded>/seed003_sprayer.toml", fault))?;
-    let speeds = Speeds {
-        spray_mps: vehicle.spray_speed_mps,
-        turn_mps: vehicle.turn_speed_mps,
-        transit_mps: vehicle.transit_speed_mps,
-    };
+    let speeds = Speeds::of(&vehicle);
     let at = |fault: Fault| InputError::new(STRIP_LABEL, fault);
     let grid = Grid::new(&farm, 0, vehicle.swath_width_m, terrain).map_err(at)?;
     let route = grid

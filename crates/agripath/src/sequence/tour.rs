@@ -141,6 +141,15 @@ impl<'a> OrderingProblem<'a> {
         }
     }
 
+    /// Whether the transfer from `from` to `to` climbs out of the field: eq. (8) adds 2h to
+    /// its 3D length exactly then.
+    pub fn climbs(&self, from: End, to: End) -> bool {
+        let (a, b) = (self.point(from), self.point(to));
+        let straight =
+            ((a.x - b.x).powi(2) + (a.y - b.y).powi(2) + (a.ground_m - b.ground_m).powi(2)).sqrt();
+        self.cost(from, to) > straight + 1e-6
+    }
+
     /// From the start point to an end (0 when the start is free).
     pub fn cost_from_start(&self, to: End) -> f64 {
         match self.start {

@@ -57,6 +57,17 @@ pub struct Speeds {
     pub transit_mps: f64,
 }
 
+impl Speeds {
+    /// The speeds a route of `vehicle` is timed with.
+    pub fn of(vehicle: &crate::model::Vehicle) -> Self {
+        Self {
+            spray_mps: vehicle.spray_speed_mps,
+            turn_mps: vehicle.turn_speed_mps,
+            transit_mps: vehicle.transit_speed_mps,
+        }
+    }
+}
+
 fn distance_3d(a: &RoutePoint, b: &RoutePoint) -> f64 {
     ((a.x - b.x).powi(2) + (a.y - b.y).powi(2) + (a.ground_m - b.ground_m).powi(2)).sqrt()
 }

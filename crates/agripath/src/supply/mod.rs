@@ -333,11 +333,7 @@ mod tests {
         let coverage = plan_coverage(farm, &Flat::new(0.0), &vehicle, &settings).unwrap();
         let transfers = TransferModel::new(farm, vehicle.safe_height_m);
         let flight = route(&coverage, &transfers, start, &Sequencer::Greedy);
-        let speeds = Speeds {
-            spray_mps: vehicle.spray_speed_mps,
-            turn_mps: vehicle.turn_speed_mps,
-            transit_mps: vehicle.transit_speed_mps,
-        };
+        let speeds = Speeds::of(&vehicle);
         WorkRoute::from_route(&flight, speeds)
     }
 

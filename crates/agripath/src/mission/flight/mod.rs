@@ -190,11 +190,7 @@ pub fn build_missions(
 ) -> Result<Vec<SortieMission>, Fault> {
     let vehicle = &scenario.vehicle;
     let frame = GeoFrame::new(scenario.farm.coordinate_system, settings.local_origin);
-    let speeds = crate::sortie::route::Speeds {
-        spray_mps: vehicle.spray_speed_mps,
-        turn_mps: vehicle.turn_speed_mps,
-        transit_mps: vehicle.transit_speed_mps,
-    };
+    let speeds = crate::sortie::route::Speeds::of(vehicle);
     // Each sortie's first and last route point: a sortie may resume at the point after the
     // last one's return, skipping the turn or transfer between them.
     let (work_route, supply, spans) = match sorties {

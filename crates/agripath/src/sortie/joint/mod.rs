@@ -92,19 +92,11 @@ impl<'a> JointProblem<'a> {
     pub fn transfer_s(&self, from: Step, to: Step) -> f64 {
         let (exit, entry) = (from.exit(), to.entry());
         let cost = self.ordering.cost(exit, entry);
-        let straight = distance_3d(&self.ordering.point(exit), &self.ordering.point(entry));
-        if cost > straight + 1e-6 {
+        if self.ordering.climbs(exit, entry) {
             cost / self.speeds.transit_mps
         } else {
             cost / self.speeds.turn_mps
         }
-    }
-
-    /// Transfer metres between the passes of `tour` (eq. 8).
-    pub fn transfer_m(&self, tour: &[Step]) -> f64 {
-        tour.windows(2)
-            .map(|pair| self.ordering.cost(pair[0].exit(), pair[1].entry()))
-            .sum()
     }
 }
 
@@ -200,11 +192,7 @@ mod tests {
             ground_m: scenario.terrain.height_m(0.0, 0.0).unwrap(),
         };
         let (problem, groups) = ordering_problem(&coverage, &model, Some(supply));
-        let speeds = Speeds {
-            spray_mps: vehicle.spray_speed_mps,
-            turn_mps: vehicle.turn_speed_mps,
-            transit_mps: vehicle.transit_speed_mps,
-        };
+        let speeds = Speeds::of(vehicle);
         let sortie_model = SortieModel::new(
             vehicle,
             RoutePoint {
