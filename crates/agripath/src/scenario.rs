@@ -16,12 +16,37 @@ use crate::terrain::{Terrain, TerrainSpec};
 
 /// Command-line figures that override the vehicle file.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct VehicleOverrides {
-    /// Swath width, metres (`--swath-width`).
+    /// Swath width, metres (overrides the vehicle).
+    #[cfg_attr(
+        feature = "cli",
+        arg(
+            long = "swath-width",
+            value_name = "SWATH_WIDTH",
+            allow_negative_numbers = true
+        )
+    )]
     pub swath_width_m: Option<f64>,
-    /// Height above the terrain while spraying, metres (`--spray-height`).
+    /// Spray height above the terrain, metres (overrides the vehicle).
+    #[cfg_attr(
+        feature = "cli",
+        arg(
+            long = "spray-height",
+            value_name = "SPRAY_HEIGHT",
+            allow_negative_numbers = true
+        )
+    )]
     pub spray_height_m: Option<f64>,
-    /// Seed 001's h, metres (`--safe-height`).
+    /// Safe transfer height h, metres (overrides the vehicle).
+    #[cfg_attr(
+        feature = "cli",
+        arg(
+            long = "safe-height",
+            value_name = "SAFE_HEIGHT",
+            allow_negative_numbers = true
+        )
+    )]
     pub safe_height_m: Option<f64>,
 }
 

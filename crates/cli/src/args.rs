@@ -3,7 +3,13 @@
 
 use std::path::{Path, PathBuf};
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Parser, Subcommand};
+
+use agripath::request::bench::FunctionBenchOptions;
+use agripath::request::grid::GridRequest;
+use agripath::request::plan::PlanOptions;
+use agripath::request::track::TrackRequest;
+use agripath::request::ScenarioInputs;
 
 #[derive(Debug, Parser)]
 #[command(
@@ -31,13 +37,13 @@ pub enum Command {
     /// Writes DIR/plan.geojson, DIR/report.json and DIR/plan.svg.
     Plan {
         #[command(flatten)]
-        inputs: Inputs,
+        inputs: ScenarioInputs,
         #[command(flatten)]
-        coverage: CoverageArgs,
-        #[command(flatten)]
-        order: OrderArgs,
-        #[command(flatten)]
-        mission: MissionArgs,
+        options: PlanOptions,
+        /// Write the mission files even when the preflight check of the files as flown fails
+        /// (the verdict stays in report.json; exit status 0).
+        #[arg(long)]
+        allow_unsafe: bool,
         /// Output folder (replaced as a whole when planning succeeds).
         #[arg(long)]
         out: PathBuf,
@@ -50,7 +56,7 @@ pub enum Command {
         folder: PathBuf,
         /// The inputs it was planned from (the demo's embedded farm when none are given).
         #[command(flatten)]
-        inputs: Inputs,
+        inputs: ScenarioInputs,
     },
     /// Recompute a table of the papers beside the paper's figures.
     Repro {
@@ -71,7 +77,7 @@ pub enum Command {
     /// DIR/report.json and DIR/plan.svg.
     Grid {
         #[command(flatten)]
-        grid: GridArgs,
+        grid: GridRequest,
         #[arg(long)]
         out: PathBuf,
     },
@@ -90,7 +96,7 @@ pub enum Command {
     /// or goal below the band's floor is reached by a vertical climb or descent.
     Track {
         #[command(flatten)]
-        track: TrackArgs,
+        track: TrackRequest,
         /// Write the .waypoints of unsafe tracks too, and exit 0 with a warning.
         #[arg(long)]
         allow_unsafe: bool,
@@ -117,7 +123,7 @@ pub enum Command {
     /// Read a scenario (or fields, terrain and vehicle) and say what was read or what is wrong.
     Validate {
         #[command(flatten)]
-        inputs: Inputs,
+        inputs: ScenarioInputs,
         /// Print the summary as JSON.
         #[arg(long)]
         json: bool,
@@ -127,180 +133,6 @@ pub enum Command {
         #[command(subcommand)]
         action: TerrainAction,
     },
-}
-
-/// Where a scenario comes from: a scenario file, or its parts as flags (flags override it).
-#[derive(Debug, Args)]
-pub struct Inputs {
-    /// Scenario TOML file tying fields, terrain and vehicle together.
-    pub scenario: Option<PathBuf>,
-    /// Field file: GeoJSON (.geojson/.json), KML or KMZ.
-    #[arg(long)]
-    pub fields: Option<PathBuf>,
-    /// Terrain: a DEM file (.tif, .asc, .xyz/.csv) or flat, flat:HEIGHT, seed000, seed002.
-    #[arg(long)]
-    pub terrain: Option<String>,
-    /// Vehicle TOML file.
-    #[arg(long)]
-    pub vehicle: Option<PathBuf>,
-    /// Read field coordinates as metres in a local frame ("local"), whatever the file says.
-    #[arg(long, value_parser = ["local"])]
-    pub crs: Option<String>,
-    /// Swath width, metres (overrides the vehicle).
-    #[arg(long, allow_negative_numbers = true)]
-    pub swath_width: Option<f64>,
-    /// Spray height above the terrain, metres (overrides the vehicle).
-    #[arg(long, allow_negative_numbers = true)]
-    pub spray_height: Option<f64>,
-    /// Safe transfer height h, metres (overrides the vehicle).
-    #[arg(long, allow_negative_numbers = true)]
-    pub safe_height: Option<f64>,
-    /// Keep fields that overlap and spray each overlap once, with the field that comes first
-    /// in the file (without it, overlapping fields are refused).
-    #[arg(long)]
-    pub allow_overlap: bool,
-}
-
-/// What `grid` plans: the field, the method and the cell width.
-#[derive(Debug, Args)]
-pub struct GridArgs {
-    /// Field file (GeoJSON, KML or KMZ); obstacles as in `plan`.
-    pub fields: PathBuf,
-    /// Which field, by name (default: the first).
-    #[arg(long)]
-    pub field: Option<String>,
-    #[arg(long, default_value = "ours", value_parser = agripath::grid_cover::GRID_METHODS)]
-    pub method: String,
-    /// Path-point spacing = swath width, metres (default: the file's `swath_width_m`, else 5).
-    #[arg(long, allow_negative_numbers = true)]
-    pub swath_width: Option<f64>,
-    /// Read coordinates as local metres.
-    #[arg(long, value_parser = ["local"])]
-    pub crs: Option<String>,
-    /// Seed of HPSO.
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-}
-
-/// What `track` plans: the scenario, the planners, their runs and the safety limits.
-#[derive(Debug, Args)]
-pub struct TrackArgs {
-    /// Scenario file: JSON of seed 000, seed 002 or SPSO, or an operator TOML.
-    pub scenario: PathBuf,
-    /// Seed 000's task (I, II or III, or a task name of the file).
-    #[arg(long)]
-    pub task: Option<String>,
-    /// Planners, comma-separated: lattice (ours), iba-fcs, ba, ilssiwba, pso, spso, ga,
-    /// aco-r, gsa, lshade, improved-ga.
-    #[arg(long, default_value = "lattice")]
-    pub algorithm: String,
-    /// Independent runs per planner (default: the scenario's `algorithms.runs`, else 5).
-    #[arg(long)]
-    pub runs: Option<u64>,
-    /// Seed of the random streams.
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-    /// Encoding for the swarm algorithms: cartesian, cylindrical or spherical (default:
-    /// the scenario paper's).
-    #[arg(long)]
-    pub encoding: Option<String>,
-    /// Evaluations per run (default: the scenario paper's population × iterations).
-    #[arg(long)]
-    pub evaluations: Option<u64>,
-    /// Least height above the terrain a safe track keeps along its cruise, metres
-    /// (checked every 1 m against the terrain as given).
-    #[arg(long, default_value_t = 2.0)]
-    pub min_clearance: f64,
-    /// The vehicle's radius: least distance from a threat cylinder's wall, metres.
-    #[arg(long, default_value_t = 1.0)]
-    pub vehicle_radius: f64,
-}
-
-/// How coverage is laid out.
-#[derive(Debug, Args)]
-pub struct CoverageArgs {
-    /// Edge passes around each boundary and hole; 0 gives seed 001's layout (interior only).
-    #[arg(long, default_value_t = 1)]
-    pub headland: usize,
-    /// Swath heading: `auto` (seed 001's E), `swaths` (fewest), `length` (shortest), or
-    /// degrees from east, counter-clockwise.
-    #[arg(long, default_value = "auto", allow_negative_numbers = true)]
-    pub heading: String,
-    /// Weights ω_N,ω_L of seed 001's E.
-    #[arg(long, value_delimiter = ',', default_values_t = [0.5, 0.5])]
-    pub weights: Vec<f64>,
-    /// Keep the best 1° heading (the seed's) instead of refining it to 0.1°.
-    #[arg(long)]
-    pub no_refine: bool,
-    /// Seed 001's a: spacing of the terrain samples along swaths, metres.
-    #[arg(long, default_value_t = 20.0, allow_negative_numbers = true)]
-    pub drape_spacing: f64,
-    /// Distance kept from field boundaries, metres.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
-    pub boundary_margin: f64,
-    /// Distance kept from obstacles, metres.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
-    pub obstacle_margin: f64,
-}
-
-/// How the passes are ordered.
-#[derive(Debug, Args)]
-pub struct OrderArgs {
-    /// `best` (ours: local search), `greedy` or `aco` (seed 001's ant colony).
-    #[arg(long, default_value = "best", value_parser = agripath::sequence::Sequencer::KEYS)]
-    pub sequencer: String,
-    /// Launch point X,Y in the input's coordinates (lon,lat or local metres): the supply
-    /// point, as `--supply X,Y`; default: the field file's `launch`/`supply` marker, else
-    /// `--supply auto` (with sorties) or a free start.
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
-    pub start: Option<Vec<f64>>,
-    /// Supply point (take-off, refills, battery swaps, landing): `auto` (the place a vehicle
-    /// can stand, on the file's access features if any, that saves most non-spray time; the
-    /// default without a launch marker), `auto:N` (also list the N best in report.json), or
-    /// X,Y in the input's coordinates.
-    #[arg(long, allow_hyphen_values = true)]
-    pub supply: Option<String>,
-    /// Seed of the stochastic sequencers (same seed, same plan).
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-    /// Ant colony batches (seed 001: 100 or 200).
-    #[arg(long, default_value_t = 200)]
-    pub batches: usize,
-    /// Ants per batch (seed 001: 50).
-    #[arg(long, default_value_t = 50)]
-    pub ants: usize,
-    /// Return points for refill and battery swap: `joint` (ours: the order of the passes and
-    /// the returns optimised together), `exact` (ours: the optimal returns for the order the
-    /// sequencer chose), the seed 003 planners `gsa` (gravitational search), `simple`,
-    /// `unplanned`, or `none` (one flight).
-    #[arg(long, default_value = "joint", value_parser = ["joint", "exact", "gsa", "simple", "unplanned", "none"])]
-    pub sorties: String,
-}
-
-/// How mission files are written.
-#[derive(Debug, Args)]
-pub struct MissionArgs {
-    /// Altitudes in mission files: `relative` (above the launch point's ground,
-    /// MAV_FRAME_GLOBAL_RELATIVE_ALT; the default without a DEM), `sea-level` (from the DEM,
-    /// MAV_FRAME_GLOBAL; the default with one; needs a DEM or `--terrain flat:H`) or `terrain`
-    /// (above ground, MAV_FRAME_GLOBAL_TERRAIN_ALT, for ArduPilot).
-    #[arg(long, value_parser = ["relative", "sea-level", "terrain"])]
-    pub altitude: Option<String>,
-    /// Write the mission files even when the preflight check of the files as flown fails
-    /// (the verdict stays in report.json; exit status 0).
-    #[arg(long)]
-    pub allow_unsafe: bool,
-    /// Sprayer switching: `do-sprayer` (MAV_CMD_DO_SPRAYER) or `servo:CHANNEL:ON_PWM:OFF_PWM`
-    /// (MAV_CMD_DO_SET_SERVO).
-    #[arg(long, default_value = "do-sprayer")]
-    pub sprayer: String,
-    /// Terrain following: the largest gap, metres, between the flown altitude and terrain +
-    /// spray height along a swath before another waypoint is added.
-    #[arg(long, default_value_t = 1.0, allow_negative_numbers = true)]
-    pub terrain_tolerance: f64,
-    /// For fields in local metres: LON,LAT of their origin in mission files (default 126.63,45.75).
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
-    pub origin: Option<Vec<f64>>,
 }
 
 impl Command {
@@ -328,27 +160,8 @@ pub enum BenchAction {
     /// Optimizers × test functions × runs: best, worst, mean, std and time as in seed 000
     /// Table 2 (Markdown on stdout; with --out also CSV and convergence plots).
     Functions {
-        /// Dimension of every function.
-        #[arg(long, default_value_t = 50)]
-        dim: usize,
-        /// Population (agents per iteration).
-        #[arg(long, default_value_t = 500)]
-        pop: usize,
-        /// Iterations; every algorithm gets pop × (iters + 1) evaluations.
-        #[arg(long, default_value_t = 300)]
-        iters: usize,
-        /// Independent runs per algorithm and function.
-        #[arg(long, default_value_t = 50)]
-        runs: u64,
-        /// Algorithms, comma-separated: pso, ga, ba, ilssiwba, iba-fcs, gsa, aco-r, lshade
-        /// (default: the five of seed 000).
-        #[arg(long, value_delimiter = ',')]
-        algorithms: Vec<String>,
-        /// Functions, comma-separated: f1 … f9 (default: all nine).
-        #[arg(long, value_delimiter = ',')]
-        functions: Vec<String>,
-        #[arg(long, default_value_t = 1)]
-        seed: u64,
+        #[command(flatten)]
+        options: FunctionBenchOptions,
         /// Folder for table.md, table.csv and convergence_*.svg.
         #[arg(long)]
         out: Option<PathBuf>,
@@ -432,82 +245,59 @@ pub enum TerrainAction {
     },
 }
 
-impl Inputs {
-    /// The library's request for these inputs.
-    pub fn request(&self) -> agripath::request::ScenarioInputs {
-        agripath::request::ScenarioInputs {
-            scenario: self.scenario.clone(),
-            fields: self.fields.clone(),
-            terrain: self.terrain.clone(),
-            vehicle: self.vehicle.clone(),
-            local_coordinates: self.crs.is_some(),
-            overrides: agripath::scenario::VehicleOverrides {
-                swath_width_m: self.swath_width,
-                spray_height_m: self.spray_height,
-                safe_height_m: self.safe_height,
-            },
-            allow_overlap: self.allow_overlap,
-        }
-    }
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
 
-/// The library's options for a coverage plan.
-pub fn plan_options(
-    coverage: &CoverageArgs,
-    order: &OrderArgs,
-    mission: &MissionArgs,
-) -> agripath::request::plan::PlanOptions {
-    agripath::request::plan::PlanOptions {
-        headland_passes: coverage.headland,
-        heading: coverage.heading.clone(),
-        weights: coverage.weights.clone(),
-        refine_heading: !coverage.no_refine,
-        drape_spacing_m: coverage.drape_spacing,
-        boundary_margin_m: coverage.boundary_margin,
-        obstacle_margin_m: coverage.obstacle_margin,
-        sequencer: order.sequencer.clone(),
-        start: order.start.clone(),
-        supply: order.supply.clone(),
-        seed: order.seed,
-        batches: order.batches,
-        ants: order.ants,
-        sorties: order.sorties.clone(),
-        altitude: mission.altitude.clone(),
-        sprayer: mission.sprayer.clone(),
-        terrain_tolerance_m: mission.terrain_tolerance,
-        origin: mission.origin.clone(),
+    /// The library's defaults are the command line's: a program built on the library plans
+    /// what `agripath plan` plans.
+    #[test]
+    fn the_plan_defaults_are_the_librarys() {
+        let arguments = Arguments::try_parse_from(["agripath", "plan", "--out", "x"]).unwrap();
+        let Command::Plan {
+            inputs,
+            options,
+            allow_unsafe,
+            ..
+        } = arguments.command
+        else {
+            panic!("not a plan command");
+        };
+        assert_eq!(options, PlanOptions::default());
+        assert_eq!(inputs, ScenarioInputs::default());
+        assert!(!allow_unsafe);
     }
-}
 
-impl GridArgs {
-    /// The library's request for this grid.
-    pub fn request(&self) -> agripath::request::grid::GridRequest {
-        agripath::request::grid::GridRequest {
-            fields: self.fields.clone(),
-            field: self.field.clone(),
-            method: self.method.clone(),
-            swath_width_m: self.swath_width,
-            local_coordinates: self.crs.is_some(),
-            seed: self.seed,
-        }
-    }
-}
-
-impl TrackArgs {
-    /// The library's request for this track.
-    pub fn request(&self) -> agripath::request::track::TrackRequest {
-        agripath::request::track::TrackRequest {
-            scenario_path: self.scenario.clone(),
-            task: self.task.clone(),
-            algorithms: self.algorithm.clone(),
-            runs: self.runs,
-            seed: self.seed,
-            encoding: self.encoding.clone(),
-            evaluations: self.evaluations,
-            limits: agripath::track::SafetyLimits {
-                min_clearance_m: self.min_clearance,
-                vehicle_radius_m: self.vehicle_radius,
-            },
-        }
+    #[test]
+    fn flags_reach_the_request() {
+        let arguments = Arguments::try_parse_from([
+            "agripath",
+            "plan",
+            "--fields",
+            "f.geojson",
+            "--crs",
+            "local",
+            "--no-refine",
+            "--swath-width",
+            "7",
+            "--weights",
+            "0.2,0.8",
+            "--out",
+            "x",
+        ])
+        .unwrap();
+        let Command::Plan {
+            inputs, options, ..
+        } = arguments.command
+        else {
+            panic!("not a plan command");
+        };
+        assert!(inputs.local_coordinates);
+        assert_eq!(inputs.overrides.swath_width_m, Some(7.0));
+        assert!(!options.refine_heading);
+        assert_eq!(options.weights, vec![0.2, 0.8]);
+        assert!(
+            Arguments::try_parse_from(["agripath", "plan", "--crs", "utm", "--out", "x"]).is_err()
+        );
     }
 }

@@ -6,21 +6,40 @@ use crate::bench::functions::{FunctionBench, FunctionTable};
 use crate::InputError;
 
 /// The options of `agripath bench functions`, as given.
+/// With the `cli` feature, also the command line's grammar of `bench functions`.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct FunctionBenchOptions {
     /// Dimension of every function.
+    #[cfg_attr(
+        feature = "cli",
+        arg(long = "dim", value_name = "DIM", default_value_t = 50)
+    )]
     pub dimension: usize,
-    /// Agents per iteration.
+    /// Population (agents per iteration).
+    #[cfg_attr(
+        feature = "cli",
+        arg(long = "pop", value_name = "POP", default_value_t = 500)
+    )]
     pub population: usize,
-    /// Iterations per run.
+    /// Iterations; every algorithm gets pop × (iters + 1) evaluations.
+    #[cfg_attr(
+        feature = "cli",
+        arg(long = "iters", value_name = "ITERS", default_value_t = 300)
+    )]
     pub iterations: usize,
     /// Independent runs per algorithm and function.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 50))]
     pub runs: u64,
-    /// Algorithm names (empty: the five of seed 000).
+    /// Algorithms, comma-separated: pso, ga, ba, ilssiwba, iba-fcs, gsa, aco-r, lshade
+    /// (default: the five of seed 000).
+    #[cfg_attr(feature = "cli", arg(long, value_delimiter = ','))]
     pub algorithms: Vec<String>,
-    /// Function keys f1 … f9 (empty: all nine).
+    /// Functions, comma-separated: f1 … f9 (default: all nine).
+    #[cfg_attr(feature = "cli", arg(long, value_delimiter = ','))]
     pub functions: Vec<String>,
     /// Seed of the random streams.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 1))]
     pub seed: u64,
 }
 

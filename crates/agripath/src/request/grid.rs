@@ -9,19 +9,36 @@ use crate::input::CoordinateChoice;
 use crate::{Fault, InputError};
 
 /// What `agripath grid` is asked, as given.
+/// With the `cli` feature, also the command line's grammar of `grid`.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct GridRequest {
-    /// The field file (GeoJSON, KML or KMZ).
+    /// Field file (GeoJSON, KML or KMZ); obstacles as in `plan`.
     pub fields: PathBuf,
-    /// Which field, by name; `None`: the first.
+    /// Which field, by name (default: the first).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub field: Option<String>,
-    /// The method's key: one of [`GRID_METHODS`].
+    /// Method: `ours`, the seed's `hpso`, or the `baseline` boustrophedon decomposition.
+    #[cfg_attr(
+        feature = "cli",
+        arg(long, default_value = "ours", value_parser = GRID_METHODS)
+    )]
     pub method: String,
-    /// Path-point spacing, metres; `None`: the file's swath width, else 5.
+    /// Path-point spacing = swath width, metres (default: the file's `swath_width_m`, else 5).
+    #[cfg_attr(
+        feature = "cli",
+        arg(
+            long = "swath-width",
+            value_name = "SWATH_WIDTH",
+            allow_negative_numbers = true
+        )
+    )]
     pub swath_width_m: Option<f64>,
-    /// Read the coordinates as local metres, whatever the file says.
+    /// Read coordinates as local metres ("local"), whatever the file says.
+    #[cfg_attr(feature = "cli", arg(long = "crs", value_name = "CRS", value_parser = super::cli::local_coordinates(), default_value_t = false, hide_default_value = true, action = clap::ArgAction::Set))]
     pub local_coordinates: bool,
-    /// Seed of the stochastic methods.
+    /// Seed of HPSO.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 1))]
     pub seed: u64,
 }
 

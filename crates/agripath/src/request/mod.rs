@@ -25,23 +25,48 @@ use crate::terrain::TerrainSpec;
 use crate::{Fault, InputError};
 
 /// Where a scenario comes from: a scenario file, or its parts (fields, terrain, vehicle);
-/// the vehicle figures given here override the vehicle's.
+/// the vehicle figures given here override the vehicle's. With the `cli` feature this is
+/// also the command line's grammar for it (flags override the scenario file).
 #[derive(Debug, Clone, Default, PartialEq)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct ScenarioInputs {
-    /// A scenario TOML file tying fields, terrain and vehicle together.
+    /// Scenario TOML file tying fields, terrain and vehicle together.
     pub scenario: Option<PathBuf>,
-    /// A field file (GeoJSON, KML or KMZ), instead of a scenario file.
+    /// Field file: GeoJSON (.geojson/.json), KML or KMZ.
+    #[cfg_attr(feature = "cli", arg(long))]
     pub fields: Option<PathBuf>,
-    /// A terrain argument: a DEM file or flat, flat:HEIGHT, seed000, seed002.
+    /// Terrain: a DEM file (.tif, .asc, .xyz/.csv) or flat, flat:HEIGHT, seed000, seed002.
+    #[cfg_attr(feature = "cli", arg(long))]
     pub terrain: Option<String>,
-    /// A vehicle TOML file.
+    /// Vehicle TOML file.
+    #[cfg_attr(feature = "cli", arg(long))]
     pub vehicle: Option<PathBuf>,
-    /// Read the field coordinates as local metres, whatever the file says.
+    /// Read field coordinates as metres in a local frame ("local"), whatever the file says.
+    #[cfg_attr(feature = "cli", arg(long = "crs", value_name = "CRS", value_parser = cli::local_coordinates(), default_value_t = false, hide_default_value = true, action = clap::ArgAction::Set))]
     pub local_coordinates: bool,
     /// Swath width, spray height and safe height that override the vehicle's.
+    #[cfg_attr(feature = "cli", command(flatten))]
     pub overrides: VehicleOverrides,
-    /// Keep overlapping fields and spray each overlap once.
+    /// Keep fields that overlap and spray each overlap once, with the field that comes first
+    /// in the file (without it, overlapping fields are refused).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub allow_overlap: bool,
+}
+
+/// Value parsers the command-line grammar shares.
+#[cfg(feature = "cli")]
+pub(crate) mod cli {
+    use clap::builder::{PossibleValue, PossibleValuesParser, TypedValueParser};
+
+    /// `--crs local`, the one coordinate choice a flag can make: true when given. The hidden
+    /// value `false` is the default's (clap parses defaults too); it is not in the help.
+    pub fn local_coordinates() -> impl TypedValueParser<Value = bool> {
+        PossibleValuesParser::new([
+            PossibleValue::new("local"),
+            PossibleValue::new("false").hide(true),
+        ])
+        .map(|value| value == "local")
+    }
 }
 
 impl ScenarioInputs {

@@ -13,46 +13,168 @@ use crate::sortie::SortieSettings;
 use crate::supply::{SupplyRequest, SupplyValue};
 use crate::{Fault, InputError};
 
-/// The options of a coverage plan, as given: names and numbers not yet checked.
+/// The options of a coverage plan, as given: names and numbers not yet checked. With the
+/// `cli` feature this is also the command line's grammar for them, and its defaults are
+/// [`PlanOptions::default`]'s (a test in the program checks that they agree).
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct PlanOptions {
-    /// Edge passes around each boundary and hole (0: seed 001's layout).
+    /// Edge passes around each boundary and hole; 0 gives seed 001's layout (interior only).
+    #[cfg_attr(
+        feature = "cli",
+        arg(long = "headland", value_name = "HEADLAND", default_value_t = 1)
+    )]
     pub headland_passes: usize,
-    /// `auto`, `swaths`, `length`, or degrees from east, counter-clockwise.
+    /// Swath heading: `auto` (seed 001's E), `swaths` (fewest), `length` (shortest), or
+    /// degrees from east, counter-clockwise.
+    #[cfg_attr(
+        feature = "cli",
+        arg(long, default_value = "auto", allow_negative_numbers = true)
+    )]
     pub heading: String,
-    /// Weights ω_N, ω_L of seed 001's E: two numbers.
+    /// Weights ω_N,ω_L of seed 001's E.
+    #[cfg_attr(
+        feature = "cli",
+        arg(long, value_delimiter = ',', default_values_t = [0.5, 0.5])
+    )]
     pub weights: Vec<f64>,
-    /// Refine the best 1° heading to 0.1°.
+    /// Refine the best 1° heading to 0.1° (`--no-refine` keeps the seed's 1° heading).
+    #[cfg_attr(feature = "cli", arg(long = "no-refine", action = clap::ArgAction::SetFalse, help = "Keep the best 1° heading (the seed's) instead of refining it to 0.1°"))]
     pub refine_heading: bool,
-    /// Spacing of the terrain samples along swaths, metres.
+    /// Seed 001's a: spacing of the terrain samples along swaths, metres.
+    #[cfg_attr(
+        feature = "cli",
+        arg(
+            long = "drape-spacing",
+            value_name = "DRAPE_SPACING",
+            default_value_t = 20.0,
+            allow_negative_numbers = true
+        )
+    )]
     pub drape_spacing_m: f64,
     /// Distance kept from field boundaries, metres.
+    #[cfg_attr(
+        feature = "cli",
+        arg(
+            long = "boundary-margin",
+            value_name = "BOUNDARY_MARGIN",
+            default_value_t = 0.0,
+            allow_negative_numbers = true
+        )
+    )]
     pub boundary_margin_m: f64,
     /// Distance kept from obstacles, metres.
+    #[cfg_attr(
+        feature = "cli",
+        arg(
+            long = "obstacle-margin",
+            value_name = "OBSTACLE_MARGIN",
+            default_value_t = 0.0,
+            allow_negative_numbers = true
+        )
+    )]
     pub obstacle_margin_m: f64,
-    /// `best`, `greedy` or `aco`.
+    /// `best` (ours: local search), `greedy` or `aco` (seed 001's ant colony).
+    #[cfg_attr(
+        feature = "cli",
+        arg(long, default_value = "best", value_parser = Sequencer::KEYS)
+    )]
     pub sequencer: String,
-    /// Launch point X, Y in the input's coordinates.
+    /// Launch point X,Y in the input's coordinates (lon,lat or local metres): the supply
+    /// point, as `--supply X,Y`; default: the field file's `launch`/`supply` marker, else
+    /// `--supply auto` (with sorties) or a free start.
+    #[cfg_attr(
+        feature = "cli",
+        arg(long, value_delimiter = ',', allow_negative_numbers = true)
+    )]
     pub start: Option<Vec<f64>>,
-    /// `auto`, `auto:N` or `X,Y` (the supply point; `X,Y` is the same as `start`).
+    /// Supply point (take-off, refills, battery swaps, landing): `auto` (the place a vehicle
+    /// can stand, on the file's access features if any, that saves most non-spray time; the
+    /// default without a launch marker), `auto:N` (also list the N best in report.json), or
+    /// X,Y in the input's coordinates.
+    #[cfg_attr(feature = "cli", arg(long, allow_hyphen_values = true))]
     pub supply: Option<String>,
-    /// Seed of the stochastic sequencers and sortie planners.
+    /// Seed of the stochastic sequencers and sortie planners (same seed, same plan).
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 1))]
     pub seed: u64,
-    /// Ant colony batches.
+    /// Ant colony batches (seed 001: 100 or 200).
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 200))]
     pub batches: usize,
-    /// Ants per batch.
+    /// Ants per batch (seed 001: 50).
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 50))]
     pub ants: usize,
-    /// `exact`, `gsa`, `simple`, `unplanned`, or `none` (one flight).
+    /// Return points for refill and battery swap: `joint` (ours: the order of the passes and
+    /// the returns optimised together), `exact` (ours: the optimal returns for the order the
+    /// sequencer chose), the seed 003 planners `gsa` (gravitational search), `simple`,
+    /// `unplanned`, or `none` (one flight).
+    #[cfg_attr(
+        feature = "cli",
+        arg(long, default_value = "joint", value_parser = SORTIE_KEYS)
+    )]
     pub sorties: String,
-    /// `relative`, `sea-level` or `terrain`; `None`: the terrain's default.
+    /// Altitudes in mission files: `relative` (above the launch point's ground,
+    /// MAV_FRAME_GLOBAL_RELATIVE_ALT; the default without a DEM), `sea-level` (from the DEM,
+    /// MAV_FRAME_GLOBAL; the default with one; needs a DEM or `--terrain flat:H`) or `terrain`
+    /// (above ground, MAV_FRAME_GLOBAL_TERRAIN_ALT, for ArduPilot).
+    #[cfg_attr(
+        feature = "cli",
+        arg(long, value_parser = ["relative", "sea-level", "terrain"])
+    )]
     pub altitude: Option<String>,
-    /// `do-sprayer` or `servo:CHANNEL:ON_PWM:OFF_PWM`.
+    /// Sprayer switching: `do-sprayer` (MAV_CMD_DO_SPRAYER) or `servo:CHANNEL:ON_PWM:OFF_PWM`
+    /// (MAV_CMD_DO_SET_SERVO).
+    #[cfg_attr(feature = "cli", arg(long, default_value = "do-sprayer"))]
     pub sprayer: String,
-    /// Largest gap between the flown altitude and terrain + spray height, metres.
+    /// Terrain following: the largest gap, metres, between the flown altitude and terrain +
+    /// spray height along a swath before another waypoint is added.
+    #[cfg_attr(
+        feature = "cli",
+        arg(
+            long = "terrain-tolerance",
+            value_name = "TERRAIN_TOLERANCE",
+            default_value_t = 1.0,
+            allow_negative_numbers = true
+        )
+    )]
     pub terrain_tolerance_m: f64,
-    /// LON, LAT of a local plan's origin in mission files.
+    /// For fields in local metres: LON,LAT of their origin in mission files (default 126.63,45.75).
+    #[cfg_attr(
+        feature = "cli",
+        arg(long, value_delimiter = ',', allow_negative_numbers = true)
+    )]
     pub origin: Option<Vec<f64>>,
 }
+
+impl Default for PlanOptions {
+    /// The command line's defaults: seed 001's layout with one edge pass, E's heading refined
+    /// to 0.1°, our sequencer and joint sorties, the supply point and altitudes as the inputs
+    /// give them.
+    fn default() -> Self {
+        PlanOptions {
+            headland_passes: 1,
+            heading: "auto".into(),
+            weights: vec![0.5, 0.5],
+            refine_heading: true,
+            drape_spacing_m: 20.0,
+            boundary_margin_m: 0.0,
+            obstacle_margin_m: 0.0,
+            sequencer: "best".into(),
+            start: None,
+            supply: None,
+            seed: 1,
+            batches: 200,
+            ants: 50,
+            sorties: "joint".into(),
+            altitude: None,
+            sprayer: "do-sprayer".into(),
+            terrain_tolerance_m: 1.0,
+            origin: None,
+        }
+    }
+}
+
+/// The names `--sorties` takes: the sortie planners, and `none` for one flight.
+pub const SORTIE_KEYS: [&str; 6] = ["joint", "exact", "gsa", "simple", "unplanned", "none"];
 
 impl PlanOptions {
     /// Checks the options and reads the scenario, in the command line's order: the mission

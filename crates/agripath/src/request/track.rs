@@ -9,23 +9,42 @@ use crate::track::{plan, Encoding, Planner, SafetyLimits, TrackScenario, TrackSe
 use crate::InputError;
 
 /// What `agripath track` is asked, as given.
+/// With the `cli` feature, also the command line's grammar of `track`.
 #[derive(Debug, Clone)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct TrackRequest {
-    /// The scenario file: seed 000, seed 002 or SPSO JSON, or an operator TOML.
+    /// Scenario file: JSON of seed 000, seed 002 or SPSO, or an operator TOML.
+    #[cfg_attr(feature = "cli", arg(value_name = "SCENARIO"))]
     pub scenario_path: PathBuf,
     /// Seed 000's task (I, II or III, or a task name of the file).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub task: Option<String>,
-    /// Planners, comma-separated.
+    /// Planners, comma-separated: lattice (ours), iba-fcs, ba, ilssiwba, pso, spso, ga,
+    /// aco-r, gsa, lshade, improved-ga.
+    #[cfg_attr(
+        feature = "cli",
+        arg(
+            long = "algorithm",
+            value_name = "ALGORITHM",
+            default_value = "lattice"
+        )
+    )]
     pub algorithms: String,
-    /// Runs per planner; `None`: the scenario's own, else 5.
+    /// Independent runs per planner (default: the scenario's `algorithms.runs`, else 5).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub runs: Option<u64>,
     /// Seed of the random streams.
+    #[cfg_attr(feature = "cli", arg(long, default_value_t = 1))]
     pub seed: u64,
-    /// cartesian, cylindrical or spherical; `None`: the scenario paper's.
+    /// Encoding for the swarm algorithms: cartesian, cylindrical or spherical (default:
+    /// the scenario paper's).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub encoding: Option<String>,
-    /// Evaluations per run; `None`: the paper's budget.
+    /// Evaluations per run (default: the scenario paper's population × iterations).
+    #[cfg_attr(feature = "cli", arg(long))]
     pub evaluations: Option<u64>,
     /// Clearance above the terrain and distance from threats a safe track keeps.
+    #[cfg_attr(feature = "cli", command(flatten))]
     pub limits: SafetyLimits,
 }
 

@@ -39,14 +39,11 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
         Command::Demo { out } => plan::demo(&out),
         Command::Plan {
             inputs,
-            coverage,
-            order,
-            mission,
+            options,
+            allow_unsafe,
             out,
-        } => plan::plan(&inputs, &coverage, &order, &mission, &out),
-        Command::Check { folder, inputs } => {
-            finish(None, request::check(&inputs.request(), &folder)?)
-        }
+        } => plan::plan(&inputs, &options, allow_unsafe, &out),
+        Command::Check { folder, inputs } => finish(None, request::check(&inputs, &folder)?),
         Command::Repro {
             table,
             runs,
@@ -55,14 +52,14 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
         } => runs::repro(table, runs, seed, out.as_deref()),
         Command::Bench { action } => runs::bench(action),
         Command::View { folder, port, open } => view(&folder, port, open),
-        Command::Grid { grid, out } => finish(Some(&out), grid.request().plan()?),
+        Command::Grid { grid, out } => finish(Some(&out), grid.plan()?),
         Command::Track {
             track,
             allow_unsafe,
             out,
-        } => runs::track(&track.request(), allow_unsafe, &out),
+        } => runs::track(&track, allow_unsafe, &out),
         Command::Validate { inputs, json } => {
-            emit_text(&request::validate(&inputs.request(), json)?);
+            emit_text(&request::validate(&inputs, json)?);
             Ok(())
         }
         Command::Terrain { action } => {

@@ -6,7 +6,8 @@ use agripath::request::plan::{outcome, plan_demo};
 use agripath::request::Failure;
 
 use super::finish;
-use crate::args::{CoverageArgs, Inputs, MissionArgs, OrderArgs};
+use agripath::request::plan::PlanOptions;
+use agripath::request::ScenarioInputs;
 
 pub(super) fn demo(out: &Path) -> Result<(), Failure> {
     let (scenario, mission) = plan_demo()?;
@@ -15,14 +16,12 @@ pub(super) fn demo(out: &Path) -> Result<(), Failure> {
 }
 
 pub(super) fn plan(
-    inputs: &Inputs,
-    coverage: &CoverageArgs,
-    order: &OrderArgs,
-    mission_args: &MissionArgs,
+    inputs: &ScenarioInputs,
+    options: &PlanOptions,
+    allow_unsafe: bool,
     out: &Path,
 ) -> Result<(), Failure> {
-    let options = crate::args::plan_options(coverage, order, mission_args);
-    let (scenario, settings) = options.load(&inputs.request())?;
+    let (scenario, settings) = options.load(inputs)?;
     // A spinner for big farms (heading scans, ordering, sorties, mission files).
     let spinner = indicatif::ProgressBar::new_spinner();
     spinner.set_message(format!("planning {} field(s)", scenario.farm.fields.len()));
@@ -31,7 +30,7 @@ pub(super) fn plan(
         .map_err(|fault| agripath::InputError::new(&scenario.farm.source, fault))?;
     spinner.set_message("writing mission files, checking them as flown, maps");
     let source = &scenario.farm.source;
-    let result = outcome(&scenario, &mission, mission_args.allow_unsafe, source)
+    let result = outcome(&scenario, &mission, allow_unsafe, source)
         .map_err(Failure::from)
         .and_then(|outcome| finish(Some(out), outcome));
     spinner.finish_and_clear();

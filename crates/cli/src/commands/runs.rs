@@ -22,26 +22,8 @@ pub(super) fn track(
 }
 
 pub(super) fn bench(action: BenchAction) -> Result<(), Failure> {
-    let BenchAction::Functions {
-        dim,
-        pop,
-        iters,
-        runs,
-        algorithms,
-        functions,
-        seed,
-        out,
-    } = action;
-    let settings = request::bench::FunctionBenchOptions {
-        dimension: dim,
-        population: pop,
-        iterations: iters,
-        runs,
-        algorithms,
-        functions,
-        seed,
-    }
-    .settings()?;
+    let BenchAction::Functions { options, out } = action;
+    let settings = options.settings()?;
     request::bench::check(&settings)?;
     let bar = progress_bar(settings.total_runs(), "bench");
     let table = request::bench::run(&settings, &|| bar.inc(1))?;

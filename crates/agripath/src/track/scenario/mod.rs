@@ -182,11 +182,28 @@ impl std::fmt::Debug for GroundTruth {
 
 /// What a safe track keeps: clearance above the terrain and distance from threat walls.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct SafetyLimits {
-    /// Least height above the terrain along the cruise (metres); `--min-clearance`.
+    /// Least height above the terrain a safe track keeps along its cruise, metres
+    /// (checked every 1 m against the terrain as given).
+    #[cfg_attr(
+        feature = "cli",
+        arg(
+            long = "min-clearance",
+            value_name = "MIN_CLEARANCE",
+            default_value_t = 2.0
+        )
+    )]
     pub min_clearance_m: f64,
-    /// The vehicle's radius: least distance from a threat cylinder's wall (metres);
-    /// `--vehicle-radius`.
+    /// The vehicle's radius: least distance from a threat cylinder's wall, metres.
+    #[cfg_attr(
+        feature = "cli",
+        arg(
+            long = "vehicle-radius",
+            value_name = "VEHICLE_RADIUS",
+            default_value_t = 1.0
+        )
+    )]
     pub vehicle_radius_m: f64,
 }
 
