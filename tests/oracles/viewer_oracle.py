@@ -49,7 +49,27 @@ if sorted(map(int, layers)) != list(range(1, sorties + 1)):
     failures.append(f"sortie layers {layers}, report has {sorties} sorties")
 if "leaflet-image-layer" not in dom:
     failures.append("no hillshade overlay")
+if 'href="sheet.html"' not in dom:
+    failures.append("the viewer does not link to the mission sheet")
+
+# The mission sheet printed by the same browser: agripath's --pdf finds it through
+# AGRIPATH_BROWSER; the PDF must be a PDF of two pages or more (the table, then the map).
+printed = os.path.join(scratch, "printed")
+run = subprocess.run([AGRIPATH, "demo", "--pdf", "--out", printed], capture_output=True, text=True,
+                     env={**os.environ, "AGRIPATH_BROWSER": CHROMIUM}, timeout=300)
+pdf_path = os.path.join(printed, "sheet.pdf")
+if run.returncode != 0 or not os.path.isfile(pdf_path):
+    failures.append(f"demo --pdf wrote no sheet.pdf: {run.stdout[-300:]} {run.stderr[-300:]}")
+    pages = 0
+else:
+    with open(pdf_path, "rb") as handle:
+        pdf = handle.read()
+    pages = len(re.findall(rb"/Type\s*/Page[^s]", pdf))
+    if not pdf.startswith(b"%PDF") or pages < 2:
+        failures.append(f"sheet.pdf: {pages} page(s), header {pdf[:8]!r}")
+    subprocess.run([CHROMIUM, *FLAGS, f"--user-data-dir={profile}", "--screenshot=" + os.path.join(scratch, "sheet.png"),
+                    "file://" + os.path.join(printed, "sheet.html")], check=True, capture_output=True, timeout=120)
 for failure in failures:
     print("FAILED:", failure)
-print(f"viewer: {drawn} shapes for {len(features)} features, {len(layers)} sortie layers; screenshot {scratch}/plan.png")
+print(f"viewer: {drawn} shapes for {len(features)} features, {len(layers)} sortie layers; screenshot {scratch}/plan.png; sheet.pdf {pages} page(s), screenshot {scratch}/sheet.png")
 sys.exit(1 if failures else 0)

@@ -27,6 +27,7 @@ pub mod request;
 pub mod scenario;
 pub mod sequence;
 pub mod settings;
+pub mod sheet;
 pub mod sortie;
 pub mod summary;
 pub mod supply;

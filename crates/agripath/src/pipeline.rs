@@ -496,6 +496,22 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         Some(&underlay),
         &title,
     );
+    let rows = crate::sheet::sortie_rows(
+        &scenario.farm,
+        &mission.route,
+        mission.sorties.as_ref(),
+        &report,
+        &missions,
+    );
+    let sheet = crate::sheet::sheet_html(&crate::sheet::SheetParts {
+        report: &report,
+        rows: &rows,
+        map_svg: &map,
+        lon_lat: scenario.farm.coordinate_system != CoordinateSystem::Local,
+        home_lon_lat: missions
+            .first()
+            .map(|first| [first.home.lon, first.home.lat]),
+    });
     #[cfg(feature = "png")]
     files.push((
         "plan.png".to_string(),
@@ -513,6 +529,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         "plan.html".to_string(),
         plan_html(&title, &local, Some(&overlay)).into_bytes(),
     ));
+    files.push(("sheet.html".to_string(), sheet.into_bytes()));
     files.extend(mission_files);
     files.push(("terrain.png".to_string(), png));
     Ok(Rendered {

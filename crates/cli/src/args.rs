@@ -32,9 +32,19 @@ pub enum Command {
         /// Output folder.
         #[arg(long, default_value = "agripath-demo")]
         out: PathBuf,
+        /// Also print the mission sheet to sheet.pdf with a headless Chromium.
+        #[arg(long)]
+        pdf: bool,
     },
-    /// Plan full coverage of the fields: swaths at the best heading, edge passes, route.
-    /// Writes DIR/plan.geojson, DIR/report.json and DIR/plan.svg.
+    /// Plan full coverage of the fields: swaths at the best heading, edge passes, the order,
+    /// sorties with returns to the supply point, mission files checked as flown.
+    ///
+    /// Writes into DIR: plan.geojson, report.json, plan.svg (and plan.png), plan.html (the
+    /// offline viewer), sheet.html (the mission sheet to print; sheet.pdf with --pdf),
+    /// mission.kml, waypoints.csv, terrain.png, and per sortie NN sortie_NN.plan
+    /// (QGroundControl) and sortie_NN.waypoints (QGC WPL 110). Inputs: a scenario TOML, or
+    /// --fields (GeoJSON, KML, KMZ) with --terrain (GeoTIFF, ESRI ASCII grid, XYZ, flat) and
+    /// --vehicle (TOML).
     Plan {
         #[command(flatten)]
         inputs: ScenarioInputs,
@@ -44,6 +54,10 @@ pub enum Command {
         /// (the verdict stays in report.json; exit status 0).
         #[arg(long)]
         allow_unsafe: bool,
+        /// Also print the mission sheet (sheet.html) to sheet.pdf with a headless Chromium
+        /// (`chromium` on PATH, or the browser named by AGRIPATH_BROWSER).
+        #[arg(long)]
+        pdf: bool,
         /// Output folder (replaced as a whole when planning succeeds).
         #[arg(long)]
         out: PathBuf,
@@ -139,7 +153,7 @@ impl Command {
     /// The folder this command writes, if any: checked before any work is done.
     pub fn output_folder(&self) -> Option<&Path> {
         match self {
-            Command::Demo { out }
+            Command::Demo { out, .. }
             | Command::Plan { out, .. }
             | Command::Grid { out, .. }
             | Command::Track { out, .. } => Some(out),
@@ -211,12 +225,16 @@ pub enum TerrainAction {
         #[arg(long)]
         json: bool,
     },
-    /// Heights at points given in the terrain's own coordinates: X Y [X Y ...].
+    /// Heights at points given in the terrain's own coordinates: X Y [X Y ...] (with
+    /// --lonlat: LON LAT [LON LAT ...]).
     Sample {
         terrain: String,
         /// Pairs of coordinates.
         #[arg(required = true, num_args = 2.., allow_negative_numbers = true)]
         coordinates: Vec<f64>,
+        /// The pairs are longitude and latitude (degrees), for a DEM in UTM or lon/lat.
+        #[arg(long)]
+        lonlat: bool,
         #[arg(long)]
         cell: Option<f64>,
     },
@@ -233,12 +251,7 @@ pub enum TerrainAction {
         #[arg(long, default_value_t = 1.0)]
         exaggeration: f64,
         /// Area to draw, for unbounded terrains: MIN_X,MIN_Y,MAX_X,MAX_Y.
-        #[arg(
-            long,
-            value_delimiter = ',',
-            num_args = 4,
-            allow_negative_numbers = true
-        )]
+        #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
         extent: Option<Vec<f64>>,
         #[arg(long)]
         cell: Option<f64>,

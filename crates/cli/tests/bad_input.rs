@@ -666,6 +666,12 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "feature 0 (bowtie): boundary intersects itself near (5.000, 5.000)",
         ),
         (
+            // Lon/lat input: the place is given in lon/lat, not in the UTM metres checked.
+            fields("self_intersecting_lonlat.geojson"),
+            bad("self_intersecting_lonlat.geojson"),
+            "feature 0 (bowtie): boundary intersects itself near lon 105.625000, lat -10.485000",
+        ),
+        (
             fields("hole_outside.geojson"),
             bad("hole_outside.geojson"),
             "hole 1 lies outside",

@@ -34,8 +34,17 @@ pub enum HeadingObjective {
 
 impl HeadingObjective {
     /// Reads `auto` (seed 001's E with these weights ω_N, ω_L), `swaths` (alias `turns`),
-    /// `length`, or a heading in degrees from east, counter-clockwise (taken modulo 180°).
+    /// `length`, a heading in degrees from east, counter-clockwise (the seed's angle), or
+    /// `bearing:DEG`, a compass bearing (0° = north, clockwise); both taken modulo 180°.
     pub fn parse(spec: &str, weights: [f64; 2]) -> Result<Self, String> {
+        if let Some(bearing) = spec.strip_prefix("bearing:") {
+            return match bearing.parse::<f64>() {
+                Ok(bearing_deg) if bearing_deg.is_finite() => Ok(Self::Fixed {
+                    heading_deg: crate::geometry::heading_of_bearing_deg(bearing_deg),
+                }),
+                _ => Err("expected bearing:DEG, a compass bearing in degrees".into()),
+            };
+        }
         Ok(match spec {
             "auto" => Self::Seed {
                 count_weight: weights[0],
@@ -47,7 +56,11 @@ impl HeadingObjective {
                 Ok(heading_deg) if heading_deg.is_finite() => Self::Fixed {
                     heading_deg: heading_deg.rem_euclid(180.0),
                 },
-                _ => return Err("expected auto, swaths, length or a number of degrees".into()),
+                _ => {
+                    return Err(
+                        "expected auto, swaths, length, degrees from east or bearing:DEG".into(),
+                    )
+                }
             },
         })
     }

@@ -5,6 +5,19 @@ pub mod projection;
 pub mod ring_index;
 pub mod validate;
 
+/// The compass bearing of a swath line, 0..180° (0° = north, clockwise), from the seed's
+/// heading (degrees from east, counter-clockwise). A line has two directions; the bearing
+/// given is the one below 180°: an east-west line is 90°.
+pub fn swath_bearing_deg(heading_deg: f64) -> f64 {
+    (90.0 - heading_deg).rem_euclid(180.0)
+}
+
+/// The seed's heading (degrees from east, counter-clockwise, 0..180°) of a line at compass
+/// bearing `bearing_deg`: the inverse of [`swath_bearing_deg`].
+pub fn heading_of_bearing_deg(bearing_deg: f64) -> f64 {
+    (90.0 - bearing_deg).rem_euclid(180.0)
+}
+
 pub use projection::{from_utm, mean_longitude, to_utm, wrap_longitude, UtmZone};
 
 use geo::{Coord, Polygon};
@@ -70,4 +83,24 @@ pub fn distance_to_segment(point: Coord<f64>, start: Coord<f64>, end: Coord<f64>
         0.0
     };
     (point.x - start.x - t * dx).hypot(point.y - start.y - t * dy)
+}
+
+#[cfg(test)]
+mod bearing_tests {
+    use super::*;
+
+    #[test]
+    fn bearings_are_compass_angles_of_the_swath_line() {
+        // East-west swaths (the seed's 0° or 180°) run at bearing 90°; north-south at 0°.
+        assert_eq!(swath_bearing_deg(0.0), 90.0);
+        assert_eq!(swath_bearing_deg(90.0), 0.0);
+        assert!((swath_bearing_deg(175.8) - 94.2).abs() < 1e-9);
+        // A line from south-west to north-east: 45° from east is bearing 45°.
+        assert_eq!(swath_bearing_deg(45.0), 45.0);
+        assert_eq!(swath_bearing_deg(135.0), 135.0);
+        for heading in [0.0, 12.5, 89.9, 90.0, 133.0, 179.9] {
+            let back = heading_of_bearing_deg(swath_bearing_deg(heading));
+            assert!((back - heading).abs() < 1e-9, "{heading} -> {back}");
+        }
+    }
 }

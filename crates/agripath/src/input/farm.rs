@@ -171,8 +171,9 @@ pub fn build(
                             error
                         }
                     };
-                    let polygon = build_polygon(rings, &project)
-                        .map_err(|fault| part_place(fault_here(fault)))?;
+                    let polygon = build_polygon(rings, &project).map_err(|fault| {
+                        part_place(fault_here(in_input_terms(fault, coordinate_system)))
+                    })?;
                     let base_name = feature.name.clone();
                     match kind.as_str() {
                         "field" => {
@@ -254,6 +255,28 @@ fn build_line(
         ));
     }
     Ok(LineString::new(points))
+}
+
+/// A geometry fault with its place in the input's coordinates: lon/lat (6 decimals, about
+/// 0.1 m) for a lon/lat file, whose users never saw the UTM metres it was checked in.
+fn in_input_terms(fault: Fault, frame: CoordinateSystem) -> Fault {
+    let CoordinateSystem::Utm(_) = frame else {
+        return fault;
+    };
+    let lon_lat = |x: f64, y: f64| {
+        let (lon, lat) = frame.to_input(x, y);
+        format!("near lon {lon:.6}, lat {lat:.6}")
+    };
+    match fault {
+        Fault::SelfIntersection { x, y } => {
+            Fault::Structure(format!("boundary intersects itself {}", lon_lat(x, y)))
+        }
+        Fault::HoleCrossesShell { hole, x, y } => Fault::Structure(format!(
+            "hole {hole} crosses the outer boundary {}",
+            lon_lat(x, y)
+        )),
+        other => other,
+    }
 }
 
 fn build_polygon(

@@ -1,5 +1,6 @@
 //! Every mission item of every sortie as CSV, for spreadsheets and other tools:
-//! `sortie,index,action,value,lon,lat,ground_m,above_ground_m,sea_level_m`.
+//! `sortie,index,action,value,lon,lat,ground_m,above_ground_m,sea_level_m`. Sorties are
+//! numbered from 1, as the `sortie_NN` files, the KML and the sheet number them.
 
 use std::fmt::Write;
 
@@ -21,7 +22,7 @@ pub fn waypoints_csv(missions: &[SortieMission]) -> String {
             let _ = writeln!(
                 text,
                 "{},{},{},{},{:.9},{:.9},{:.3},{:.3},{:.3}",
-                mission.sortie,
+                mission.sortie + 1,
                 index,
                 action,
                 value,

@@ -135,7 +135,7 @@ L.control.scale({{ imperial: false }}).addTo(map);
 const everything = L.featureGroup([...groups.values()]);
 map.fitBounds(everything.getBounds().pad(0.05));
 const banner = L.control({{ position: "bottomleft" }});
-banner.onAdd = () => {{ const d = L.DomUtil.create("div", "agripath-title"); d.textContent = TITLE; return d; }};
+banner.onAdd = () => {{ const d = L.DomUtil.create("div", "agripath-title"); d.textContent = TITLE + " · "; const sheet = L.DomUtil.create("a", "", d); sheet.href = "sheet.html"; sheet.textContent = "mission sheet"; return d; }};
 banner.addTo(map);
 document.body.dataset.features = String(PLAN.features.length);
 </script>

@@ -20,8 +20,10 @@ use crate::sortie::SortiePlanner;
 pub struct FieldReport {
     /// The field's name.
     pub name: String,
-    /// Chosen heading, degrees from east, counter-clockwise, 0..180.
+    /// Chosen heading, degrees from east, counter-clockwise, 0..180 (the seed's angle).
     pub heading_deg: f64,
+    /// The same heading as a compass bearing of the swaths, 0..180 (0 = north, clockwise).
+    pub heading_bearing_deg: f64,
     /// The best heading of the 1° scan (seed 001's answer).
     pub heading_integer_deg: f64,
     /// Objective at the chosen and at the integer heading (eq. 1 for the seed objective).
@@ -112,6 +114,9 @@ pub struct Report {
     pub overlap_m2: f64,
     /// Spraying time: interior swaths and edge passes at spray speed, seconds.
     pub spray_time_s: f64,
+    /// Litres for the whole plan: the application rate over the swath-wide strips of every
+    /// spray metre (`null` when the vehicle gives no rate). The sorties' litres add up to it.
+    pub litres: Option<f64>,
     /// Transfers and returns to the supply point, seconds.
     pub non_spray_time_s: f64,
     /// Spraying and non-spraying time, seconds.
@@ -193,6 +198,10 @@ impl Report {
             .map(|field| FieldReport {
                 name: field.name.clone(),
                 heading_deg: round(field.heading.heading_deg, 1e-9),
+                heading_bearing_deg: round(
+                    crate::geometry::swath_bearing_deg(field.heading.heading_deg),
+                    1e-9,
+                ),
                 heading_integer_deg: field.heading.integer_heading_deg,
                 objective: round(field.heading.objective, 1e-9),
                 objective_integer: round(field.heading.integer_objective, 1e-9),
@@ -316,6 +325,12 @@ impl Report {
                 1e-4,
             ),
             spray_time_s: round(spray_time_s, 1e-3),
+            litres: vehicle.application_rate_l_per_ha.map(|rate| {
+                round(
+                    rate / 10_000.0 * vehicle.swath_width_m * (spray_length_m + edge_length_m),
+                    1e-3,
+                )
+            }),
             non_spray_time_s: round(non_spray_time_s, 1e-3),
             total_time_s: round(spray_time_s + non_spray_time_s, 1e-3),
             runtime_s,
@@ -368,13 +383,22 @@ impl Report {
             Self::sequencer_label(&self.sequencer)
         );
         text.push_str(&format!(
-            "{:<10} {:>9} {:>7} {:>7} {:>11} {:>10} {:>9} {:>10}\n",
-            "field", "heading°", "(1° )", "swaths", "spray m", "edge m", "covered", "overlap m²"
+            "{:<10} {:>9} {:>9} {:>7} {:>7} {:>11} {:>10} {:>9} {:>10}\n",
+            "field",
+            "bearing°",
+            "heading°",
+            "(1° )",
+            "swaths",
+            "spray m",
+            "edge m",
+            "covered",
+            "overlap m²"
         ));
         for field in &self.fields {
             text.push_str(&format!(
-                "{:<10} {:>9.1} {:>7.0} {:>7} {:>11.1} {:>10.1} {:>8.2}% {:>10.1}\n",
+                "{:<10} {:>9.1} {:>9.1} {:>7.0} {:>7} {:>11.1} {:>10.1} {:>8.2}% {:>10.1}\n",
                 field.name,
+                field.heading_bearing_deg,
                 field.heading_deg,
                 field.heading_integer_deg,
                 field.swaths,

@@ -35,7 +35,7 @@ pub struct PlanOptions {
     /// Weights ω_N,ω_L of seed 001's E.
     #[cfg_attr(
         feature = "cli",
-        arg(long, value_delimiter = ',', default_values_t = [0.5, 0.5])
+        arg(long, value_delimiter = ',', default_value = "0.5,0.5")
     )]
     pub weights: Vec<f64>,
     /// Refine the best 1° heading to 0.1° (`--no-refine` keeps the seed's 1° heading).
@@ -379,19 +379,25 @@ pub fn plan_demo() -> Result<(Scenario, PlannedMission), InputError> {
 pub fn outcome(
     scenario: &Scenario,
     mission: &PlannedMission,
-    allow_unsafe: bool,
+    files: FolderChoice,
     source: &std::path::Path,
 ) -> Result<Outcome, InputError> {
     let mut rendered = crate::pipeline::render(scenario, mission)
         .map_err(|fault| InputError::new(source, fault))?;
-    rendered.keep_files_to_write(allow_unsafe);
+    rendered.keep_files_to_write(files.allow_unsafe);
+    let pdf_warning = if files.pdf {
+        print_sheet(&mut rendered.files)
+    } else {
+        None
+    };
     let contents = files_summary(&rendered.files);
     let mut outcome = Outcome::with_folder(String::new(), rendered.files, &contents);
     if let Some(folder) = outcome.folder.as_mut() {
         folder.report = rendered.report.to_text();
     }
+    outcome.warning = pdf_warning;
     if !rendered.verdict.safe {
-        if allow_unsafe {
+        if files.allow_unsafe {
             outcome.warning = Some(
                 "warning: the mission files were written although the preflight failed (--allow-unsafe)".into(),
             );
@@ -400,6 +406,37 @@ pub fn outcome(
         }
     }
     Ok(outcome)
+}
+
+/// What goes into a plan's folder besides what is always there.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct FolderChoice {
+    /// Write the mission files even when the preflight fails (`--allow-unsafe`).
+    pub allow_unsafe: bool,
+    /// Print `sheet.html` to `sheet.pdf` with a headless Chromium (`--pdf`).
+    pub pdf: bool,
+}
+
+/// Adds `sheet.pdf`, printed from `sheet.html`; without a browser, or when printing fails,
+/// the warning that says so (the folder is written without it).
+fn print_sheet(files: &mut Vec<(String, Vec<u8>)>) -> Option<String> {
+    let Some(browser) = crate::sheet::find_browser() else {
+        return Some(format!(
+            "warning: sheet.pdf not written: no Chromium found (install chromium, or set {} to a browser); print sheet.html from any browser instead",
+            crate::sheet::BROWSER_VARIABLE
+        ));
+    };
+    let html = files
+        .iter()
+        .find(|(name, _)| name == "sheet.html")
+        .map(|(_, bytes)| String::from_utf8_lossy(bytes).into_owned())?;
+    match crate::sheet::pdf(&browser, &html) {
+        Ok(bytes) => {
+            files.push(("sheet.pdf".to_string(), bytes));
+            None
+        }
+        Err(why) => Some(format!("warning: sheet.pdf not written: {why}")),
+    }
 }
 
 /// The files written, in one short line: mission files per sortie are counted, not listed.

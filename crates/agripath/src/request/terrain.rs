@@ -23,28 +23,48 @@ pub fn info(argument: &str, cell: Option<f64>, json: bool) -> Result<String, Inp
     let model = load_terrain(argument, cell)?;
     let extent = model.extent();
     let range = extent.and_then(|extent| model.height_range_m(extent));
+    let epsg = model.epsg();
+    let lon_lat_box = extent
+        .zip(epsg)
+        .and_then(|(extent, epsg)| crate::terrain::frame::lon_lat_box(epsg, extent));
+    let geographic = epsg.is_some_and(crate::terrain::frame::is_lon_lat);
+    // Width and height in metres: as given for a projected DEM; for one in degrees, along the
+    // parallel through its middle and along a meridian (1° of latitude is 111.13 km).
+    let size_m = extent.map(|e| {
+        if geographic {
+            let middle = (0.5 * (e.min_y + e.max_y)).to_radians();
+            (e.width() * 111_320.0 * middle.cos(), e.height() * 111_132.0)
+        } else {
+            (e.width(), e.height())
+        }
+    });
     if json {
         let value = serde_json::json!({
             "terrain": argument,
             "description": model.describe(),
+            "epsg": epsg,
             "extent": extent.map(|e| [e.min_x, e.min_y, e.max_x, e.max_y]),
+            "lon_lat_box": lon_lat_box,
+            "size_m": size_m.map(|(width, height)| [width, height]),
             "height_range_m": range.map(|(low, high)| [low, high]),
         });
         return Ok(serde_json::to_string_pretty(&value).expect("JSON value") + "\n");
     }
     let mut text = model.describe() + "\n";
-    text += &match extent {
-        Some(e) => format!(
-            "extent x {:.3}..{:.3}, y {:.3}..{:.3} ({:.1} × {:.1})\n",
-            e.min_x,
-            e.max_x,
-            e.min_y,
-            e.max_y,
-            e.width(),
-            e.height()
+    text += &match (extent, size_m) {
+        (Some(e), Some((width, height))) if geographic => format!(
+            "extent lon {:.6}..{:.6}, lat {:.6}..{:.6} (about {width:.1} × {height:.1} m)\n",
+            e.min_x, e.max_x, e.min_y, e.max_y
         ),
-        None => "extent unbounded\n".into(),
+        (Some(e), Some((width, height))) => format!(
+            "extent x {:.3}..{:.3}, y {:.3}..{:.3} ({width:.1} × {height:.1} m)\n",
+            e.min_x, e.max_x, e.min_y, e.max_y
+        ),
+        _ => "extent unbounded\n".into(),
     };
+    if let (Some([west, south, east, north]), false) = (lon_lat_box, geographic) {
+        text += &format!("lon/lat lon {west:.6}..{east:.6}, lat {south:.6}..{north:.6}\n");
+    }
     if let Some((low, high)) = range {
         text += &format!("heights {low:.3}..{high:.3} m\n");
     }
@@ -56,6 +76,7 @@ pub fn sample(
     argument: &str,
     cell: Option<f64>,
     coordinates: &[f64],
+    lon_lat: bool,
 ) -> Result<String, InputError> {
     if !coordinates.len().is_multiple_of(2) {
         return Err(InputError::new(
@@ -66,8 +87,24 @@ pub fn sample(
     let model = load_terrain(argument, cell)?;
     let mut lines = Vec::new();
     for pair in coordinates.chunks(2) {
+        // With --lonlat the pairs are LON LAT, taken to the DEM's own coordinates.
+        let (x, y) = if lon_lat {
+            model
+                .epsg()
+                .and_then(|epsg| crate::terrain::frame::from_lon_lat(epsg, pair[0], pair[1]))
+                .ok_or_else(|| {
+                    InputError::new(
+                        argument,
+                        Fault::Structure(
+                            "--lonlat needs a DEM whose file states a lon/lat or UTM coordinate system".into(),
+                        ),
+                    )
+                })?
+        } else {
+            (pair[0], pair[1])
+        };
         let height = model
-            .height_m(pair[0], pair[1])
+            .height_m(x, y)
             .map_err(|error| InputError::new(argument, Fault::Terrain(error)))?;
         lines.push(format!("{} {} {}", pair[0], pair[1], height));
     }

@@ -39,6 +39,56 @@ fn dem_coordinates(epsg: u32) -> Option<DemCoordinates> {
     }
 }
 
+/// The lon/lat box `[west, south, east, north]` of an extent given in EPSG `epsg`'s
+/// coordinates (a UTM grid or lon/lat), from its corners and edge midpoints; `None` for a
+/// coordinate system agripath does not place.
+pub fn lon_lat_box(epsg: u32, extent: Extent) -> Option<[f64; 4]> {
+    let dem = dem_coordinates(epsg)?;
+    let mut bounds = [
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    ];
+    for (fx, fy) in [
+        (0.0, 0.0),
+        (0.5, 0.0),
+        (1.0, 0.0),
+        (0.0, 0.5),
+        (1.0, 0.5),
+        (0.0, 1.0),
+        (0.5, 1.0),
+        (1.0, 1.0),
+    ] {
+        let x = extent.min_x + fx * extent.width();
+        let y = extent.min_y + fy * extent.height();
+        let (lon, lat) = match dem {
+            DemCoordinates::LonLat => (x, y),
+            DemCoordinates::Utm(zone) => from_utm(x, y, zone),
+        };
+        bounds = [
+            bounds[0].min(lon),
+            bounds[1].min(lat),
+            bounds[2].max(lon),
+            bounds[3].max(lat),
+        ];
+    }
+    Some(bounds)
+}
+
+/// A lon/lat point in EPSG `epsg`'s coordinates; `None` for a system agripath does not place.
+pub fn from_lon_lat(epsg: u32, lon: f64, lat: f64) -> Option<(f64, f64)> {
+    Some(match dem_coordinates(epsg)? {
+        DemCoordinates::LonLat => (lon, lat),
+        DemCoordinates::Utm(zone) => to_utm(lon, lat, zone),
+    })
+}
+
+/// Whether EPSG `epsg`'s coordinates are degrees of longitude and latitude.
+pub fn is_lon_lat(epsg: u32) -> bool {
+    dem_coordinates(epsg) == Some(DemCoordinates::LonLat)
+}
+
 /// A DEM queried through a change of coordinates.
 struct Reprojected {
     grid: Grid,

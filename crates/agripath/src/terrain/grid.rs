@@ -130,6 +130,10 @@ impl Grid {
 }
 
 impl Terrain for Grid {
+    fn epsg(&self) -> Option<u32> {
+        self.epsg
+    }
+
     fn height_m(&self, x: f64, y: f64) -> Result<f64, TerrainError> {
         let column_position = (x - self.first_center_x) / self.cell_x;
         let row_position = (self.first_center_y - y) / self.cell_y;

@@ -66,6 +66,11 @@ pub trait Terrain: Send + Sync {
     /// One line for people: what was read.
     fn describe(&self) -> String;
 
+    /// The EPSG code of the model's own coordinates, when its file states one.
+    fn epsg(&self) -> Option<u32> {
+        None
+    }
+
     /// Lowest and highest height over `within`, metres. The default samples a 257 × 257
     /// lattice; rasters override it with their exact range.
     fn height_range_m(&self, within: Extent) -> Option<(f64, f64)> {

@@ -3,6 +3,7 @@
 
 use std::path::Path;
 
+use agripath::request::plan::FolderChoice;
 use agripath::request::{self, terrain, write_folder, Failure, Outcome};
 use agripath::{Fault, InputError};
 
@@ -36,13 +37,20 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
             .map_err(|error| InputError::new("--out", Fault::Structure(error.to_string())))?;
     }
     match arguments.command {
-        Command::Demo { out } => plan::demo(&out),
+        Command::Demo { out, pdf } => plan::demo(
+            &out,
+            FolderChoice {
+                allow_unsafe: false,
+                pdf,
+            },
+        ),
         Command::Plan {
             inputs,
             options,
             allow_unsafe,
+            pdf,
             out,
-        } => plan::plan(&inputs, &options, allow_unsafe, &out),
+        } => plan::plan(&inputs, &options, FolderChoice { allow_unsafe, pdf }, &out),
         Command::Check { folder, inputs } => finish(None, request::check(&inputs, &folder)?),
         Command::Repro {
             table,
@@ -72,8 +80,9 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
                 TerrainAction::Sample {
                     terrain,
                     coordinates,
+                    lonlat,
                     cell,
-                } => terrain::sample(&terrain, cell, &coordinates)?,
+                } => terrain::sample(&terrain, cell, &coordinates, lonlat)?,
                 TerrainAction::Hillshade {
                     terrain,
                     out,

@@ -2,23 +2,23 @@
 
 use std::path::Path;
 
-use agripath::request::plan::{outcome, plan_demo};
+use agripath::request::plan::{outcome, plan_demo, FolderChoice};
 use agripath::request::Failure;
 
 use super::finish;
 use agripath::request::plan::PlanOptions;
 use agripath::request::ScenarioInputs;
 
-pub(super) fn demo(out: &Path) -> Result<(), Failure> {
+pub(super) fn demo(out: &Path, files: FolderChoice) -> Result<(), Failure> {
     let (scenario, mission) = plan_demo()?;
     let source = Path::new(agripath::demo::FARM_LABEL);
-    finish(Some(out), outcome(&scenario, &mission, false, source)?)
+    finish(Some(out), outcome(&scenario, &mission, files, source)?)
 }
 
 pub(super) fn plan(
     inputs: &ScenarioInputs,
     options: &PlanOptions,
-    allow_unsafe: bool,
+    files: FolderChoice,
     out: &Path,
 ) -> Result<(), Failure> {
     let (scenario, settings) = options.load(inputs)?;
@@ -30,7 +30,7 @@ pub(super) fn plan(
         .map_err(|fault| agripath::InputError::new(&scenario.farm.source, fault))?;
     spinner.set_message("writing mission files, checking them as flown, maps");
     let source = &scenario.farm.source;
-    let result = outcome(&scenario, &mission, allow_unsafe, source)
+    let result = outcome(&scenario, &mission, files, source)
         .map_err(Failure::from)
         .and_then(|outcome| finish(Some(out), outcome));
     spinner.finish_and_clear();
