@@ -47,49 +47,88 @@ fn sortie_rows(sheet: &str) -> Vec<&str> {
         .collect()
 }
 
+/// Every example scenario: one map layer, one viewer sortie and one sheet row per mission
+/// file, and the sheet's litres add up to the report's.
 #[test]
-fn the_sheet_lists_every_sortie_and_its_litres_add_up_to_the_report() {
-    let folder = scratch("island");
-    let out = folder.join("plan");
-    let scenario = data("scenarios/christmas_island.toml");
-    succeeded(&agripath_without_browser(&[
-        "plan",
-        scenario.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]));
-    let sheet = std::fs::read_to_string(out.join("sheet.html")).unwrap();
-    let report = report(&out);
-    let sorties = report["sorties"].as_u64().unwrap() as usize;
-    assert!(sorties > 1);
-    let rows = sortie_rows(&sheet);
-    assert_eq!(rows.len(), sorties, "one row per sortie_NN.plan");
-    // Litres per row, read back from the page, add up to the report's total.
-    let litres: f64 = rows
-        .iter()
-        .map(|row| {
-            let cells: Vec<&str> = row.split("<td class=\"number\">").collect();
-            cells[3].split('<').next().unwrap().parse::<f64>().unwrap()
-        })
-        .sum();
-    let total = report["litres"].as_f64().unwrap();
-    assert!(
-        (litres - total).abs() <= 0.05 * sorties as f64,
-        "rows {litres} L, report {total} L"
-    );
-    // Places in the input's terms: the supply point in lon/lat, the preflight's verdict.
-    let supply = &report["supply"]["lon_lat"];
-    assert!(sheet.contains(&format!("{:.6}", supply[0].as_f64().unwrap())));
-    assert!(
-        sheet.contains("SAFE"),
-        "the preflight verdict is on the sheet"
-    );
-    assert!(sheet.contains("<svg"), "the map is inlined");
-    assert!(
-        !sheet.contains("src=\"http"),
-        "nothing fetched from the network"
-    );
-    assert!(!out.join("sheet.pdf").exists(), "no PDF unless --pdf");
+fn every_example_scenario_has_a_map_layer_and_a_sheet_row_per_sortie() {
+    let folder = scratch("scenarios");
+    let mut scenarios: Vec<PathBuf> = std::fs::read_dir(data("scenarios"))
+        .unwrap()
+        .map(|entry| entry.unwrap().path())
+        .filter(|path| path.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    scenarios.sort();
+    assert!(scenarios.len() >= 5, "{scenarios:?}");
+    let mut with_litres = 0;
+    for scenario in &scenarios {
+        let out = folder.join(scenario.file_stem().unwrap());
+        succeeded(&agripath_without_browser(&[
+            "plan",
+            scenario.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+        ]));
+        let report = report(&out);
+        let sorties = report["sorties"].as_u64().unwrap() as usize;
+        let files = std::fs::read_dir(&out)
+            .unwrap()
+            .filter(|entry| {
+                let name = entry.as_ref().unwrap().file_name();
+                let name = name.to_string_lossy();
+                name.starts_with("sortie_") && name.ends_with(".plan")
+            })
+            .count();
+        assert_eq!(files, sorties, "{scenario:?}: mission files");
+        let map = std::fs::read_to_string(out.join("plan.svg")).unwrap();
+        assert_eq!(
+            map.matches("class=\"sortie\"").count(),
+            sorties,
+            "{scenario:?}: map layers"
+        );
+        let plan: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(out.join("plan.geojson")).unwrap()).unwrap();
+        let mut numbers: Vec<u64> = plan["features"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter_map(|feature| feature["properties"]["sortie"].as_u64())
+            .collect();
+        numbers.sort();
+        numbers.dedup();
+        assert_eq!(numbers.len(), sorties, "{scenario:?}: plan.geojson sorties");
+        let sheet = std::fs::read_to_string(out.join("sheet.html")).unwrap();
+        let rows = sortie_rows(&sheet);
+        assert_eq!(rows.len(), sorties, "{scenario:?}: sheet rows");
+        assert!(
+            sheet.contains("<svg") && !sheet.contains("src=\"http"),
+            "map inlined"
+        );
+        assert!(
+            sheet.contains("SAFE"),
+            "{scenario:?}: the preflight verdict"
+        );
+        if let Some(total) = report["litres"].as_f64() {
+            with_litres += 1;
+            // Litres per row, read back from the page, add up to the report's total.
+            let litres: f64 = rows
+                .iter()
+                .map(|row| {
+                    let cells: Vec<&str> = row.split("<td class=\"number\">").collect();
+                    cells[3].split('<').next().unwrap().parse::<f64>().unwrap()
+                })
+                .sum();
+            assert!(
+                (litres - total).abs() <= 0.05 * sorties as f64,
+                "{scenario:?}: rows {litres} L, report {total} L"
+            );
+            // The supply point in the input's terms: lon/lat for a lon/lat farm.
+            if let Some(lon) = report["supply"]["lon_lat"][0].as_f64() {
+                assert!(sheet.contains(&format!("{lon:.6}")), "{scenario:?}");
+            }
+        }
+        assert!(!out.join("sheet.pdf").exists(), "no PDF unless --pdf");
+    }
+    assert!(with_litres >= 1, "a scenario with an application rate");
     let _ = std::fs::remove_dir_all(&folder);
 }
 
@@ -195,4 +234,27 @@ fn terrain_info_gives_lon_lat_and_metres_and_sample_takes_lon_lat() {
         .parse()
         .unwrap();
     assert!((48.9..296.1).contains(&height), "{by_lon_lat}");
+}
+
+#[test]
+fn skipped_and_repaired_features_are_named_not_dropped() {
+    let fields = data("test/road_and_open_ring.kml");
+    for command in ["validate", "plan"] {
+        let folder = scratch(command);
+        let mut arguments = vec![command, "--fields", fields.to_str().unwrap()];
+        let out = folder.join("out");
+        if command == "plan" {
+            arguments.extend(["--out", out.to_str().unwrap()]);
+        }
+        let text = succeeded(&agripath_without_browser(&arguments));
+        assert!(
+            text.contains("Placemark 1 (farm road): a LineString is not planned"),
+            "{text}"
+        );
+        assert!(
+            text.contains("Placemark 0 (North): the boundary was not closed"),
+            "{text}"
+        );
+        let _ = std::fs::remove_dir_all(&folder);
+    }
 }

@@ -134,6 +134,7 @@ pub fn irregular_farm(seed: u64, swaths: usize, swath_width_m: f64) -> Farm {
         access: vec![],
         embedded_terrain: None,
         stated_swath_width_m: None,
+        notes: Vec::new(),
     }
 }
 

@@ -119,6 +119,7 @@ pub fn build(
     };
 
     let mut fields = Vec::new();
+    let mut notes = Vec::new();
     let mut obstacles = Vec::new();
     let mut markers = Vec::new();
     let mut access = Vec::new();
@@ -171,6 +172,16 @@ pub fn build(
                             error
                         }
                     };
+                    for (ring_index, ring) in rings.iter().enumerate() {
+                        if ring.len() > 2 && ring.first() != ring.last() {
+                            notes.push(format!(
+                                "{}{}: {} was not closed (its last position is not its first); closed it",
+                                feature.place,
+                                if several { format!(", polygon {}", part + 1) } else { String::new() },
+                                if ring_index == 0 { "the boundary".to_string() } else { format!("hole {ring_index}") }
+                            ));
+                        }
+                    }
                     let polygon = build_polygon(rings, &project).map_err(|fault| {
                         part_place(fault_here(in_input_terms(fault, coordinate_system)))
                     })?;
@@ -221,6 +232,7 @@ pub fn build(
         access,
         embedded_terrain,
         stated_swath_width_m: None,
+        notes,
     };
     let bounds = farm.bounds();
     let extent = bounds.width().max(bounds.height());

@@ -107,14 +107,16 @@ impl InputError {
 
 /// Parses KML text; `path` only names the source in errors.
 pub fn parse(path: &Path, text: &str, choice: CoordinateChoice) -> Result<Farm, InputError> {
-    let features = read_features(text).map_err(|(place, fault)| {
+    let (features, skipped) = read_features(text).map_err(|(place, fault)| {
         let error = InputError::new(path, fault);
         match place {
             Some(place) => error.at(place),
             None => error,
         }
     })?;
-    build(path, features, choice == CoordinateChoice::FromFile, None)
+    let mut farm = build(path, features, choice == CoordinateChoice::FromFile, None)?;
+    farm.notes.extend(skipped);
+    Ok(farm)
 }
 
 type Located = (Option<String>, Fault);
@@ -179,7 +181,8 @@ enum FolderKind {
 /// (name, ExtendedData kind), Folder (name), Polygon with outer and inner LinearRings,
 /// MultiGeometry (by walking into it), Point, LineString (for access features); everything
 /// else is skipped.
-fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
+/// The features, and one line for each placemark skipped (a drawn path that is not a road).
+fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> {
     let xml_fault = |message: String| (None, Fault::Kml(message));
     let mut reader = Reader::from_str(text);
     let mut stack: Vec<String> = Vec::new();
@@ -190,6 +193,7 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
     let mut data_name: Option<String> = None;
     let mut text_buffer = String::new();
     let mut features = Vec::new();
+    let mut skipped = Vec::new();
     let mut saw_kml = false;
     loop {
         let position = reader.buffer_position();
@@ -368,8 +372,15 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
                                 Some(RawGeometry::Lines(state.lines))
                             }
                             // Any other LineString placemark (a drawn path) is not an area:
-                            // skip it.
-                            (true, None) => None,
+                            // skip it, and say so.
+                            (true, None) => {
+                                if !state.lines.is_empty() {
+                                    skipped.push(format!(
+                                        "{place}: a LineString is not planned (not a field); give it kind 'access' or put it in a Folder named access to use it as a road"
+                                    ));
+                                }
+                                None
+                            }
                         };
                         if let Some(geometry) = geometry {
                             features.push(RawFeature {
@@ -401,7 +412,7 @@ fn read_features(text: &str) -> Result<Vec<RawFeature>, Located> {
             "no <kml> element: this is not a KML document".into(),
         ));
     }
-    Ok(features)
+    Ok((features, skipped))
 }
 
 fn local_name(bytes: &[u8]) -> String {

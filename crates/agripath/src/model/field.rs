@@ -174,6 +174,9 @@ pub struct Farm {
     /// A swath width the field file states (the top-level `swath_width_m` of seed 004's
     /// files), for commands that plan without a vehicle.
     pub stated_swath_width_m: Option<f64>,
+    /// What the reader skipped or repaired, one line each, naming the feature (a drawn path
+    /// that is not a road, a ring it closed): printed as `note:` lines, never silent.
+    pub notes: Vec<String>,
 }
 
 impl Farm {

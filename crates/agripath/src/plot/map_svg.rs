@@ -21,6 +21,18 @@ pub const SORTIE_COLOURS: [&str; 10] = [
     "#882255", "#117733",
 ];
 
+/// The colour of sortie `sortie` of `count`: the palette's ten while they suffice; past
+/// ten, hues spread by the golden angle at three lightnesses, so that no two sorties of a
+/// plan share a colour and neighbours differ.
+pub fn sortie_colour(sortie: usize, count: usize) -> String {
+    if count <= SORTIE_COLOURS.len() {
+        return SORTIE_COLOURS[sortie].to_string();
+    }
+    let hue = (sortie as f64 * 137.507_764).rem_euclid(360.0);
+    let lightness = [38.0, 50.0, 30.0][sortie % 3];
+    format!("hsl({hue:.1},70%,{lightness:.0}%)")
+}
+
 /// A picture under the map: PNG bytes and the plan-metre box it covers.
 pub struct Underlay<'a> {
     /// The picture, PNG bytes.
@@ -38,6 +50,8 @@ pub struct Underlay<'a> {
 const WIDTH_PX: f64 = 1200.0;
 const PAD_PX: f64 = 40.0;
 const LEGEND_PX: f64 = 95.0;
+/// Sortie swatches per legend row.
+const LEGEND_PER_ROW: usize = 50;
 
 struct Canvas {
     min_x: f64,
@@ -193,35 +207,63 @@ pub fn plan_svg(
         };
     }
     let _ = writeln!(svg, "</g>");
-    // Strips first, lines over them.
-    let _ = writeln!(
-        svg,
-        r##"<g id="strips" fill="none" stroke-linecap="butt" stroke-linejoin="miter" stroke-opacity="0.22">"##
-    );
-    for (index, visit) in route.visits.iter().enumerate() {
-        let colour = SORTIE_COLOURS[sortie_of(index) % SORTIE_COLOURS.len()];
+    // One layer per sortie (`sortie-NN`, numbered as the mission files): its strips, then its
+    // passes over them, in the sortie's own colour.
+    let sortie_count = sorties.map_or(1, |split| split.plan.sorties.len());
+    for sortie in 0..sortie_count {
+        let colour = sortie_colour(sortie, sortie_count);
+        let visits: Vec<(usize, &crate::sequence::Visit)> = route
+            .visits
+            .iter()
+            .enumerate()
+            .filter(|&(index, _)| sortie_of(index) == sortie)
+            .collect();
         let _ = writeln!(
             svg,
-            r##"<path d="{}" stroke="{colour}" stroke-width="{strip_px:.2}"/>"##,
-            canvas.line(&visit.points)
+            r##"<g id="sortie-{:02}" class="sortie" stroke="{colour}" fill="none">"##,
+            sortie + 1
         );
-    }
-    let _ = writeln!(svg, "</g>");
-    let _ = writeln!(svg, r##"<g id="passes" fill="none" stroke-width="1">"##);
-    for (index, visit) in route.visits.iter().enumerate() {
-        let colour = SORTIE_COLOURS[sortie_of(index) % SORTIE_COLOURS.len()];
-        // Edge passes dashed, so they read apart from the swaths of the same sortie.
-        let dash = match visit.pass {
-            Pass::Swath { .. } => "",
-            Pass::Edge { .. } => r#" stroke-dasharray="6 2""#,
-        };
         let _ = writeln!(
             svg,
-            r##"<path d="{}" stroke="{colour}"{dash}/>"##,
-            canvas.line(&visit.points)
+            r##"<g stroke-linecap="butt" stroke-linejoin="miter" stroke-opacity="0.22" stroke-width="{strip_px:.2}">"##
         );
+        for (_, visit) in &visits {
+            let _ = writeln!(svg, r##"<path d="{}"/>"##, canvas.line(&visit.points));
+        }
+        let _ = writeln!(svg, r##"</g><g stroke-width="1">"##);
+        for (_, visit) in &visits {
+            // Edge passes dashed, so they read apart from the swaths of the same sortie.
+            let dash = match visit.pass {
+                Pass::Swath { .. } => "",
+                Pass::Edge { .. } => r#" stroke-dasharray="6 2""#,
+            };
+            let _ = writeln!(svg, r##"<path d="{}"{dash}/>"##, canvas.line(&visit.points));
+        }
+        let _ = writeln!(svg, "</g></g>");
     }
-    let _ = writeln!(svg, "</g>");
+    // The sortie numbers, at the first pass each sortie begins, over every line.
+    if sortie_count > 1 {
+        let _ = writeln!(
+            svg,
+            r##"<g id="sortie-numbers" font-size="11" font-weight="bold" text-anchor="middle">"##
+        );
+        for sortie in 0..sortie_count {
+            let Some(first) = (0..route.visits.len()).find(|&index| sortie_of(index) == sortie)
+            else {
+                continue;
+            };
+            let point = route.visits[first].points[0];
+            let (x, y) = (canvas.x(point.x), canvas.y(point.y));
+            let _ = writeln!(
+                svg,
+                r##"<circle cx="{x:.2}" cy="{y:.2}" r="8" fill="white" stroke="{}" stroke-width="2"/><text x="{x:.2}" y="{:.2}" fill="#111">{}</text>"##,
+                sortie_colour(sortie, sortie_count),
+                y + 4.0,
+                sortie + 1
+            );
+        }
+        let _ = writeln!(svg, "</g>");
+    }
     let _ = writeln!(
         svg,
         r##"<g id="transfers" fill="none" stroke-width="1.1" stroke-dasharray="4 3">"##
@@ -279,34 +321,34 @@ pub fn plan_svg(
                 canvas.x(centre.x()),
                 canvas.y(centre.y()),
                 escape(&field.name),
-                coverage.heading.heading_deg
+                crate::geometry::swath_bearing_deg(coverage.heading.heading_deg)
             );
         }
     }
     let _ = writeln!(svg, "</g>");
     // Legend, scale bar, north arrow along the bottom.
     let base = height_px - LEGEND_PX + 55.0;
-    let sortie_count = sorties.map_or(1, |split| split.plan.sorties.len());
-    let shown = sortie_count.min(SORTIE_COLOURS.len());
-    for (k, colour) in SORTIE_COLOURS.iter().enumerate().take(shown) {
-        let x = PAD_PX + 60.0 + k as f64 * 16.0;
+    // One numbered swatch per sortie, in rows of LEGEND_PER_ROW (so 35 sorties read as 35).
+    let rows = sortie_count.div_ceil(LEGEND_PER_ROW).max(1);
+    for sortie in 0..sortie_count {
+        let (row, column) = (sortie / LEGEND_PER_ROW, sortie % LEGEND_PER_ROW);
+        let x = PAD_PX + 60.0 + column as f64 * 18.0;
+        let y = base - 36.0 - (rows - 1 - row) as f64 * 13.0;
         let _ = writeln!(
             svg,
-            r##"<rect x="{x:.0}" y="{:.0}" width="14" height="10" fill="{colour}"/>"##,
-            base - 27.0
+            r##"<rect x="{x:.0}" y="{y:.0}" width="16" height="11" fill="{}"/><text x="{:.0}" y="{:.0}" font-size="8" text-anchor="middle" fill="white">{}</text>"##,
+            sortie_colour(sortie, sortie_count),
+            x + 8.0,
+            y + 8.5,
+            sortie + 1
         );
     }
     let _ = writeln!(
         svg,
-        r##"<text x="{PAD_PX}" y="{:.0}" font-size="12" fill="#222">sorties</text><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">1 … {sortie_count}{}  (swaths solid, edge passes dashed)</text>"##,
-        base - 18.0,
-        PAD_PX + 66.0 + shown as f64 * 16.0,
-        base - 18.0,
-        if sortie_count > SORTIE_COLOURS.len() {
-            ", colours repeat"
-        } else {
-            ""
-        }
+        r##"<text x="{PAD_PX}" y="{:.0}" font-size="12" fill="#222">sorties</text><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">{sortie_count} (numbered at each sortie's first pass; swaths solid, edge passes dashed)</text>"##,
+        base - 27.0,
+        PAD_PX + 66.0 + sortie_count.min(LEGEND_PER_ROW) as f64 * 18.0,
+        base - 27.0,
     );
     let items = [
         ("#ef6c00", "transfer", "4 3"),

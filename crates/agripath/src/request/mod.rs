@@ -156,7 +156,13 @@ pub fn validate(inputs: &ScenarioInputs, json: bool) -> Result<String, InputErro
     Ok(if json {
         serde_json::to_string_pretty(&summary).expect("a summary serialises") + "\n"
     } else {
-        summary.to_text() + "valid\n"
+        let notes: String = scenario
+            .farm
+            .notes
+            .iter()
+            .map(|note| format!("note: {note}\n"))
+            .collect();
+        summary.to_text() + &notes + "valid\n"
     })
 }
 

@@ -391,7 +391,13 @@ pub fn outcome(
         None
     };
     let contents = files_summary(&rendered.files);
-    let mut outcome = Outcome::with_folder(String::new(), rendered.files, &contents);
+    let notes: String = scenario
+        .farm
+        .notes
+        .iter()
+        .map(|note| format!("note: {}: {note}\n", scenario.farm.source.display()))
+        .collect();
+    let mut outcome = Outcome::with_folder(notes, rendered.files, &contents);
     if let Some(folder) = outcome.folder.as_mut() {
         folder.report = rendered.report.to_text();
     }

@@ -315,6 +315,7 @@ mod tests {
             access: vec![],
             embedded_terrain: None,
             stated_swath_width_m: None,
+            notes: Vec::new(),
         }
     }
 

@@ -332,6 +332,7 @@ mod tests {
             access: vec![],
             embedded_terrain: None,
             stated_swath_width_m: None,
+            notes: Vec::new(),
         }
     }
 
