@@ -64,6 +64,7 @@ fn random_farm(fields: usize, swaths: usize, seed: u64) -> Farm {
         access: vec![],
         embedded_terrain: None,
         stated_swath_width_m: None,
+        notes: Vec::new(),
     }
 }
 
