@@ -82,6 +82,14 @@ pub enum Command {
         /// Seed of the random streams.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// seed000-table2: the reading of the text's open choices (paper, engine, or one of
+        /// those --ablation lists; join changes with '+'; with --ablation, a comma-separated
+        /// list of readings to compare with paper; docs/decisions/0020).
+        #[arg(long, default_value = "paper")]
+        variant: String,
+        /// seed000-table2: run every named reading and print the ablation table.
+        #[arg(long)]
+        ablation: bool,
         /// Also write the tables (Markdown, CSV) and plots into this folder.
         #[arg(long)]
         out: Option<PathBuf>,

@@ -954,9 +954,14 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "unknown algorithm 'nope'",
         ),
         (
-            bench_with(&["--runs", "1", "--functions", "f3", "--dim", "30"]),
+            bench_with(&["--runs", "1", "--functions", "f3", "--dim", "20"]),
             "--dim".into(),
-            "only 50",
+            "10, 30, 50 (the dimensions with a published rotation matrix)",
+        ),
+        (
+            bench_with(&["--runs", "1", "--functions", "f7", "--dim", "1"]),
+            "--dim".into(),
+            "2 or more",
         ),
         (
             bench_with(&["--runs", "0", "--dim", "5"]),

@@ -24,6 +24,7 @@
 //!   decision 10); parallel runs equal to serial ones;
 //! - [`functions`]: seed 000 Table 1, with the official CEC 2005 data;
 //! - [`conformance`]: the checks every optimizer passes;
+//! - [`readings`]: the open choices of seed 000's algorithms, as named settings;
 //! - [`statistics`]: best, worst, mean and deviation of runs, for every table.
 
 #![warn(missing_docs)]
@@ -33,12 +34,14 @@ pub mod conformance;
 pub mod functions;
 pub mod problem;
 pub mod random;
+pub mod readings;
 pub mod runner;
 pub mod statistics;
 
 pub use algorithms::Algorithm;
 pub use problem::{as_solution, Bounds, BoundsError, BoxProblem, FnProblem, Problem, SolutionOf};
 pub use random::{below, run_stream, uniform, RunStream};
+pub use readings::Readings;
 pub use runner::{
     Continuous, ContinuousOptimizer, Observer, Optimizer, Outcome, Record, Runner, Search,
     StopReason, Termination, TerminationError,

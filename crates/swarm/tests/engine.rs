@@ -51,7 +51,18 @@ fn cec2005_functions_match_the_published_vectors() {
 
 #[test]
 fn f3_refuses_dimensions_without_a_rotation_matrix() {
-    assert!(FunctionProblem::new(functions::by_key("f3").unwrap(), 30).is_err());
+    let f3 = functions::by_key("f3").unwrap();
+    assert!(FunctionProblem::new(f3, 20).is_err());
+    for dimension in [10, 30, 50] {
+        assert!(FunctionProblem::new(f3, dimension).is_ok());
+    }
+    let error = f3.check_dimension(40).unwrap_err().to_string();
+    assert!(error.contains("10, 30, 50"), "{error}");
+    let one = functions::by_key("f7")
+        .unwrap()
+        .check_dimension(1)
+        .unwrap_err();
+    assert!(one.to_string().contains("2 or more"), "{one}");
     assert!(FunctionProblem::new(functions::by_key("f1").unwrap(), 101).is_err());
     assert!(FunctionProblem::new(functions::by_key("f1").unwrap(), 50).is_ok());
 }
@@ -101,4 +112,25 @@ fn an_optimizer_that_declares_convergence_ends_its_run_there() {
     let outcome = runner.run(&mut GivesUp, &problem, 0);
     assert_eq!(outcome.stopped_by, swarm::StopReason::Converged);
     assert_eq!((outcome.iterations, outcome.evaluations), (3, 4));
+}
+
+#[test]
+fn f3_at_d10_and_d30_matches_numpy() {
+    // tests/data/f3_rotated_vectors.json: NumPy's F3 from the same official data files.
+    let text = include_str!("data/f3_rotated_vectors.json");
+    let data: serde_json::Value = serde_json::from_str(text).unwrap();
+    let function = functions::by_key("f3").unwrap();
+    let mut dimensions = Vec::new();
+    for case in data["cases"].as_array().unwrap() {
+        let point: Vec<f64> = serde_json::from_value(case["point"].clone()).unwrap();
+        let want = case["value"].as_f64().unwrap();
+        function.check_dimension(point.len()).unwrap();
+        let got = function.evaluate(&point);
+        let error = (got - want).abs() / want.abs().max(1.0);
+        assert!(error <= 1e-12, "D = {}: {got} vs {want}", point.len());
+        dimensions.push(point.len());
+    }
+    dimensions.dedup();
+    assert_eq!(dimensions, vec![10, 30]);
+    assert!(function.check_dimension(20).is_err());
 }

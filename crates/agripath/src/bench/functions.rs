@@ -38,6 +38,9 @@ pub struct FunctionBench {
     pub functions: Vec<&'static TestFunction>,
     /// The base seed; run r draws from its own stream derived from it.
     pub seed: u64,
+    /// The readings of the algorithms' open choices (issue 20); `bench functions` keeps
+    /// decision 0007's, `repro seed000-table2` takes `--variant`.
+    pub readings: swarm::Readings,
 }
 
 impl FunctionBench {
@@ -52,6 +55,7 @@ impl FunctionBench {
             algorithms: Algorithm::SEED_000.to_vec(),
             functions: swarm::functions::TABLE_1.iter().collect(),
             seed: 1,
+            readings: swarm::Readings::ENGINE,
         }
     }
 
@@ -149,7 +153,7 @@ impl FunctionBench {
                 FunctionProblem::new(function, self.dimension).expect("dimensions were validated");
             for &algorithm in &self.algorithms {
                 let outcomes = runner.run_many(
-                    || algorithm.build(self.population),
+                    || algorithm.build_read(self.population, &self.readings),
                     &problem,
                     self.runs,
                     &|_| finished(),
@@ -200,6 +204,9 @@ pub struct Cell {
     pub finals: Vec<f64>,
     /// Mean best cost over the runs against evaluations spent.
     pub convergence: Vec<(f64, f64)>,
+    /// The runs' lower quartile, median and upper quartile of the best cost against
+    /// evaluations spent: (evaluations, q1, median, q3).
+    pub quartiles: Vec<(f64, f64, f64, f64)>,
 }
 
 impl Cell {
@@ -229,13 +236,23 @@ impl Cell {
             algorithm,
             statistics,
             finals,
-            convergence: mean_curve(outcomes, budget),
+            convergence: curve(outcomes, budget, |values| {
+                values.iter().sum::<f64>() / values.len() as f64
+            }),
+            quartiles: curve(outcomes, budget, |values| values.to_vec())
+                .into_iter()
+                .map(|(x, values)| {
+                    let q = |p| swarm::statistics::quantile(&values, p);
+                    (x, q(0.25), q(0.5), q(0.75))
+                })
+                .collect(),
         }
     }
 }
 
-/// The mean over runs of the best cost after `budget·i/CURVE_POINTS` evaluations.
-fn mean_curve(outcomes: &[Outcome], budget: u64) -> Vec<(f64, f64)> {
+/// `summary` over runs of the best cost after `budget·i/CURVE_POINTS` evaluations (where
+/// every run has a record by then).
+fn curve<T>(outcomes: &[Outcome], budget: u64, summary: impl Fn(&[f64]) -> T) -> Vec<(f64, T)> {
     let mut curve = Vec::with_capacity(CURVE_POINTS + 1);
     for step in 0..=CURVE_POINTS {
         let spent = budget * step as u64 / CURVE_POINTS as u64;
@@ -251,10 +268,7 @@ fn mean_curve(outcomes: &[Outcome], budget: u64) -> Vec<(f64, f64)> {
             })
             .collect();
         if values.len() == outcomes.len() && !values.is_empty() {
-            curve.push((
-                spent as f64,
-                values.iter().sum::<f64>() / values.len() as f64,
-            ));
+            curve.push((spent as f64, summary(&values)));
         }
     }
     curve
@@ -423,6 +437,7 @@ mod tests {
                 swarm::functions::by_key("f7").unwrap(),
             ],
             seed: 5,
+            readings: swarm::Readings::ENGINE,
         }
     }
 
@@ -460,7 +475,7 @@ mod tests {
     #[test]
     fn bad_settings_are_refused_before_running() {
         let mut settings = small();
-        settings.dimension = 30;
+        settings.dimension = 20;
         settings.functions = vec![swarm::functions::by_key("f3").unwrap()];
         assert!(settings.validate().is_err());
         let mut settings = small();

@@ -80,8 +80,8 @@ impl TurnProblem {
         (ca - cb).abs() + (ra - rb).abs() == 1
     }
 
-    /// Turns of the route visiting the points in `order`, plus 1,000 per move through an
-    /// obstacle.
+    /// Turns of the route visiting the points in `order` (a reversal in place counts two),
+    /// plus 1,000 per move through an obstacle.
     pub fn cost(&self, order: &[usize]) -> usize {
         let mut turns = 0;
         let mut previous: Option<(i64, i64)> = None;
@@ -93,8 +93,11 @@ impl TurnProblem {
             let (ca, ra) = self.cells[a];
             let (cb, rb) = self.cells[b];
             let direction = reduced(cb - ca, rb - ra);
-            if previous.is_some_and(|p| p != direction) {
-                turns += 1;
+            match previous {
+                // Straight back along the last move: a 180° turn, counted as two (issue 20).
+                Some(p) if p == (-direction.0, -direction.1) => turns += 2,
+                Some(p) if p != direction => turns += 1,
+                _ => {}
             }
             previous = Some(direction);
         }

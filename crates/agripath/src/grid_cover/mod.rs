@@ -8,7 +8,7 @@
 //! also pass through transit vertices (to go round an obstacle) without visiting anything.
 //!
 //! Turns (MISSION.md decision 5): every change of direction at a vertex of the flown
-//! polyline, whatever its angle; a U-turn between neighbouring rows is two turns.
+//! polyline, whatever its angle; a U-turn between neighbouring rows is two turns, and so is a reversal in place.
 //!
 //! Methods, chosen by value: `hpso` (the seed's hybrid PSO, [`hybrid_pso`]), `baseline`
 //! (boustrophedon cell decomposition, fixed order, [`boustrophedon`]) and `ours`
@@ -437,8 +437,19 @@ impl GridRoute {
             let length = dx.hypot(dy);
             (dx / length, dy / length)
         };
-        // Lattice moves: any change of direction at all is a turn.
+        // Lattice moves: any change of direction at all is a turn, and a reversal in place
+        // (straight back along the leg just flown) is two: the aircraft turns through 180°,
+        // as a U-turn's two 90° turns do (issue 20; HPSO's cost counts it the same way).
         measure.turns = crate::geometry::turn_count(&line, 1e-9);
+        for triple in line.windows(3) {
+            let (u, w) = (
+                direction(triple[0], triple[1]),
+                direction(triple[1], triple[2]),
+            );
+            if u.0 * w.0 + u.1 * w.1 < -0.999_999 {
+                measure.turns += 1;
+            }
+        }
         // A U-turn: a run, a sideways step, a run back.
         for quad in line.windows(4) {
             let (u, w) = (direction(quad[0], quad[1]), direction(quad[2], quad[3]));

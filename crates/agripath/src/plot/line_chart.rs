@@ -71,17 +71,42 @@ pub fn render(chart: &Chart, series: &[Series]) -> String {
 
 /// The chart with series `i` drawn in `colours[i]` (the palette's order beyond them).
 pub fn render_coloured(chart: &Chart, series: &[Series], colours: &[&str]) -> String {
-    let transformed: Vec<Vec<(f64, f64)>> = series
+    render_banded(chart, series, &[], colours)
+}
+
+/// Points kept on the chart's y scale (finite; positive and as log10 with `log_y`).
+fn on_scale(chart: &Chart, points: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    points
         .iter()
-        .map(|s| {
-            s.points
-                .iter()
-                .filter(|(x, y)| x.is_finite() && y.is_finite() && (!chart.log_y || *y > 0.0))
-                .map(|&(x, y)| (x, if chart.log_y { y.log10() } else { y }))
-                .collect()
+        .filter(|(x, y)| x.is_finite() && y.is_finite() && (!chart.log_y || *y > 0.0))
+        .map(|&(x, y)| (x, if chart.log_y { y.log10() } else { y }))
+        .collect()
+}
+
+/// The chart with a shaded band behind series `i`: `bands[i]` holds (x, low, high), e.g.
+/// the inter-quartile range of the runs around their median.
+pub fn render_banded(
+    chart: &Chart,
+    series: &[Series],
+    bands: &[Vec<(f64, f64, f64)>],
+    colours: &[&str],
+) -> String {
+    let transformed: Vec<Vec<(f64, f64)>> =
+        series.iter().map(|s| on_scale(chart, &s.points)).collect();
+    type Edges = (Vec<(f64, f64)>, Vec<(f64, f64)>);
+    let band_edges: Vec<Edges> = bands
+        .iter()
+        .map(|band| {
+            let low: Vec<(f64, f64)> = band.iter().map(|&(x, low, _)| (x, low)).collect();
+            let high: Vec<(f64, f64)> = band.iter().map(|&(x, _, high)| (x, high)).collect();
+            (on_scale(chart, &low), on_scale(chart, &high))
         })
         .collect();
-    let all = transformed.iter().flatten();
+    let all = transformed.iter().flatten().chain(
+        band_edges
+            .iter()
+            .flat_map(|(low, high)| low.iter().chain(high)),
+    );
     let (mut min_x, mut max_x, mut min_y, mut max_y) = (f64::MAX, f64::MIN, f64::MAX, f64::MIN);
     for &(x, y) in all {
         min_x = min_x.min(x);
@@ -172,6 +197,30 @@ pub fn render_coloured(chart: &Chart, series: &[Series], colours: &[&str]) -> St
         TOP + plot_height / 2.0,
         escape(chart.y_label)
     );
+    for (index, (low, high)) in band_edges.iter().enumerate() {
+        if low.is_empty() || high.is_empty() {
+            continue;
+        }
+        let colour = colours
+            .get(index)
+            .copied()
+            .unwrap_or(COLOURS[index % COLOURS.len()]);
+        let mut data = String::new();
+        let outline = low.iter().chain(high.iter().rev());
+        for (k, &(x, y)) in outline.enumerate() {
+            let _ = write!(
+                data,
+                "{}{:.1},{:.1}",
+                if k == 0 { "M" } else { " L" },
+                px(x),
+                py(y)
+            );
+        }
+        let _ = writeln!(
+            svg,
+            r#"<path d="{data} Z" fill="{colour}" fill-opacity="0.18" stroke="none"/>"#
+        );
+    }
     for (index, (line, points)) in series.iter().zip(&transformed).enumerate() {
         let colour = colours
             .get(index)
@@ -242,5 +291,9 @@ mod tests {
         assert_eq!(svg.matches("<path").count(), 2);
         assert!(svg.contains("f1 &lt;test&gt;"));
         assert!(svg.contains(">A</text>") && svg.contains(">B</text>"));
+        let band = vec![(0.0, 60.0, 200.0), (10.0, 1e-4, 1e-2)];
+        let banded = render_banded(&chart, &series, &[band], &[]);
+        assert_eq!(banded.matches("<path").count(), 3);
+        assert_eq!(banded.matches("fill-opacity").count(), 1);
     }
 }

@@ -4,9 +4,11 @@
 
 use std::fmt::Write;
 
+use swarm::functions::TestFunction;
 use swarm::Algorithm;
 
 use super::super::bench::functions::{scientific, FunctionBench, FunctionTable};
+use crate::plot::line_chart::{self, Chart, Series};
 
 /// Table 2 as printed: per function, [best, worst, mean, std] × [PSO, GA, BA, ILSSIWBA, IBA-FCS].
 pub const PAPER: [(&str, [[f64; 5]; 4]); 9] = [
@@ -93,13 +95,46 @@ pub const PAPER: [(&str, [[f64; 5]; 4]); 9] = [
     ),
 ];
 
-/// The paper's settings, its five algorithms and L-SHADE, `runs` runs each.
-pub fn settings(runs: u64, seed: u64) -> FunctionBench {
+/// The paper's settings, its five algorithms and L-SHADE, `runs` runs each, under
+/// `readings` of the text's open choices (decision 0020).
+pub fn settings(runs: u64, seed: u64, readings: swarm::Readings) -> FunctionBench {
     let mut settings = FunctionBench::table_2();
     settings.runs = runs;
     settings.seed = seed;
+    settings.readings = readings;
     settings.algorithms.push(Algorithm::LSHADE);
     settings
+}
+
+/// The paper's five algorithms on `function`, best mean first, as its Table 2 ranks them.
+pub fn paper_ranking(function: &str) -> Vec<Algorithm> {
+    let mut order: Vec<(Algorithm, f64)> = Algorithm::SEED_000
+        .iter()
+        .filter_map(|&a| paper_mean(function, a).map(|mean| (a, mean)))
+        .collect();
+    order.sort_by(|a, b| a.1.total_cmp(&b.1));
+    order.into_iter().map(|(a, _)| a).collect()
+}
+
+/// The paper's five algorithms on `function`, best mean first, as `table` ranks them (those
+/// that ran).
+pub fn ranking(table: &FunctionTable, function: &str) -> Vec<Algorithm> {
+    let mut order: Vec<(Algorithm, f64)> = Algorithm::SEED_000
+        .iter()
+        .filter_map(|&a| table.cell(function, a).map(|c| (a, c.statistics.mean)))
+        .collect();
+    order.sort_by(|a, b| a.1.total_cmp(&b.1));
+    order.into_iter().map(|(a, _)| a).collect()
+}
+
+/// On how many of `table`'s functions the five rank in the paper's order.
+pub fn ranking_matches(table: &FunctionTable) -> usize {
+    table
+        .settings
+        .functions
+        .iter()
+        .filter(|f| ranking(table, f.key) == paper_ranking(f.key))
+        .count()
 }
 
 /// The paper's mean for `function` and `algorithm`, if Table 2 has it.
@@ -170,6 +205,148 @@ pub fn comparison(table: &FunctionTable) -> String {
             );
         }
     }
+    let firsts = settings
+        .functions
+        .iter()
+        .filter(|f| ranking(table, f.key).first() == Some(&Algorithm::IBA_FCS))
+        .count();
+    let _ = writeln!(
+        text,
+        "\nIBA-FCS has the best mean of the five on {firsts} of {} functions (paper: all); \
+         the five rank in the paper's order on {} of {}.",
+        settings.functions.len(),
+        ranking_matches(table),
+        settings.functions.len()
+    );
+    let _ = writeln!(
+        text,
+        "\nMean, std, best, worst, median and the Wilcoxon rank-sum p-value of IBA-FCS against \
+         each (+: IBA-FCS significantly lower at 0.05, −: significantly higher):\n"
+    );
+    text.push_str(&statistics_table(table));
     let _ = writeln!(text, "\nWall time {:.1} s.", table.wall_seconds);
     text
+}
+
+/// Table 2 with the statistics CEC papers add: per function and algorithm the mean, std,
+/// best, worst and median of the final costs, and the two-sided p-value of the Wilcoxon
+/// rank-sum test of IBA-FCS's runs against that algorithm's (normal approximation with the
+/// tie correction, `swarm::statistics::rank_sum`); "+" after p < 0.05 marks IBA-FCS
+/// significantly better (lower ranks), "−" significantly worse.
+pub fn statistics_table(table: &FunctionTable) -> String {
+    let settings = &table.settings;
+    let mut text = String::from(
+        "| function | algorithm | mean | std | best | worst | median | p (IBA-FCS vs) |\n\
+         |---|---|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for function in &settings.functions {
+        let iba = table.cell(function.key, Algorithm::IBA_FCS);
+        for &algorithm in &settings.algorithms {
+            let Some(cell) = table.cell(function.key, algorithm) else {
+                continue;
+            };
+            let s = cell.statistics;
+            let test = match iba {
+                Some(iba) if algorithm != Algorithm::IBA_FCS => {
+                    swarm::statistics::rank_sum(&iba.finals, &cell.finals).map(|test| {
+                        let mark = match (test.p_value < 0.05, test.z < 0.0) {
+                            (true, true) => " +",
+                            (true, false) => " −",
+                            _ => "",
+                        };
+                        format!("{:.3e}{mark}", test.p_value)
+                    })
+                }
+                _ => None,
+            };
+            let _ = writeln!(
+                text,
+                "| {} | {} | {} | {} | {} | {} | {} | {} |",
+                function.key,
+                algorithm.label(),
+                scientific(s.mean),
+                scientific(s.standard_deviation),
+                scientific(s.best),
+                scientific(s.worst),
+                scientific(swarm::statistics::median(&cell.finals)),
+                test.unwrap_or_else(|| "—".into())
+            );
+        }
+    }
+    text
+}
+
+/// The median best cost of every algorithm on `function` against evaluations, with the
+/// inter-quartile range of the runs as a band, as the gap to the optimum (or to the lowest
+/// value seen, where that is lower) on a log scale.
+pub fn median_convergence_svg(table: &FunctionTable, function: &TestFunction) -> String {
+    let cells: Vec<_> = table
+        .cells
+        .iter()
+        .filter(|cell| cell.function.key == function.key)
+        .collect();
+    let lowest = cells
+        .iter()
+        .flat_map(|cell| cell.quartiles.iter().map(|&(_, q1, _, _)| q1))
+        .fold(function.optimum, f64::min);
+    let floor = 1e-30_f64.max(lowest.abs() * 1e-15);
+    let gap = |y: f64| (y - lowest).max(floor);
+    let series: Vec<Series> = cells
+        .iter()
+        .map(|cell| Series {
+            name: cell.algorithm.label().to_string(),
+            points: cell
+                .quartiles
+                .iter()
+                .map(|&(x, _, m, _)| (x, gap(m)))
+                .collect(),
+        })
+        .collect();
+    let bands: Vec<Vec<(f64, f64, f64)>> = cells
+        .iter()
+        .map(|cell| {
+            cell.quartiles
+                .iter()
+                .map(|&(x, q1, _, q3)| (x, gap(q1), gap(q3)))
+                .collect()
+        })
+        .collect();
+    let title = format!(
+        "{} {}, D = {}: median of {} runs, band = quartiles",
+        function.key, function.name, table.settings.dimension, table.settings.runs
+    );
+    let y_label = if lowest < function.optimum {
+        format!("best − ({lowest:.6}) (lowest seen)")
+    } else {
+        format!("best − f* (f* = {})", function.optimum)
+    };
+    let chart = Chart {
+        title: &title,
+        x_label: "evaluations",
+        y_label: &y_label,
+        log_y: true,
+    };
+    line_chart::render_banded(&chart, &series, &bands, &[])
+}
+
+/// The files of `repro seed000-table2 --out`: statistics.md and, per function, the median
+/// convergence plot with its quartile band as SVG (and PNG in builds with `png`).
+pub fn statistics_files(table: &FunctionTable) -> Result<Vec<(String, Vec<u8>)>, String> {
+    let mut files = vec![(
+        "statistics.md".to_string(),
+        statistics_table(table).into_bytes(),
+    )];
+    for function in &table.settings.functions {
+        let svg = median_convergence_svg(table, function);
+        #[cfg(feature = "png")]
+        files.push((
+            format!("convergence_median_{}.png", function.key),
+            crate::plot::raster::svg_to_png(&svg, 1200)?,
+        ));
+        files.push((
+            format!("convergence_median_{}.svg", function.key),
+            svg.into_bytes(),
+        ));
+    }
+    Ok(files)
 }

@@ -19,6 +19,8 @@ pub struct ReproJob {
 enum Table {
     /// Seed 000 Table 2: a function bench.
     Functions(FunctionBench),
+    /// Seed 000 Table 2 under several readings (`--ablation`): the bench and the names.
+    Ablation(FunctionBench, Vec<String>),
     /// A track table (its key) with its runs per planner.
     Tracks(&'static str, u64),
     /// A table computed without runs to count (its key).
@@ -50,7 +52,8 @@ impl ReproJob {
             })?;
         let table = match key {
             "seed000-table2" => {
-                let settings = seed000_table2::settings(runs.unwrap_or(50), seed);
+                let settings =
+                    seed000_table2::settings(runs.unwrap_or(50), seed, swarm::Readings::PAPER);
                 super::bench::check(&settings)?;
                 Table::Functions(settings)
             }
@@ -62,11 +65,59 @@ impl ReproJob {
         Ok(Self { table, seed })
     }
 
+    /// Seed 000 Table 2 under the readings called `variant` (`paper` by default, decision
+    /// 0020), or with `ablation` under `paper` and each reading of a comma-separated
+    /// `variant` (every named reading when `variant` is `paper`); other tables refuse both.
+    pub fn with_readings(mut self, variant: &str, ablation: bool) -> Result<Self, InputError> {
+        let Table::Functions(settings) = &mut self.table else {
+            if ablation || variant != "paper" {
+                return Err(super::bad_value(
+                    "--variant/--ablation",
+                    variant,
+                    "only seed000-table2 has readings".to_string(),
+                ));
+            }
+            return Ok(self);
+        };
+        let names: Vec<&str> = if ablation && variant == "paper" {
+            swarm::readings::NAMES
+                .iter()
+                .map(|(name, _)| *name)
+                .collect()
+        } else {
+            variant.split(',').map(str::trim).collect()
+        };
+        for name in &names {
+            swarm::Readings::named(name)
+                .map_err(|why| super::bad_value("--variant", *name, why))?;
+        }
+        if ablation {
+            let mut bench = settings.clone();
+            bench.algorithms = swarm::Algorithm::SEED_000.to_vec();
+            let names = names.iter().map(|name| name.to_string()).collect();
+            self.table = Table::Ablation(bench, names);
+        } else if names.len() > 1 {
+            return Err(super::bad_value(
+                "--variant",
+                variant,
+                "several readings (',') need --ablation; join changes with '+'".to_string(),
+            ));
+        } else {
+            settings.readings = swarm::Readings::named(variant)
+                .map_err(|why| super::bad_value("--variant", variant, why))?;
+        }
+        Ok(self)
+    }
+
     /// The runs to make and what they are called, for a progress bar; `None` when the table
     /// has no runs to count.
     pub fn progress(&self) -> Option<(u64, &'static str)> {
         match &self.table {
             Table::Functions(settings) => Some((settings.total_runs(), "bench")),
+            Table::Ablation(settings, names) => Some((
+                crate::repro::seed000_ablation::total_runs(settings, names),
+                "runs",
+            )),
             Table::Tracks(key, runs) => Some((tracks::total_runs(key, *runs), "runs")),
             Table::Other(_) => None,
         }
@@ -80,14 +131,25 @@ impl ReproJob {
             Table::Functions(settings) => {
                 let table = super::bench::run(settings, tick)?;
                 let comparison = seed000_table2::comparison(&table);
-                let mut files = if with_files {
-                    table.files()
-                } else {
-                    Vec::new()
-                };
+                let mut files = Vec::new();
+                if with_files {
+                    files = table.files();
+                    let statistics = seed000_table2::statistics_files(&table).map_err(|why| {
+                        InputError::new("convergence plots", crate::error::Fault::Structure(why))
+                    })?;
+                    files.extend(statistics);
+                }
                 files.push(("comparison.md".into(), comparison.clone().into_bytes()));
-                let contents = "comparison.md, table.md, table.csv, convergence_*.svg";
+                let contents = "comparison.md, table.md, table.csv, statistics.md, \
+                    convergence_*.svg, convergence_median_*.svg/.png";
                 Ok(Outcome::with_folder(comparison, files, contents))
+            }
+            Table::Ablation(settings, names) => {
+                let tables = crate::repro::seed000_ablation::run(settings, names, tick)
+                    .map_err(|fault| InputError::new("arguments", fault))?;
+                let text = crate::repro::seed000_ablation::markdown(&tables);
+                let files = vec![("ablation.md".into(), text.clone().into_bytes())];
+                Ok(Outcome::with_folder(text, files, "ablation.md"))
             }
             Table::Tracks(key, runs) => track_table(key, *runs, seed, with_files, tick),
             Table::Other("seed003-table4") => Ok(Outcome::text(printed::seed003_table4(seed)?)),

@@ -34,12 +34,12 @@ pub(super) fn bench(action: BenchAction) -> Result<(), Failure> {
 /// `agripath repro TABLE`: the table on stdout; with `--out`, its files.
 pub(super) fn repro(
     table: ReproTable,
-    runs: Option<u64>,
-    seed: u64,
+    (runs, seed): (Option<u64>, u64),
+    (variant, ablation): (&str, bool),
     out: Option<&Path>,
 ) -> Result<(), Failure> {
     let key = clap::ValueEnum::to_possible_value(&table).expect("every table has a name");
-    let job = ReproJob::new(key.get_name(), runs, seed)?;
+    let job = ReproJob::new(key.get_name(), runs, seed)?.with_readings(variant, ablation)?;
     let bar = job
         .progress()
         .map(|(total, what)| progress_bar(total, what));

@@ -13,19 +13,27 @@
 //! R_i^0 ~ U(0, 0.5), R_max = 0.9, α = γ = 0.9. With f ≤ 0, eq. (2) pulls every bat towards
 //! x_* (the frequency range of Yang's demo code, whose sign slip the seed's settings keep).
 //!
-//! Deviations, stated: positions are clamped to the box after (1) and (4) (Yang's demo clamps
-//! the old position instead: not copied); the global best moves whenever a bat finds a better
-//! point, accepted or not (as in Yang's pseudo-code); t in eq. (6) is the iteration number.
+//! Deviations, stated: the global best moves whenever a bat finds a better point, accepted
+//! or not (as in Yang's pseudo-code); t in eq. (6) is the iteration number.
+//!
+//! Readings (`BatReadings`, issue 20): β of eq. (3) per coordinate (the text's "random
+//! vector") or one per bat (Yang's code, decision 0007); ε of eq. (4) one number (the text's
+//! "random number") or per coordinate (Yang's code); no velocity limit or ± a share of the box
+//! width; positions clamped (Yang's demo clamps the old position instead: not copied),
+//! reflected or redrawn after (1) and (4).
 
+use crate::readings::{limit_velocity, BatReadings, Boundary, Draw, Readings};
 use crate::runner::{Continuous, Optimizer, Search};
 
 /// On the command line `ba`, in tables "BA": `population` agents.
-pub const ALGORITHM: super::Algorithm = super::Algorithm::new("ba", "BA", |population| {
-    Box::new(Bat::new(BatParameters {
-        population,
-        ..Default::default()
-    }))
-});
+pub const ALGORITHM: super::Algorithm =
+    super::Algorithm::with_readings("ba", "BA", |population, readings| {
+        Box::new(Bat::new(BatParameters {
+            population,
+            readings: readings.bat,
+            ..Default::default()
+        }))
+    });
 
 /// BA's parameters; `Default` is seed 000's baseline setting.
 #[derive(Debug, Clone, PartialEq)]
@@ -46,6 +54,8 @@ pub struct BatParameters {
     pub alpha: f64,
     /// Pulse-rate growth γ of eq. (6).
     pub gamma: f64,
+    /// The open choices of the text (default: decision 0007's).
+    pub readings: BatReadings,
 }
 
 impl Default for BatParameters {
@@ -59,6 +69,7 @@ impl Default for BatParameters {
             pulse_rate_max: 0.9,
             alpha: 0.9,
             gamma: 0.9,
+            readings: Readings::ENGINE.bat,
         }
     }
 }
@@ -111,15 +122,17 @@ impl Colony {
     }
 
     /// The local walk of eq. (4) around the best, in place of `candidate`; `mean_loudness`
-    /// is Ā^t, taken at the start of the iteration.
+    /// is Ā^t, taken at the start of the iteration; ε is drawn as `walk` says.
     fn walk_near_best(
         &self,
         candidate: &mut [f64],
         mean_loudness: f64,
+        walk: Draw,
         search: &mut Search<Continuous<'_>>,
     ) {
-        for (d, value) in candidate.iter_mut().enumerate() {
-            *value = self.best[d] + search.uniform_in(-1.0, 1.0) * mean_loudness;
+        walk.fill(search, candidate, -1.0, 1.0);
+        for (value, best) in candidate.iter_mut().zip(&self.best) {
+            *value = best + *value * mean_loudness;
         }
     }
 
@@ -127,10 +140,12 @@ impl Colony {
     /// and rule: eq. 2 for BA, the inertia-weighted form for ILSSIWBA), the bat flies to
     /// x + v (eq. 1) or walks near the best when rand > R_i (eq. 4), and the new point is
     /// accepted when no worse and rand < A_i (Yang), after which `accepted` updates the bat's
-    /// loudness and pulse rate.
+    /// loudness and pulse rate. `walk` draws ε of eq. (4); `boundary` brings points back
+    /// into the box.
     pub fn fly(
         &mut self,
         search: &mut Search<Continuous<'_>>,
+        (walk, boundary): (Draw, Boundary),
         mut velocity: impl FnMut(&mut Search<Continuous<'_>>, &mut [f64], &[f64], &[f64]),
         mut accepted: impl FnMut(&mut f64, &mut f64),
     ) {
@@ -147,9 +162,10 @@ impl Colony {
                 *value = self.positions[bat][d] + self.velocities[bat][d]; // eq. (1)
             }
             if search.uniform() > self.pulse_rate[bat] {
-                self.walk_near_best(&mut candidate, mean_loudness, search); // eq. (4)
+                self.walk_near_best(&mut candidate, mean_loudness, walk, search);
+                // eq. (4)
             }
-            search.clamp(&mut candidate);
+            boundary.apply(search, &mut candidate, Some(&mut self.velocities[bat]));
             let cost = search.evaluate(&candidate);
             if cost <= self.costs[bat] && search.uniform() < self.loudness[bat] {
                 self.positions[bat].copy_from_slice(&candidate);
@@ -204,12 +220,18 @@ impl<'p> Optimizer<Continuous<'p>> for Bat {
     fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         let p = &self.parameters;
         let t = search.iteration() as f64;
+        let readings = p.readings;
+        let mut frequencies = vec![0.0; search.dimension()];
         self.colony.fly(
             search,
+            (readings.walk, readings.boundary),
             |search, velocity, position, best| {
-                let frequency = search.uniform_in(p.frequency_min, p.frequency_max); // eq. (3)
+                let (low, high) = (p.frequency_min, p.frequency_max);
+                readings.frequency.fill(search, &mut frequencies, low, high); // eq. (3)
                 for d in 0..velocity.len() {
-                    velocity[d] += (position[d] - best[d]) * frequency; // eq. (2)
+                    let value = velocity[d] + (position[d] - best[d]) * frequencies[d]; // eq. (2)
+                    velocity[d] =
+                        limit_velocity(readings.velocity_limit, value, search.bounds().width(d));
                 }
             },
             |loudness, pulse_rate| {

@@ -12,18 +12,23 @@
 //!   x' = x + (u − x)·(1 − r^{(1 − k)^b}) or x' = x − (x − l)·(1 − r^{(1 − k)^b}), b = 5,
 //!   r ~ U[0, 1], k the Runner's progress.
 //!
-//! The seed gives the rates as ranges: here they fall linearly over the run,
-//! p_c from 1 to 0.4 and p_m from 0.5 to 0.01 (explore early, keep good genes late).
+//! The seed gives the rates as ranges (`GeneticReadings`, issue 20): by default they fall
+//! linearly over the run, p_c from 1 to 0.4 and p_m from 0.5 to 0.01 (explore early, keep
+//! good genes late; decision 0007); the other readings keep the middle of each range or draw
+//! the rates from the ranges once per generation.
 
+use crate::readings::{GeneticReadings, RateSchedule, Readings};
 use crate::runner::{Continuous, Optimizer, Search};
 
 /// On the command line `ga`, in tables "GA": `population` agents.
-pub const ALGORITHM: super::Algorithm = super::Algorithm::new("ga", "GA", |population| {
-    Box::new(Genetic::new(GeneticParameters {
-        population,
-        ..Default::default()
-    }))
-});
+pub const ALGORITHM: super::Algorithm =
+    super::Algorithm::with_readings("ga", "GA", |population, readings| {
+        Box::new(Genetic::new(GeneticParameters {
+            population,
+            readings: readings.genetic,
+            ..Default::default()
+        }))
+    });
 
 /// The GA's parameters; `Default` is seed 000's ranges.
 #[derive(Debug, Clone, PartialEq)]
@@ -42,6 +47,8 @@ pub struct GeneticParameters {
     pub gene_mutation: f64,
     /// b of the non-uniform mutation.
     pub mutation_shape: f64,
+    /// How the rates move within their ranges (default: decision 0007's).
+    pub readings: GeneticReadings,
 }
 
 impl Default for GeneticParameters {
@@ -54,6 +61,7 @@ impl Default for GeneticParameters {
             mutation_end: 0.01,
             gene_mutation: 0.1,
             mutation_shape: 5.0,
+            readings: Readings::ENGINE.genetic,
         }
     }
 }
@@ -121,8 +129,17 @@ impl<'p> Optimizer<Continuous<'p>> for Genetic {
     fn step(&mut self, search: &mut Search<Continuous<'p>>) {
         let p = &self.parameters;
         let k = search.progress();
-        let crossover = p.crossover_start + k * (p.crossover_end - p.crossover_start);
-        let mutation = p.mutation_start + k * (p.mutation_end - p.mutation_start);
+        let (crossover, mutation) = match p.readings.rates {
+            RateSchedule::Falling => (
+                p.crossover_start + k * (p.crossover_end - p.crossover_start),
+                p.mutation_start + k * (p.mutation_end - p.mutation_start),
+            ),
+            // The seed's ranges themselves, (0.4, 1) and (0, 0.5), not the schedule's ends.
+            RateSchedule::Middle => (0.7, 0.25),
+            RateSchedule::DrawnEachGeneration => {
+                (search.uniform_in(0.4, 1.0), search.uniform_in(0.0, 0.5))
+            }
+        };
         let elite = super::bat::index_of_smallest(&self.costs);
         let mut next = vec![self.individuals[elite].clone()];
         let mut next_costs = vec![self.costs[elite]];

@@ -21,19 +21,29 @@
 //! drawn per coordinate; A_min and R_max bound A and R of eqs. (14)-(15) (the seed lists them
 //! as "the remaining control parameters" and says A must not fall to 0 so that mutation
 //! continues late); ρ, not given, is 0.99 (decision 0007: of 0.9, 0.99 and 1, the best on Table 1 in a 4-run trial); F_avg is the mean cost of the bats' current points
-//! and F_min the global best cost; a reset bat restarts with zero velocity; positions are
-//! clamped to the box.
+//! and F_min the global best cost; a reset bat restarts with zero velocity.
+//!
+//! Readings (`IbaFcsReadings`, issue 20, decision 0020): β_i ~ U[0, R_max] as §2.2 writes
+//! (P(local search) = 1 once R reaches R_max, so §2.3's mutation then never fires) or
+//! U[0, 1]; the velocity kept or zeroed after an eq.-(12) jump; δ a vector (the text) or one
+//! number; every move accepted (§2.4 step 5) or only no-worse ones; no velocity limit or ± a
+//! share of the box width; positions clamped, reflected or redrawn.
 
 use super::bat::index_of_smallest;
+use crate::readings::{
+    limit_velocity, Acceptance, IbaFcsReadings, JumpVelocity, LocalSearchDraw, Readings,
+};
 use crate::runner::{Continuous, Optimizer, Search};
 
 /// On the command line `iba-fcs`, in tables "IBA-FCS": `population` agents.
-pub const ALGORITHM: super::Algorithm = super::Algorithm::new("iba-fcs", "IBA-FCS", |population| {
-    Box::new(IbaFcs::new(IbaFcsParameters {
-        population,
-        ..Default::default()
-    }))
-});
+pub const ALGORITHM: super::Algorithm =
+    super::Algorithm::with_readings("iba-fcs", "IBA-FCS", |population, readings| {
+        Box::new(IbaFcs::new(IbaFcsParameters {
+            population,
+            readings: readings.iba_fcs,
+            ..Default::default()
+        }))
+    });
 
 /// IBA-FCS's parameters; `Default` is seed 000 §2.5.
 #[derive(Debug, Clone, PartialEq)]
@@ -68,6 +78,8 @@ pub struct IbaFcsParameters {
     pub step_exponents: Vec<f64>,
     /// ρ of §2.3: a mutating bat is reset when β2 > ρ.
     pub mutation_threshold: f64,
+    /// The open choices of the text (default: decision 0007's).
+    pub readings: IbaFcsReadings,
 }
 
 impl Default for IbaFcsParameters {
@@ -88,6 +100,7 @@ impl Default for IbaFcsParameters {
             step_scale: 2.1766,
             step_exponents: vec![-2.0886, 27.3349],
             mutation_threshold: 0.99,
+            readings: Readings::ENGINE.iba_fcs,
         }
     }
 }
@@ -169,37 +182,53 @@ impl<'p> Optimizer<Continuous<'p>> for IbaFcs {
         let local_step = loudness * p.step_decay(k); // A·g(k) of eq. (12)
         let population = self.positions.len() as f64;
         let dimension = search.dimension();
+        let readings = p.readings;
 
+        let mut candidate = vec![0.0; dimension];
         for bat in 0..self.positions.len() {
-            let position = &mut self.positions[bat];
             let velocity = &mut self.velocities[bat];
-            let personal = &self.personal_best[bat];
+            let (position, personal) = (&self.positions[bat], &self.personal_best[bat]);
             for d in 0..dimension {
                 let r1 = search.uniform_in(0.5, 1.5);
                 let r2 = search.uniform_in(0.5, 1.5);
-                velocity[d] = omega * velocity[d]
+                let value = omega * velocity[d]
                     + f1 * r1 * (personal[d] - position[d])
                     + f2 * r2 * (self.best[d] - position[d]); // eq. (8)
-                position[d] += mu * velocity[d]; // eq. (10)
+                velocity[d] =
+                    limit_velocity(readings.velocity_limit, value, search.bounds().width(d));
+                candidate[d] = position[d] + mu * velocity[d]; // eq. (10)
             }
-            if search.uniform_in(0.0, p.pulse_rate_max) < pulse_rate {
-                for (d, value) in position.iter_mut().enumerate() {
+            let beta = match readings.local_search {
+                LocalSearchDraw::UpToPulseRateCap => search.uniform_in(0.0, p.pulse_rate_max),
+                LocalSearchDraw::UpToOne => search.uniform(),
+            };
+            if beta < pulse_rate {
+                readings.jump.fill(search, &mut candidate, -1.0, 1.0); // δ of eq. (12)
+                for (d, value) in candidate.iter_mut().enumerate() {
                     let width = search.bounds().width(d) / population; // V of eq. (12)
-                    *value = self.best[d] + search.uniform_in(-1.0, 1.0) * width * local_step;
+                    *value = self.best[d] + *value * width * local_step;
+                }
+                if readings.jump_velocity == JumpVelocity::Zero {
+                    velocity.fill(0.0);
                 }
             } else if search.uniform() < loudness && search.uniform() > p.mutation_threshold {
-                *position = search.random_position();
+                candidate = search.random_position();
                 velocity.fill(0.0);
             }
-            search.clamp(position);
-            let cost = search.evaluate(position);
-            self.costs[bat] = cost;
+            readings
+                .boundary
+                .apply(search, &mut candidate, Some(velocity));
+            let cost = search.evaluate(&candidate);
+            if readings.acceptance == Acceptance::EveryMove || cost <= self.costs[bat] {
+                self.positions[bat].copy_from_slice(&candidate);
+                self.costs[bat] = cost;
+            }
             if cost < self.personal_best_cost[bat] {
-                self.personal_best[bat].copy_from_slice(position);
+                self.personal_best[bat].copy_from_slice(&candidate);
                 self.personal_best_cost[bat] = cost;
             }
             if cost < self.best_cost {
-                self.best.copy_from_slice(position);
+                self.best.copy_from_slice(&candidate);
                 self.best_cost = cost;
             }
         }

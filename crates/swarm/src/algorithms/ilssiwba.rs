@@ -20,6 +20,7 @@
 //! clamped to the box.
 
 use super::bat::Colony;
+use crate::readings::{Boundary, Draw};
 use crate::runner::{Continuous, Optimizer, Search};
 
 /// On the command line `ilssiwba`, in tables "ILSSIWBA": `population` agents.
@@ -153,6 +154,7 @@ impl<'p> Optimizer<Continuous<'p>> for Ilssiwba {
         let t = search.iteration() as f64;
         self.colony.fly(
             search,
+            (Draw::PerCoordinate, Boundary::Clamp),
             |search, velocity, position, best| {
                 let frequency = search.uniform_in(p.frequency_min, p.frequency_max);
                 let inertia = search.uniform_in(p.inertia_mean_min, p.inertia_mean_max)

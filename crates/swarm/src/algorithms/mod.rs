@@ -23,6 +23,7 @@ pub use lshade::{Lshade, LshadeParameters};
 pub use particle_swarm::{ParticleSwarm, ParticleSwarmParameters};
 pub use random_search::RandomSearch;
 
+use crate::readings::Readings;
 use crate::runner::ContinuousOptimizer;
 
 /// The optimizers, registered in one place: adding one is its file plus one line here.
@@ -48,7 +49,15 @@ pub const BASELINES: &[Algorithm] = &[random_search::ALGORITHM];
 pub struct Algorithm {
     key: &'static str,
     label: &'static str,
-    build: fn(usize) -> Box<ContinuousOptimizer<'static>>,
+    build: Builder,
+}
+
+/// How an algorithm is made: from a population size, or also from the readings of its
+/// paper's open choices ([`Readings`]).
+#[derive(Clone, Copy)]
+enum Builder {
+    Plain(fn(usize) -> Box<ContinuousOptimizer<'static>>),
+    Read(fn(usize, &Readings) -> Box<ContinuousOptimizer<'static>>),
 }
 
 impl Algorithm {
@@ -59,7 +68,24 @@ impl Algorithm {
         label: &'static str,
         build: fn(usize) -> Box<ContinuousOptimizer<'static>>,
     ) -> Self {
-        Self { key, label, build }
+        Self {
+            key,
+            label,
+            build: Builder::Plain(build),
+        }
+    }
+
+    /// An algorithm whose builder also takes the [`Readings`] of its open choices.
+    pub const fn with_readings(
+        key: &'static str,
+        label: &'static str,
+        build: fn(usize, &Readings) -> Box<ContinuousOptimizer<'static>>,
+    ) -> Self {
+        Self {
+            key,
+            label,
+            build: Builder::Read(build),
+        }
     }
 
     /// Every registered optimizer ([`ALL`]), in table order.
@@ -106,8 +132,27 @@ impl Algorithm {
     /// The algorithm with its paper's parameters and `population` agents (evaluations per
     /// iteration). ACO_R keeps its archive of 50 and sends `population` ants; L-SHADE keeps
     /// its own initial population of 18·D, which it shrinks over the budget.
+    /// The open choices are decision 0007's ([`Readings::ENGINE`]).
     pub fn build(self, population: usize) -> Box<ContinuousOptimizer<'static>> {
-        (self.build)(population)
+        self.build_read(population, &Readings::ENGINE)
+    }
+
+    /// The algorithm with `population` agents and the given readings of its paper's open
+    /// choices (an algorithm without readings ignores them).
+    pub fn build_read(
+        self,
+        population: usize,
+        readings: &Readings,
+    ) -> Box<ContinuousOptimizer<'static>> {
+        match self.build {
+            Builder::Plain(build) => build(population),
+            Builder::Read(build) => build(population, readings),
+        }
+    }
+
+    /// Whether [`Readings`] change this algorithm.
+    pub fn has_readings(self) -> bool {
+        matches!(self.build, Builder::Read(_))
     }
 }
 

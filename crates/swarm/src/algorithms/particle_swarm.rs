@@ -5,9 +5,10 @@
 //! - x_i = x_i + v_i
 //! - p_i and g: the personal and global best points, kept by cost.
 //!
-//! Deviation, stated: each velocity coordinate is limited to ± the box width in that
-//! coordinate (with c1 = c2 = 2 and w = 0.729 the swarm sits at the edge of divergence, and
-//! without a limit velocities can overflow), and positions are clamped to the box.
+//! Readings (`ParticleSwarmReadings`, issue 20): seed 000 names no velocity limit; decision
+//! 0007 limits each velocity coordinate to ± the box width (with c1 = c2 = 2 and w = 0.729 the
+//! swarm sits at the edge of divergence, and without a limit velocities can overflow), and
+//! the ablation also tries ± 0.2 and 0.1 of it; positions are clamped or reflected.
 //!
 //! [`ParticleSwarmParameters::spso`] is the PSO of SPSO's code (Phung & Ha 2021, from
 //! Yarpiz): w = 1 damped by 0.98 after every iteration, c1 = c2 = 1.5, velocities within
@@ -15,15 +16,19 @@
 //! reversed ("mirrored").
 
 use super::bat::index_of_smallest;
+use crate::readings::{limit_velocity, Boundary, Readings, VelocityLimit};
 use crate::runner::{Continuous, Optimizer, Search};
 
 /// On the command line `pso`, in tables "PSO": `population` agents.
-pub const ALGORITHM: super::Algorithm = super::Algorithm::new("pso", "PSO", |population| {
-    Box::new(ParticleSwarm::new(ParticleSwarmParameters {
-        population,
-        ..Default::default()
-    }))
-});
+pub const ALGORITHM: super::Algorithm =
+    super::Algorithm::with_readings("pso", "PSO", |population, readings| {
+        Box::new(ParticleSwarm::new(ParticleSwarmParameters {
+            population,
+            velocity_limit: readings.particle_swarm.velocity_limit,
+            boundary: readings.particle_swarm.boundary,
+            ..Default::default()
+        }))
+    });
 
 /// PSO's parameters; `Default` is seed 000's setting.
 #[derive(Debug, Clone, PartialEq)]
@@ -36,8 +41,10 @@ pub struct ParticleSwarmParameters {
     pub cognitive: f64,
     /// c2, the pull towards the global best g.
     pub social: f64,
-    /// Velocity limit as a share of the box width.
-    pub velocity_limit: f64,
+    /// Velocity limit as a share of the box width (`None`: no limit).
+    pub velocity_limit: VelocityLimit,
+    /// What happens to a coordinate that leaves the box (after the mirror below).
+    pub boundary: Boundary,
     /// w is multiplied by this after every iteration (1: constant).
     pub inertia_damping: f64,
     /// Reverse a velocity coordinate whose position left the box.
@@ -52,7 +59,8 @@ impl ParticleSwarmParameters {
             inertia: 1.0,
             cognitive: 1.5,
             social: 1.5,
-            velocity_limit: 0.5,
+            velocity_limit: Some(0.5),
+            boundary: Boundary::Clamp,
             inertia_damping: 0.98,
             mirror_velocity: true,
         }
@@ -66,7 +74,8 @@ impl Default for ParticleSwarmParameters {
             inertia: 0.729,
             cognitive: 2.0,
             social: 2.0,
-            velocity_limit: 1.0,
+            velocity_limit: Readings::ENGINE.particle_swarm.velocity_limit,
+            boundary: Readings::ENGINE.particle_swarm.boundary,
             inertia_damping: 1.0,
             mirror_velocity: false,
         }
@@ -121,19 +130,18 @@ impl<'p> Optimizer<Continuous<'p>> for ParticleSwarm {
             let velocity = &mut self.velocities[particle];
             let personal = &self.personal_best[particle];
             for d in 0..dimension {
-                let limit = p.velocity_limit * search.bounds().width(d);
                 let (r1, r2) = (search.uniform(), search.uniform());
-                velocity[d] = (self.inertia * velocity[d]
+                let value = self.inertia * velocity[d]
                     + p.cognitive * r1 * (personal[d] - position[d])
-                    + p.social * r2 * (self.best[d] - position[d]))
-                    .clamp(-limit, limit);
+                    + p.social * r2 * (self.best[d] - position[d]);
+                velocity[d] = limit_velocity(p.velocity_limit, value, search.bounds().width(d));
                 position[d] += velocity[d];
                 let (low, high) = (search.bounds().lower()[d], search.bounds().upper()[d]);
                 if p.mirror_velocity && !(low..=high).contains(&position[d]) {
                     velocity[d] = -velocity[d];
                 }
             }
-            search.clamp(position);
+            p.boundary.apply(search, position, Some(velocity));
             let cost = search.evaluate(position);
             if cost < self.personal_best_cost[particle] {
                 self.personal_best[particle].copy_from_slice(position);

@@ -8,7 +8,8 @@
 //!   Σ_i (10⁶)^{(i−1)/(D−1)} z_i² − 450
 //! - F6 shifted Rosenbrock, z = x − o + 1:   Σ_{i<D} [100 (z_i² − z_{i+1})² + (z_i − 1)²] + 390
 //!
-//! The data files are compiled in (`data/cec2005/`, ≤ 100 values per shift, M for D = 50).
+//! The data files are compiled in (`data/cec2005/`, ≤ 100 values per shift, M for D = 10, 30
+//! and 50: the only dimensions at which F3 is defined).
 
 use std::sync::OnceLock;
 
@@ -16,21 +17,25 @@ const SPHERE_SHIFT: &str = include_str!("../../../../data/cec2005/data_sphere.tx
 const SCHWEFEL_SHIFT: &str = include_str!("../../../../data/cec2005/data_schwefel_102.txt");
 const ELLIPTIC_SHIFT: &str =
     include_str!("../../../../data/cec2005/data_high_cond_elliptic_rot.txt");
+const ELLIPTIC_ROTATION_D10: &str = include_str!("../../../../data/cec2005/elliptic_M_D10.txt");
+const ELLIPTIC_ROTATION_D30: &str = include_str!("../../../../data/cec2005/elliptic_M_D30.txt");
 const ELLIPTIC_ROTATION_D50: &str = include_str!("../../../../data/cec2005/elliptic_M_D50.txt");
 const ROSENBROCK_SHIFT: &str = include_str!("../../../../data/cec2005/data_rosenbrock.txt");
 
 /// The largest dimension the published shift vectors allow.
 pub const MAX_DIMENSION: usize = 100;
-/// The only dimension whose rotation matrix for F3 is in the data.
-pub const ROTATED_DIMENSION: usize = 50;
+/// The dimensions whose rotation matrix for F3 is in the data.
+pub const ROTATED_DIMENSIONS: [usize; 3] = [10, 30, 50];
+/// The largest of them (the size of the evaluation's buffers).
+const LARGEST_ROTATED: usize = 50;
 
 struct Data {
     sphere: Vec<f64>,
     schwefel: Vec<f64>,
     elliptic: Vec<f64>,
     rosenbrock: Vec<f64>,
-    /// Row-major 50 × 50.
-    rotation: Vec<f64>,
+    /// Row-major D × D for each D of `ROTATED_DIMENSIONS`, in that order.
+    rotations: [Vec<f64>; 3],
 }
 
 fn parse(text: &str) -> Vec<f64> {
@@ -46,7 +51,11 @@ fn data() -> &'static Data {
         schwefel: parse(SCHWEFEL_SHIFT),
         elliptic: parse(ELLIPTIC_SHIFT),
         rosenbrock: parse(ROSENBROCK_SHIFT),
-        rotation: parse(ELLIPTIC_ROTATION_D50),
+        rotations: [
+            parse(ELLIPTIC_ROTATION_D10),
+            parse(ELLIPTIC_ROTATION_D30),
+            parse(ELLIPTIC_ROTATION_D50),
+        ],
     })
 }
 
@@ -73,18 +82,22 @@ pub fn shifted_schwefel_1_2(x: &[f64]) -> f64 {
     total - 450.0
 }
 
-/// F3, shifted rotated high-conditioned elliptic (D = 50 only).
+/// F3, shifted rotated high-conditioned elliptic (D = 10, 30 or 50 only: elsewhere NaN,
+/// which the engine counts as +∞; `TestFunction::check_dimension` refuses them first).
 pub fn shifted_rotated_elliptic(x: &[f64]) -> f64 {
     let data = data();
     let dimension = x.len();
-    debug_assert_eq!(dimension, ROTATED_DIMENSION);
-    let mut shifted = [0.0; ROTATED_DIMENSION];
+    let Some(which) = ROTATED_DIMENSIONS.iter().position(|&d| d == dimension) else {
+        return f64::NAN;
+    };
+    let rotation = &data.rotations[which];
+    let mut shifted = [0.0; LARGEST_ROTATED];
     for (i, value) in shifted.iter_mut().enumerate().take(dimension) {
         *value = x[i] - data.elliptic[i];
     }
-    let mut rotated = [0.0; ROTATED_DIMENSION];
+    let mut rotated = [0.0; LARGEST_ROTATED];
     for (i, &s) in shifted.iter().enumerate().take(dimension) {
-        let row = &data.rotation[i * ROTATED_DIMENSION..(i + 1) * ROTATED_DIMENSION];
+        let row = &rotation[i * dimension..(i + 1) * dimension];
         for (z, m) in rotated.iter_mut().zip(row) {
             *z += s * m;
         }
@@ -124,7 +137,25 @@ mod tests {
         ] {
             assert_eq!(shift.len(), MAX_DIMENSION);
         }
-        assert_eq!(data.rotation.len(), ROTATED_DIMENSION * ROTATED_DIMENSION);
+        for (rotation, d) in data.rotations.iter().zip(ROTATED_DIMENSIONS) {
+            assert_eq!(rotation.len(), d * d);
+        }
+    }
+
+    #[test]
+    fn the_rotation_matrices_are_orthogonal() {
+        for (rotation, d) in data().rotations.iter().zip(ROTATED_DIMENSIONS) {
+            for i in 0..d {
+                for j in 0..d {
+                    let dot: f64 = (0..d)
+                        .map(|k| rotation[i * d + k] * rotation[j * d + k])
+                        .sum();
+                    let expected = if i == j { 1.0 } else { 0.0 };
+                    assert!((dot - expected).abs() < 1e-9, "D = {d}, ({i}, {j}): {dot}");
+                }
+            }
+        }
+        assert!(shifted_rotated_elliptic(&[0.0; 20]).is_nan());
     }
 
     #[test]
@@ -132,7 +163,9 @@ mod tests {
         let data = data();
         assert_eq!(shifted_sphere(&data.sphere[..50]), -450.0);
         assert_eq!(shifted_schwefel_1_2(&data.schwefel[..50]), -450.0);
-        assert!((shifted_rotated_elliptic(&data.elliptic[..50]) + 450.0).abs() < 1e-9);
+        for d in ROTATED_DIMENSIONS {
+            assert!((shifted_rotated_elliptic(&data.elliptic[..d]) + 450.0).abs() < 1e-9);
+        }
         assert_eq!(shifted_rosenbrock(&data.rosenbrock[..50]), 390.0);
     }
 }

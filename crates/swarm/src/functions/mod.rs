@@ -24,8 +24,8 @@ pub struct TestFunction {
     /// Whether Table 1 counts the function as unimodal (`false`: multimodal).
     pub unimodal: bool,
     evaluate: fn(&[f64]) -> f64,
-    /// The only dimension allowed, when the data fix it (F3's rotation matrix).
-    fixed_dimension: Option<usize>,
+    /// The only dimensions allowed, when the data fix them (F3's rotation matrices).
+    fixed_dimension: Option<&'static [usize]>,
     /// The largest dimension the data allow.
     max_dimension: usize,
 }
@@ -39,7 +39,7 @@ impl TestFunction {
     /// Whether the function is defined at `dimension` (shift vectors and rotation data).
     pub fn check_dimension(&self, dimension: usize) -> Result<(), FunctionError> {
         let allowed = match self.fixed_dimension {
-            Some(only) => dimension == only,
+            Some(only) => only.contains(&dimension),
             None => (2..=self.max_dimension).contains(&dimension),
         };
         if allowed {
@@ -49,8 +49,15 @@ impl TestFunction {
                 function: self.key,
                 dimension,
                 allowed: match self.fixed_dimension {
-                    Some(only) => format!("only {only} (the published rotation matrix)"),
-                    None => format!("2 to {}", self.max_dimension),
+                    Some(only) => {
+                        let list: Vec<String> = only.iter().map(|d| d.to_string()).collect();
+                        format!(
+                            "{} (the dimensions with a published rotation matrix)",
+                            list.join(", ")
+                        )
+                    }
+                    None if self.max_dimension == UNLIMITED => "2 or more".to_string(),
+                    None => format!("2 to {} (the published shift vectors)", self.max_dimension),
                 },
             })
         }
@@ -112,8 +119,8 @@ pub const TABLE_1: [TestFunction; 9] = [
         optimum: -450.0,
         unimodal: true,
         evaluate: cec2005::shifted_rotated_elliptic,
-        fixed_dimension: Some(cec2005::ROTATED_DIMENSION),
-        max_dimension: cec2005::ROTATED_DIMENSION,
+        fixed_dimension: Some(&cec2005::ROTATED_DIMENSIONS),
+        max_dimension: 50,
     },
     TestFunction {
         key: "f4",
