@@ -222,6 +222,10 @@ pub struct CoverageArgs {
     /// Edge passes around each boundary and hole; 0 gives seed 001's layout (interior only).
     #[arg(long, default_value_t = 1)]
     pub headland: usize,
+    /// Where swaths' spray on/off points sit against the edge-pass band: `overlap` (on the
+    /// pass line), `balanced` (least double dose for little missed) or `gap` (no double dose).
+    #[arg(long, default_value = "balanced")]
+    pub edge_cut: String,
     /// Swath heading: `auto` (seed 001's E), `swaths` (fewest), `length` (shortest), or
     /// degrees from east, counter-clockwise.
     #[arg(long, default_value = "auto", allow_negative_numbers = true)]
@@ -462,6 +466,7 @@ pub fn plan_options(
         heading: coverage.heading.clone(),
         weights: coverage.weights.clone(),
         refine_heading: !coverage.no_refine,
+        edge_cut: coverage.edge_cut.clone(),
         drape_spacing_m: coverage.drape_spacing,
         boundary_margin_m: coverage.boundary_margin,
         obstacle_margin_m: coverage.obstacle_margin,

@@ -24,6 +24,8 @@ pub struct PlanOptions {
     pub weights: Vec<f64>,
     /// Refine the best 1° heading to 0.1°.
     pub refine_heading: bool,
+    /// `overlap`, `balanced` or `gap`: where swaths' spray on/off points meet the edge band.
+    pub edge_cut: String,
     /// Spacing of the terrain samples along swaths, metres.
     pub drape_spacing_m: f64,
     /// Distance kept from field boundaries, metres.
@@ -163,8 +165,19 @@ impl PlanOptions {
                     },
                 )
             })?;
+        let edge_cut = self.edge_cut.parse().map_err(|why| {
+            InputError::new(
+                "--edge-cut",
+                Fault::InvalidValue {
+                    what: "--edge-cut".into(),
+                    value: self.edge_cut.clone(),
+                    why,
+                },
+            )
+        })?;
         let settings = CoverageSettings {
             headland_passes: self.headland_passes,
+            edge_cut,
             boundary_margin_m: self.boundary_margin_m,
             obstacle_margin_m: self.obstacle_margin_m,
             drape_spacing_m: self.drape_spacing_m,
