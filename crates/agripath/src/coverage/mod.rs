@@ -1,7 +1,9 @@
 //! Coverage of several fields on 3D terrain (seed 001 §2): swaths at the best heading per
 //! field, draped on the terrain, with edge passes around every boundary and hole.
 
+pub mod corner_spur;
 pub mod drape;
+pub mod edge_cut;
 pub mod heading;
 pub mod measure;
 pub mod region;
@@ -15,6 +17,7 @@ use crate::limits::{DRAPE_SPACING_RANGE_M, MAX_PLAN_AREA_M2, MAX_PLAN_SWATHS, MA
 use crate::model::{Farm, Vehicle};
 use crate::terrain::Terrain;
 use drape::{drape, draped_length, path_length_3d, GroundPoint};
+pub use edge_cut::EdgeCut;
 use heading::{choose_heading, HeadingChoice, HeadingObjective, HeadingSample};
 use measure::{edge_strip, measure, swath_strip, CoverageMeasure};
 use region::{edge_pass_regions, rings, sprayable_region};
@@ -35,6 +38,8 @@ pub struct CoverageSettings {
     pub heading: HeadingObjective,
     /// Refine the best 1° heading to 0.1° where that lowers the objective.
     pub refine_heading: bool,
+    /// Where swaths' spray on/off points sit against the edge-pass band (`--edge-cut`).
+    pub edge_cut: EdgeCut,
 }
 
 impl Default for CoverageSettings {
@@ -46,6 +51,7 @@ impl Default for CoverageSettings {
             drape_spacing_m: 20.0,
             heading: HeadingObjective::default(),
             refine_heading: true,
+            edge_cut: EdgeCut::default(),
         }
     }
 }
@@ -358,6 +364,14 @@ pub fn cover_field(
     };
 
     let (frame, x_origin, segments) = layout_at(heading.heading_deg);
+    // The heading is chosen on the uncut swaths (seed 001's E over the interior); the cut
+    // then moves their spray on/off points against the band (decision 0019).
+    let segments = match pass_regions.last() {
+        Some(innermost) => {
+            edge_cut::cut_swath_ends(&segments, innermost, frame, width_m, settings.edge_cut)
+        }
+        None => segments,
+    };
     let swaths = segments
         .iter()
         .map(|segment| {
@@ -370,7 +384,14 @@ pub fn cover_field(
             })
         })
         .collect::<Result<Vec<_>, Fault>>()?;
-    let edges = edge_passes(index, &pass_regions, terrain, settings.drape_spacing_m)?;
+    let edges = edge_passes(
+        index,
+        &pass_regions,
+        terrain,
+        settings.drape_spacing_m,
+        // `--edge-cut overlap` is the layout before decision 0019, spurs included.
+        (settings.edge_cut != EdgeCut::Overlap).then_some(width_m),
+    )?;
 
     // Measured in the rotated frame, where swath strips are axis-parallel rectangles whose
     // shared edges are exactly equal: tilted in the plan frame, their nearly collinear edges
@@ -397,12 +418,15 @@ pub fn cover_field(
     })
 }
 
-/// Closed edge passes along every ring of each pass region, sampled every `spacing_m`.
+/// Edge passes along every ring of each pass region, sampled every `spacing_m`: closed, or
+/// opened at sharp corners into paths that start with a spur into the tip
+/// ([`corner_spur`]).
 fn edge_passes(
     field: usize,
     pass_regions: &[MultiPolygon<f64>],
     terrain: &dyn Terrain,
     spacing_m: f64,
+    spur_width_m: Option<f64>,
 ) -> Result<Vec<EdgePass>, Fault> {
     let mut passes = Vec::new();
     for (pass, region) in pass_regions.iter().enumerate() {
@@ -411,29 +435,37 @@ fn edge_passes(
             {
                 continue;
             }
-            let mut points = Vec::new();
-            for pair in ring.windows(2) {
-                let (start, end) = (pair[0], pair[1]);
-                let length = (end.x - start.x).hypot(end.y - start.y);
-                let steps = (length / spacing_m).ceil().max(1.0) as usize;
-                for step in 0..steps {
-                    let t = step as f64 / steps as f64;
-                    points.push(ground_point(
-                        Coord {
-                            x: start.x + t * (end.x - start.x),
-                            y: start.y + t * (end.y - start.y),
-                        },
-                        terrain,
-                    )?);
+            let paths = match spur_width_m {
+                Some(width_m) => corner_spur::pass_paths(&ring, region, width_m),
+                None => vec![ring],
+            };
+            for path in paths {
+                let mut points = Vec::new();
+                for pair in path.windows(2) {
+                    let (start, end) = (pair[0], pair[1]);
+                    let length = (end.x - start.x).hypot(end.y - start.y);
+                    let steps = (length / spacing_m).ceil().max(1.0) as usize;
+                    for step in 0..steps {
+                        let t = step as f64 / steps as f64;
+                        points.push(ground_point(
+                            Coord {
+                                x: start.x + t * (end.x - start.x),
+                                y: start.y + t * (end.y - start.y),
+                            },
+                            terrain,
+                        )?);
+                    }
                 }
+                if let Some(&last) = path.last() {
+                    points.push(ground_point(last, terrain)?);
+                }
+                passes.push(EdgePass {
+                    field,
+                    pass,
+                    length_m: path_length_3d(&points),
+                    points,
+                });
             }
-            points.push(points[0]);
-            passes.push(EdgePass {
-                field,
-                pass,
-                length_m: path_length_3d(&points),
-                points,
-            });
         }
     }
     Ok(passes)

@@ -282,6 +282,13 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 // The run goes on spraying through the next leg in another direction: the
                 // footprint turns here (not at the waypoints of a straight swath that only
                 // follow the terrain).
+                let next_direction = legs
+                    .get(leg_index + 1)
+                    .map(|next| Coord {
+                        x: next.to.x - next.from.x,
+                        y: next.to.y - next.from.y,
+                    })
+                    .unwrap_or(Coord { x: 0.0, y: 0.0 });
                 let turns_on = legs.get(leg_index + 1).is_some_and(|next| {
                     let (dx, dy) = (b.0 - a.0, b.1 - a.1);
                     let (nx, ny) = (next.to.x - next.from.x, next.to.y - next.from.y);
@@ -293,7 +300,15 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 });
                 strips.extend(strip.map(|strip| {
                     if turns_on {
-                        strip.turning_at_end(Coord { x: b.0, y: b.1 }, half)
+                        strip.turning_at_end(
+                            Coord { x: b.0, y: b.1 },
+                            half,
+                            Coord {
+                                x: b.0 - a.0,
+                                y: b.1 - a.1,
+                            },
+                            next_direction,
+                        )
                     } else {
                         strip
                     }

@@ -1,14 +1,53 @@
 //! What a flight sprays, measured row by row: every spray leg lays a strip one swath wide
 //! (a rectangle about the leg, square ends where the sprayer goes on and off), and where a
-//! spray run turns at a waypoint the footprint of a multirotor, symmetric about it, sweeps a
-//! disc of the swath's diameter (a round join: the flown line buffered by w/2). Each
+//! spray run turns at a waypoint the footprint of a multirotor, symmetric about it, sweeps
+//! the sector of the swath's disc between the two legs' rectangles on the outer side of the
+//! turn (with the rectangles, a round join: the flown line buffered by w/2; the opposite
+//! sector lies in both rectangles, sprayed twice, as flown). Each
 //! horizontal row of the plane is cut exactly into the intervals the strips, the fields and
-//! the obstacles cover. A disc belongs to the leg it ends, so a turn is not counted as
-//! sprayed twice by its own leg; ground under two different legs is.
+//! the obstacles cover. The sector belongs to the leg it ends and lies in neither rectangle,
+//! so a turn's gap is sprayed once (the whole disc, as until decision 0019, counted half of
+//! it twice against the next leg); ground under two different legs is sprayed twice.
 //! Areas are Σ length × row spacing (midpoint rule): exact for straight edges up to the rows'
 //! discretisation, independent of how the plan was made, and fast (an active-edge sweep).
 
 use geo::Coord;
+
+/// The sector a turn sweeps: {p : |p − centre| < radius, (p − centre)·into > 0,
+/// (p − centre)·out_of < 0}.
+#[derive(Debug, Clone, Copy)]
+struct Joint {
+    centre: Coord<f64>,
+    radius: f64,
+    into: Coord<f64>,
+    out_of: Coord<f64>,
+}
+
+impl Joint {
+    /// Where row `y` crosses the sector (convex: one interval at most).
+    fn interval(&self, y: f64) -> Option<(f64, f64)> {
+        let dy = y - self.centre.y;
+        if dy.abs() >= self.radius {
+            return None;
+        }
+        let half = (self.radius * self.radius - dy * dy).sqrt();
+        let (mut low, mut high) = (self.centre.x - half, self.centre.x + half);
+        // (x − cx)·d.x + dy·d.y has the sign asked for.
+        for (direction, sign) in [(self.into, 1.0), (self.out_of, -1.0)] {
+            let (a, b) = (sign * direction.x, sign * dy * direction.y);
+            if a.abs() < 1e-12 {
+                if b <= 0.0 {
+                    return None;
+                }
+            } else if a > 0.0 {
+                low = low.max(self.centre.x - b / a);
+            } else {
+                high = high.min(self.centre.x - b / a);
+            }
+        }
+        (high > low).then_some((low, high))
+    }
+}
 
 /// A sprayed strip: the convex quadrilateral about one spray leg, and the disc at its end
 /// when the run turns there.
@@ -17,8 +56,10 @@ pub struct Strip {
     corners: [Coord<f64>; 4],
     low_y: f64,
     high_y: f64,
-    /// Centre and radius of the disc swept where the run turns at the leg's end.
-    joint: Option<(Coord<f64>, f64)>,
+    /// Where the run turns at the leg's end: the disc's centre and radius, and the two legs'
+    /// directions (the sector swept lies ahead of this leg's end and behind the next leg's
+    /// start).
+    joint: Option<Joint>,
 }
 
 impl Strip {
@@ -62,9 +103,21 @@ impl Strip {
         })
     }
 
-    /// The strip with the disc a multirotor sweeps where the spray run turns at the leg's end.
-    pub fn turning_at_end(mut self, end: Coord<f64>, half_m: f64) -> Self {
-        self.joint = Some((end, half_m));
+    /// The strip with the sector a multirotor sweeps where the spray run turns at the leg's
+    /// end, from direction `into` to `out_of` (need not be unit vectors).
+    pub fn turning_at_end(
+        mut self,
+        end: Coord<f64>,
+        half_m: f64,
+        into: Coord<f64>,
+        out_of: Coord<f64>,
+    ) -> Self {
+        self.joint = Some(Joint {
+            centre: end,
+            radius: half_m,
+            into,
+            out_of,
+        });
         self.low_y = self.low_y.min(end.y - half_m);
         self.high_y = self.high_y.max(end.y + half_m);
         self
@@ -84,13 +137,7 @@ impl Strip {
             }
         }
         let strip = (high > low).then_some((low, high));
-        let disc = self.joint.and_then(|(centre, radius)| {
-            let dy = y - centre.y;
-            (dy.abs() < radius).then(|| {
-                let half = (radius * radius - dy * dy).sqrt();
-                (centre.x - half, centre.x + half)
-            })
-        });
+        let disc = self.joint.and_then(|joint| joint.interval(y));
         match (strip, disc) {
             (Some(a), Some(b)) if a.0 <= b.1 && b.0 <= a.1 => {
                 out.push((a.0.min(b.0), a.1.max(b.1)))

@@ -41,6 +41,13 @@ pub struct PlanOptions {
     /// Refine the best 1° heading to 0.1° (`--no-refine` keeps the seed's 1° heading).
     #[cfg_attr(feature = "cli", arg(long = "no-refine", action = clap::ArgAction::SetFalse, help = "Keep the best 1° heading (the seed's) instead of refining it to 0.1°"))]
     pub refine_heading: bool,
+    /// Where swaths' spray on/off points sit against the edge-pass band: `overlap` (on the
+    /// pass line), `balanced` (least double dose for little missed) or `gap` (no double dose).
+    #[cfg_attr(
+        feature = "cli",
+        arg(long = "edge-cut", default_value = "balanced", value_parser = ["overlap", "balanced", "gap"])
+    )]
+    pub edge_cut: String,
     /// Seed 001's a: spacing of the terrain samples along swaths, metres.
     #[cfg_attr(
         feature = "cli",
@@ -155,6 +162,7 @@ impl Default for PlanOptions {
             heading: "auto".into(),
             weights: vec![0.5, 0.5],
             refine_heading: true,
+            edge_cut: "balanced".into(),
             drape_spacing_m: 20.0,
             boundary_margin_m: 0.0,
             obstacle_margin_m: 0.0,
@@ -285,8 +293,19 @@ impl PlanOptions {
                     },
                 )
             })?;
+        let edge_cut = self.edge_cut.parse().map_err(|why| {
+            InputError::new(
+                "--edge-cut",
+                Fault::InvalidValue {
+                    what: "--edge-cut".into(),
+                    value: self.edge_cut.clone(),
+                    why,
+                },
+            )
+        })?;
         let settings = CoverageSettings {
             headland_passes: self.headland_passes,
+            edge_cut,
             boundary_margin_m: self.boundary_margin_m,
             obstacle_margin_m: self.obstacle_margin_m,
             drape_spacing_m: self.drape_spacing_m,
