@@ -424,9 +424,12 @@ pub fn outcome(
     outcome.warning = pdf_warning;
     if !rendered.verdict.safe {
         if files.allow_unsafe {
-            outcome.warning = Some(
-                "warning: the mission files were written although the preflight failed (--allow-unsafe)".into(),
-            );
+            // Both warnings when both apply: the unsafe one first, it matters more.
+            let unsafe_warning = "warning: the mission files were written although the preflight failed (--allow-unsafe)";
+            outcome.warning = Some(match outcome.warning.take() {
+                Some(pdf) => format!("{unsafe_warning}\n{pdf}"),
+                None => unsafe_warning.to_string(),
+            });
         } else {
             outcome.failures = rendered.verdict.failures;
         }
