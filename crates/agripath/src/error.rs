@@ -128,6 +128,17 @@ pub enum Fault {
         /// The second hole's number, counted from 1 in file order.
         second: usize,
     },
+    /// A point of the route from which no sortie can reach the rest and fly back on one
+    /// battery and one tank: the vehicle is too weak for the farm.
+    #[error("battery_endurance_s = {endurance_s} is invalid: the route near ({x:.1}, {y:.1}) cannot be reached and flown back on one battery and one tank")]
+    UnreachableOnOneBattery {
+        /// Easting of the point in the planning frame, metres.
+        x: f64,
+        /// Northing of the point in the planning frame, metres.
+        y: f64,
+        /// The vehicle's endurance, seconds.
+        endurance_s: f64,
+    },
     /// The file holds no field polygon.
     #[error("no field polygons found")]
     NoFields,

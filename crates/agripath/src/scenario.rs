@@ -89,6 +89,9 @@ pub struct Scenario {
     pub terrain: Box<dyn Terrain>,
     /// The vehicle, validated, with its overrides applied.
     pub vehicle: Vehicle,
+    /// The vehicle file it was read from (`None`: the default vehicle or a scenario's
+    /// inline table), so that a fault of the vehicle names its file.
+    pub vehicle_file: Option<PathBuf>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -196,6 +199,7 @@ impl Scenario {
             terrain_spec,
             terrain,
             vehicle,
+            vehicle_file: parts.vehicle_file.clone(),
         })
     }
 }

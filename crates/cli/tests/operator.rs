@@ -258,3 +258,43 @@ fn skipped_and_repaired_features_are_named_not_dropped() {
         let _ = std::fs::remove_dir_all(&folder);
     }
 }
+
+#[test]
+fn a_vehicle_too_weak_for_the_farm_is_blamed_on_its_file_with_a_lon_lat_place() {
+    let folder = scratch("weak");
+    let weak = folder.join("weak.toml");
+    let vehicle = std::fs::read_to_string(data("vehicles/dji_t16.toml")).unwrap();
+    let vehicle: String = vehicle
+        .lines()
+        .map(|line| {
+            if line.starts_with("battery_endurance_s") {
+                "battery_endurance_s = 30.0".to_string()
+            } else {
+                line.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    std::fs::write(&weak, vehicle).unwrap();
+    let fields = data("christmas_island_fields.kml");
+    let output = agripath_without_browser(&[
+        "plan",
+        "--fields",
+        fields.to_str().unwrap(),
+        "--vehicle",
+        weak.to_str().unwrap(),
+        "--supply",
+        "105.6216,-10.4953",
+        "--out",
+        folder.join("out").to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(2));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("weak.toml: battery_endurance_s = 30 is invalid"),
+        "{message}"
+    );
+    assert!(message.contains("near lon 105.6"), "{message}");
+    assert_eq!(message.lines().count(), 1, "{message}");
+    let _ = std::fs::remove_dir_all(&folder);
+}

@@ -437,6 +437,39 @@ pub fn outcome(
     Ok(outcome)
 }
 
+/// A planning fault as the user reads it: a fault of the vehicle names the vehicle file
+/// (else the field file), and places are in the input's coordinates (lon/lat for a lon/lat
+/// farm, not the UTM metres it was planned in).
+pub fn planning_error(scenario: &Scenario, fault: Fault) -> InputError {
+    match fault {
+        Fault::UnreachableOnOneBattery { x, y, endurance_s } => {
+            let frame = scenario.farm.coordinate_system;
+            let (a, b) = frame.to_input(x, y);
+            let near = match frame {
+                crate::model::CoordinateSystem::Local => format!("({a:.1}, {b:.1})"),
+                crate::model::CoordinateSystem::Utm(_) => {
+                    format!("lon {a:.6}, lat {b:.6}")
+                }
+            };
+            let file = scenario
+                .vehicle_file
+                .as_deref()
+                .unwrap_or(scenario.farm.source.as_path());
+            InputError::new(
+                file,
+                Fault::InvalidValue {
+                    what: "battery_endurance_s".into(),
+                    value: crate::error::figure(endurance_s),
+                    why: format!(
+                        "the route near {near} cannot be reached and flown back on one battery and one tank"
+                    ),
+                },
+            )
+        }
+        other => InputError::new(&scenario.farm.source, other),
+    }
+}
+
 /// What goes into a plan's folder besides what is always there.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct FolderChoice {

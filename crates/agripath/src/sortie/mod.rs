@@ -460,13 +460,10 @@ fn unreachable_points(route: &WorkRoute, model: &SortieModel) -> Result<(), Faul
     for index in 1..route.len() {
         if !model.feasible(route, index - 1, index) {
             let point = route.points()[index];
-            return Err(Fault::InvalidValue {
-                what: "battery_endurance_s".into(),
-                value: format!("{}", model.endurance_s),
-                why: format!(
-                    "the route near ({:.1}, {:.1}) cannot be reached and flown back on one battery and one tank",
-                    point.x, point.y
-                ),
+            return Err(Fault::UnreachableOnOneBattery {
+                x: point.x,
+                y: point.y,
+                endurance_s: model.endurance_s,
             });
         }
     }
