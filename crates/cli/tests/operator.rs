@@ -3,17 +3,11 @@
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn data(relative: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../../data")
-        .join(relative)
-}
+mod common;
+use common::{data, stdout};
 
 fn scratch(name: &str) -> PathBuf {
-    let folder = std::env::temp_dir().join(format!("agripath-sheet-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&folder);
-    std::fs::create_dir_all(&folder).unwrap();
-    folder
+    common::scratch("sheet", name)
 }
 
 /// Runs agripath with no browser to print with, whatever the machine has.
@@ -25,18 +19,26 @@ fn agripath_without_browser(arguments: &[&str]) -> Output {
         .unwrap()
 }
 
-fn succeeded(output: &Output) -> String {
-    assert!(
-        output.status.success(),
-        "status {:?}: {}",
-        output.status.code(),
-        String::from_utf8_lossy(&output.stderr)
-    );
-    String::from_utf8(output.stdout.clone()).unwrap()
-}
-
 fn report(folder: &Path) -> serde_json::Value {
     serde_json::from_slice(&std::fs::read(folder.join("report.json")).unwrap()).unwrap()
+}
+
+/// `application_rate_l_per_ha` as the vehicle file states it.
+fn application_rate(vehicle: &Path) -> f64 {
+    let text = std::fs::read_to_string(vehicle).unwrap();
+    let line = text
+        .lines()
+        .find(|line| line.starts_with("application_rate_l_per_ha"))
+        .unwrap();
+    line.split('=')
+        .nth(1)
+        .unwrap()
+        .split('#')
+        .next()
+        .unwrap()
+        .trim()
+        .parse()
+        .unwrap()
 }
 
 /// Sortie rows of the sheet's table: `<tr>` lines whose first cell is a number.
@@ -62,7 +64,7 @@ fn every_example_scenario_has_a_map_layer_and_a_sheet_row_per_sortie() {
     let mut with_litres = 0;
     for scenario in &scenarios {
         let out = folder.join(scenario.file_stem().unwrap());
-        succeeded(&agripath_without_browser(&[
+        stdout(&agripath_without_browser(&[
             "plan",
             scenario.to_str().unwrap(),
             "--out",
@@ -110,13 +112,31 @@ fn every_example_scenario_has_a_map_layer_and_a_sheet_row_per_sortie() {
         if let Some(total) = report["litres"].as_f64() {
             with_litres += 1;
             // Litres per row, read back from the page, add up to the report's total.
-            let litres: f64 = rows
+            let row_litres: Vec<f64> = rows
                 .iter()
                 .map(|row| {
                     let cells: Vec<&str> = row.split("<td class=\"number\">").collect();
                     cells[3].split('<').next().unwrap().parse::<f64>().unwrap()
                 })
-                .sum();
+                .collect();
+            let litres: f64 = row_litres.iter().sum();
+            // And each row is what its mission file sprays: the rate of the vehicle file
+            // (the only one with a rate) over the spray distance the preflight flew from
+            // `sortie_NN.plan` (horizontal, so within 3 % of the draped length on these
+            // slopes).
+            assert_eq!(report["vehicle"], "DJI T16-class sprayer", "{scenario:?}");
+            let rate = application_rate(&data("vehicles/dji_t16.toml"));
+            let swath = report["swath_width_m"].as_f64().unwrap();
+            let flown = report["preflight"]["sorties"].as_array().unwrap();
+            assert_eq!(flown.len(), sorties);
+            for (row, sortie) in row_litres.iter().zip(flown) {
+                let spray_m = sortie["spray_m"].as_f64().unwrap();
+                let as_flown = rate / 10_000.0 * swath * spray_m;
+                assert!(
+                    (row - as_flown).abs() <= 0.03 * as_flown + 0.05,
+                    "{scenario:?}: sheet {row} L, flown from the file {as_flown:.2} L"
+                );
+            }
             assert!(
                 (litres - total).abs() <= 0.05 * sorties as f64,
                 "{scenario:?}: rows {litres} L, report {total} L"
@@ -136,7 +156,7 @@ fn every_example_scenario_has_a_map_layer_and_a_sheet_row_per_sortie() {
 fn pdf_without_a_browser_warns_and_writes_the_rest() {
     let folder = scratch("nobrowser");
     let out = folder.join("demo");
-    let text = succeeded(&agripath_without_browser(&[
+    let text = stdout(&agripath_without_browser(&[
         "demo",
         "--pdf",
         "--out",
@@ -157,7 +177,7 @@ fn headings_are_given_as_compass_bearings_and_taken_as_them() {
     let fields = data("seed001_farm.geojson");
     let plan = |heading: &str, name: &str| {
         let out = folder.join(name);
-        succeeded(&agripath_without_browser(&[
+        stdout(&agripath_without_browser(&[
             "plan",
             "--fields",
             fields.to_str().unwrap(),
@@ -177,6 +197,27 @@ fn headings_are_given_as_compass_bearings_and_taken_as_them() {
             assert_eq!(field["heading_bearing_deg"].as_f64(), Some(90.0));
         }
     }
+    // The swaths as written (plan.geojson, local metres: x east, y north) run east-west.
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("bearing/plan.geojson")).unwrap())
+            .unwrap();
+    let mut swaths = 0;
+    for feature in plan["features"].as_array().unwrap() {
+        if feature["properties"]["kind"] != "swath" {
+            continue;
+        }
+        let line = feature["geometry"]["coordinates"].as_array().unwrap();
+        let (first, last) = (&line[0], &line[line.len() - 1]);
+        let dx = last[0].as_f64().unwrap() - first[0].as_f64().unwrap();
+        let dy = last[1].as_f64().unwrap() - first[1].as_f64().unwrap();
+        let bearing = dx.atan2(dy).to_degrees().rem_euclid(180.0);
+        assert!(
+            (bearing - 90.0).abs() < 1e-6,
+            "a swath at bearing {bearing}"
+        );
+        swaths += 1;
+    }
+    assert!(swaths > 10);
     let bad = agripath_without_browser(&[
         "plan",
         "--fields",
@@ -195,7 +236,7 @@ fn headings_are_given_as_compass_bearings_and_taken_as_them() {
 fn terrain_info_gives_lon_lat_and_metres_and_sample_takes_lon_lat() {
     // A UTM DEM (GDA94 / MGA zone 48): its extent in metres and in lon/lat.
     let island = data("spso/ChrismasTerrain.tif");
-    let text = succeeded(&agripath_without_browser(&[
+    let text = stdout(&agripath_without_browser(&[
         "terrain",
         "info",
         island.to_str().unwrap(),
@@ -207,7 +248,7 @@ fn terrain_info_gives_lon_lat_and_metres_and_sample_takes_lon_lat() {
     );
     // A DEM in degrees: its size in metres, not 0.0 × 0.0.
     let degrees = data("test/geotiff/lonlat_4326_float64.tif");
-    let text = succeeded(&agripath_without_browser(&[
+    let text = stdout(&agripath_without_browser(&[
         "terrain",
         "info",
         degrees.to_str().unwrap(),
@@ -219,7 +260,7 @@ fn terrain_info_gives_lon_lat_and_metres_and_sample_takes_lon_lat() {
         "{text}"
     );
     // A lon/lat point inside the DEM answers with one of its heights.
-    let by_lon_lat = succeeded(&agripath_without_browser(&[
+    let by_lon_lat = stdout(&agripath_without_browser(&[
         "terrain",
         "sample",
         island.to_str().unwrap(),
@@ -246,7 +287,7 @@ fn skipped_and_repaired_features_are_named_not_dropped() {
         if command == "plan" {
             arguments.extend(["--out", out.to_str().unwrap()]);
         }
-        let text = succeeded(&agripath_without_browser(&arguments));
+        let text = stdout(&agripath_without_browser(&arguments));
         assert!(
             text.contains("Placemark 1 (farm road): a LineString is not planned"),
             "{text}"

@@ -297,6 +297,19 @@ pub fn scientific(value: f64) -> String {
     }
 }
 
+/// The log-scale axis of a convergence plot on `function`: the gap of a value to the optimum,
+/// or to `lowest` (the lowest value seen) where that is lower (f5's −150 is not proven), kept
+/// above a floor so that a log scale can draw zero; and the axis label saying which.
+pub(crate) fn gap_axis(function: &TestFunction, lowest: f64) -> (impl Fn(f64) -> f64, String) {
+    let floor = 1e-30_f64.max(lowest.abs() * 1e-15);
+    let label = if lowest < function.optimum {
+        format!("best − ({lowest:.6}) (lowest seen)")
+    } else {
+        format!("best − f* (f* = {})", function.optimum)
+    };
+    (move |y: f64| (y - lowest).max(floor), label)
+}
+
 impl FunctionTable {
     /// The cell of the function with key `function` and `algorithm`, if it ran.
     pub fn cell(&self, function: &str, algorithm: Algorithm) -> Option<&Cell> {
@@ -373,27 +386,18 @@ impl FunctionTable {
             .iter()
             .flat_map(|cell| cell.convergence.iter().map(|&(_, y)| y))
             .fold(function.optimum, f64::min);
-        let floor = 1e-30_f64.max(lowest.abs() * 1e-15);
+        let (gap, y_label) = gap_axis(function, lowest);
         let series: Vec<Series> = cells
             .iter()
             .map(|cell| Series {
                 name: cell.algorithm.label().to_string(),
-                points: cell
-                    .convergence
-                    .iter()
-                    .map(|&(x, y)| (x, (y - lowest).max(floor)))
-                    .collect(),
+                points: cell.convergence.iter().map(|&(x, y)| (x, gap(y))).collect(),
             })
             .collect();
         let title = format!(
             "{} {}, D = {}: mean best of {} runs",
             function.key, function.name, self.settings.dimension, self.settings.runs
         );
-        let y_label = if lowest < function.optimum {
-            format!("best − ({lowest:.6}) (lowest seen)")
-        } else {
-            format!("best − f* (f* = {})", function.optimum)
-        };
         line_chart::render(
             &Chart {
                 title: &title,

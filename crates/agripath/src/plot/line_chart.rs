@@ -83,6 +83,25 @@ fn on_scale(chart: &Chart, points: &[(f64, f64)]) -> Vec<(f64, f64)> {
         .collect()
 }
 
+/// An SVG path through `points` (chart units), mapped to pixels by `px` and `py`.
+fn path_data<'p>(
+    points: impl Iterator<Item = &'p (f64, f64)>,
+    px: &impl Fn(f64) -> f64,
+    py: &impl Fn(f64) -> f64,
+) -> String {
+    let mut data = String::new();
+    for (k, &(x, y)) in points.enumerate() {
+        let _ = write!(
+            data,
+            "{}{:.1},{:.1}",
+            if k == 0 { "M" } else { " L" },
+            px(x),
+            py(y)
+        );
+    }
+    data
+}
+
 /// The chart with a shaded band behind series `i`: `bands[i]` holds (x, low, high), e.g.
 /// the inter-quartile range of the runs around their median.
 pub fn render_banded(
@@ -128,6 +147,12 @@ pub fn render_banded(
     }
     let plot_width = WIDTH - LEFT - RIGHT;
     let plot_height = HEIGHT - TOP - BOTTOM;
+    let colour_of = |index: usize| {
+        colours
+            .get(index)
+            .copied()
+            .unwrap_or(COLOURS[index % COLOURS.len()])
+    };
     let px = |x: f64| LEFT + (x - min_x) / (max_x - min_x) * plot_width;
     let py = |y: f64| TOP + (max_y - y) / (max_y - min_y) * plot_height;
 
@@ -201,42 +226,17 @@ pub fn render_banded(
         if low.is_empty() || high.is_empty() {
             continue;
         }
-        let colour = colours
-            .get(index)
-            .copied()
-            .unwrap_or(COLOURS[index % COLOURS.len()]);
-        let mut data = String::new();
-        let outline = low.iter().chain(high.iter().rev());
-        for (k, &(x, y)) in outline.enumerate() {
-            let _ = write!(
-                data,
-                "{}{:.1},{:.1}",
-                if k == 0 { "M" } else { " L" },
-                px(x),
-                py(y)
-            );
-        }
+        let colour = colour_of(index);
+        let data = path_data(low.iter().chain(high.iter().rev()), &px, &py);
         let _ = writeln!(
             svg,
             r#"<path d="{data} Z" fill="{colour}" fill-opacity="0.18" stroke="none"/>"#
         );
     }
     for (index, (line, points)) in series.iter().zip(&transformed).enumerate() {
-        let colour = colours
-            .get(index)
-            .copied()
-            .unwrap_or(COLOURS[index % COLOURS.len()]);
+        let colour = colour_of(index);
         if !points.is_empty() {
-            let mut data = String::new();
-            for (k, &(x, y)) in points.iter().enumerate() {
-                let _ = write!(
-                    data,
-                    "{}{:.1},{:.1}",
-                    if k == 0 { "M" } else { " L" },
-                    px(x),
-                    py(y)
-                );
-            }
+            let data = path_data(points.iter(), &px, &py);
             let _ = writeln!(
                 svg,
                 r#"<path d="{data}" fill="none" stroke="{colour}" stroke-width="2"/>"#

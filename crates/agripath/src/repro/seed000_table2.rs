@@ -289,8 +289,7 @@ pub fn median_convergence_svg(table: &FunctionTable, function: &TestFunction) ->
         .iter()
         .flat_map(|cell| cell.quartiles.iter().map(|&(_, q1, _, _)| q1))
         .fold(function.optimum, f64::min);
-    let floor = 1e-30_f64.max(lowest.abs() * 1e-15);
-    let gap = |y: f64| (y - lowest).max(floor);
+    let (gap, y_label) = crate::bench::functions::gap_axis(function, lowest);
     let series: Vec<Series> = cells
         .iter()
         .map(|cell| Series {
@@ -315,11 +314,6 @@ pub fn median_convergence_svg(table: &FunctionTable, function: &TestFunction) ->
         "{} {}, D = {}: median of {} runs, band = quartiles",
         function.key, function.name, table.settings.dimension, table.settings.runs
     );
-    let y_label = if lowest < function.optimum {
-        format!("best − ({lowest:.6}) (lowest seen)")
-    } else {
-        format!("best − f* (f* = {})", function.optimum)
-    };
     let chart = Chart {
         title: &title,
         x_label: "evaluations",

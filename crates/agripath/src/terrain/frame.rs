@@ -39,18 +39,11 @@ fn dem_coordinates(epsg: u32) -> Option<DemCoordinates> {
     }
 }
 
-/// The lon/lat box `[west, south, east, north]` of an extent given in EPSG `epsg`'s
-/// coordinates (a UTM grid or lon/lat), from its corners and edge midpoints; `None` for a
-/// coordinate system agripath does not place.
-pub fn lon_lat_box(epsg: u32, extent: Extent) -> Option<[f64; 4]> {
-    let dem = dem_coordinates(epsg)?;
-    let mut bounds = [
-        f64::INFINITY,
-        f64::INFINITY,
-        f64::NEG_INFINITY,
-        f64::NEG_INFINITY,
-    ];
-    for (fx, fy) in [
+/// The corners and edge midpoints of `extent` (in `dem`'s coordinates) as lon/lat: the
+/// outline of a DEM is curved in another frame, and these eight points bound it closely
+/// enough to say where to look.
+fn outline_lon_lat(dem: DemCoordinates, extent: Extent) -> impl Iterator<Item = (f64, f64)> {
+    const AT: [(f64, f64); 8] = [
         (0.0, 0.0),
         (0.5, 0.0),
         (1.0, 0.0),
@@ -59,21 +52,44 @@ pub fn lon_lat_box(epsg: u32, extent: Extent) -> Option<[f64; 4]> {
         (0.0, 1.0),
         (0.5, 1.0),
         (1.0, 1.0),
-    ] {
+    ];
+    AT.into_iter().map(move |(fx, fy)| {
         let x = extent.min_x + fx * extent.width();
         let y = extent.min_y + fy * extent.height();
-        let (lon, lat) = match dem {
+        match dem {
             DemCoordinates::LonLat => (x, y),
             DemCoordinates::Utm(zone) => from_utm(x, y, zone),
-        };
-        bounds = [
-            bounds[0].min(lon),
-            bounds[1].min(lat),
-            bounds[2].max(lon),
-            bounds[3].max(lat),
-        ];
-    }
-    Some(bounds)
+        }
+    })
+}
+
+/// The bounding box of `points`, `None` when there are none.
+fn bounding_box(points: impl Iterator<Item = (f64, f64)>) -> Option<Extent> {
+    points.fold(None, |extent: Option<Extent>, (x, y)| {
+        Some(match extent {
+            None => Extent {
+                min_x: x,
+                min_y: y,
+                max_x: x,
+                max_y: y,
+            },
+            Some(e) => Extent {
+                min_x: e.min_x.min(x),
+                min_y: e.min_y.min(y),
+                max_x: e.max_x.max(x),
+                max_y: e.max_y.max(y),
+            },
+        })
+    })
+}
+
+/// The lon/lat box `[west, south, east, north]` of an extent given in EPSG `epsg`'s
+/// coordinates (a UTM grid or lon/lat), from its corners and edge midpoints; `None` for a
+/// coordinate system agripath does not place.
+pub fn lon_lat_box(epsg: u32, extent: Extent) -> Option<[f64; 4]> {
+    let dem = dem_coordinates(epsg)?;
+    let e = bounding_box(outline_lon_lat(dem, extent))?;
+    Some([e.min_x, e.min_y, e.max_x, e.max_y])
 }
 
 /// A lon/lat point in EPSG `epsg`'s coordinates; `None` for a system agripath does not place.
@@ -109,43 +125,11 @@ impl Terrain for Reprojected {
     }
 
     fn extent(&self) -> Option<Extent> {
-        // The DEM's outline in the plan frame is curved; its bounding box from the corners and
-        // edge midpoints is close enough to say where to look.
-        let outer = self.grid.outer_extent();
-        let mut extent: Option<Extent> = None;
-        for (fx, fy) in [
-            (0.0, 0.0),
-            (0.5, 0.0),
-            (1.0, 0.0),
-            (0.0, 0.5),
-            (1.0, 0.5),
-            (0.0, 1.0),
-            (0.5, 1.0),
-            (1.0, 1.0),
-        ] {
-            let dem_x = outer.min_x + fx * outer.width();
-            let dem_y = outer.min_y + fy * outer.height();
-            let (lon, lat) = match self.dem {
-                DemCoordinates::LonLat => (dem_x, dem_y),
-                DemCoordinates::Utm(zone) => from_utm(dem_x, dem_y, zone),
-            };
-            let (x, y) = to_utm(lon, lat, self.plan_zone);
-            extent = Some(match extent {
-                None => Extent {
-                    min_x: x,
-                    min_y: y,
-                    max_x: x,
-                    max_y: y,
-                },
-                Some(e) => Extent {
-                    min_x: e.min_x.min(x),
-                    min_y: e.min_y.min(y),
-                    max_x: e.max_x.max(x),
-                    max_y: e.max_y.max(y),
-                },
-            });
-        }
-        extent
+        let zone = self.plan_zone;
+        bounding_box(
+            outline_lon_lat(self.dem, self.grid.outer_extent())
+                .map(|(lon, lat)| to_utm(lon, lat, zone)),
+        )
     }
 
     fn describe(&self) -> String {

@@ -1,0 +1,32 @@
+//! Helpers the end-to-end suites share (each suite uses some of them).
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::Output;
+
+/// A file of the repository's `data/` folder.
+pub fn data(relative: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../../data")
+        .join(relative)
+}
+
+/// An empty scratch folder for test `name` of `suite`, this process's own.
+pub fn scratch(suite: &str, name: &str) -> PathBuf {
+    let folder =
+        std::env::temp_dir().join(format!("agripath-{suite}-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&folder);
+    std::fs::create_dir_all(&folder).unwrap();
+    folder
+}
+
+/// The standard output of a run that must have succeeded (its stderr in the failure).
+pub fn stdout(output: &Output) -> String {
+    assert!(
+        output.status.success(),
+        "status {:?}: {}",
+        output.status.code(),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    String::from_utf8(output.stdout.clone()).unwrap()
+}
