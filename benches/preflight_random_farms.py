@@ -52,7 +52,11 @@ def farm(lon0, lat0):
 
 
 worst_coverage, worst_outside, through, fields, unsafe = 1.0, 0.0, 0, 0, []
-with tempfile.TemporaryDirectory() as scratch:
+worst_raw, unreachable, sprayable = 1.0, 0.0, 0.0
+# KEEP=DIR keeps the farms and plan folders there to look at.
+with (tempfile.TemporaryDirectory() if not os.environ.get("KEEP") else open(os.devnull)) as _scratch:
+    scratch = os.environ.get("KEEP") or _scratch
+    os.makedirs(scratch, exist_ok=True)
     for index in range(FARMS):
         lon0, lat0 = rng.uniform(-170, 170), rng.uniform(-50, 60)
         path = os.path.join(scratch, f"farm{index}.geojson")
@@ -68,16 +72,24 @@ with tempfile.TemporaryDirectory() as scratch:
         if not verdict["safe"]:
             unsafe.append((index, verdict["failures"]))
         coverage = min(f["covered_fraction"] for f in verdict["fields"])
+        # Of the whole sprayable area, the ground narrower than a swath included.
+        raw = min(1 - (f["missed_m2"] + f["unreachable_m2"]) / f["sprayable_area_m2"] for f in verdict["fields"])
+        worst_raw = min(worst_raw, raw)
+        unreachable += sum(f["unreachable_m2"] for f in verdict["fields"])
+        sprayable += sum(f["sprayable_area_m2"] for f in verdict["fields"])
         holes_check = next(c for c in verdict["checks"] if c["name"] == "holes and obstacles")
         through += int(holes_check["figure"])
         fields += len(verdict["fields"])
         worst_coverage = min(worst_coverage, coverage)
         worst_outside = max(worst_outside, verdict["sprayed_outside_fraction"])
         print(f"farm {index:2d} ({lon0:8.3f}, {lat0:7.3f}): {len(verdict['fields'])} fields, "
-              f"{report['sorties']} sorties, least coverage as flown {100 * coverage:.2f}%, "
+              f"{report['sorties']} sorties, least coverage as flown {100 * coverage:.2f}% "
+              f"({100 * raw:.2f}% of the sprayable area), "
               f"outside {100 * verdict['sprayed_outside_fraction']:.3f}%, "
               f"{'safe' if verdict['safe'] else 'UNSAFE'}")
-print(f"{FARMS} farms, {fields} fields: least coverage as flown {100 * worst_coverage:.2f}%, "
+print(f"{FARMS} farms, {fields} fields: least coverage as flown {100 * worst_coverage:.2f}% of the ground a swath "
+      f"reaches ({100 * worst_raw:.2f}% of the sprayable area; unreachable {unreachable:.0f} m², "
+      f"{100 * unreachable / max(sprayable, 1):.2f}% of {sprayable:.0f} m²), "
       f"most spray outside {100 * worst_outside:.3f}%, samples in holes or obstacles {through}, "
       f"unsafe {len(unsafe)}")
 for index, failures in unsafe:

@@ -7,7 +7,10 @@ buffered by half the swath with flat caps and round joins (a multirotor's footpr
 union of those footprints, against the field polygons of the input file (projected with
 PROJ; obstacles subtracted), gives each field's coverage and the spray outside the fields.
 They must agree with `report.json` → `preflight` (agripath's row-exact measure) to 0.1 point
-of coverage and 0.1 point of spray outside, and every field must be covered ≥ 99 %.
+of coverage and 0.1 point of spray outside, and every field must be covered ≥ 99 %. Coverage
+is of the ground a swath can reach (the field opened by a disc one swath across, computed
+here by GEOS): unsprayed ground narrower than a swath is `unreachable_m2`, which must agree
+too (to 0.5 m² or 2 %).
 
 Inputs tried: the embedded demo (local metres placed at its origin), the Christmas Island
 plantation (lon/lat, a hole and an obstacle, over the DEM), and farms of irregular concave
@@ -92,11 +95,22 @@ def compare(label, folder, fields, obstacles, to_plan):
     for field, figures in zip(fields, verdict["fields"]):
         region = field.difference(blocked) if blocked is not None else field
         ours = figures["covered_fraction"]
-        theirs = footprint.intersection(region).area / region.area
+        # The ground a swath can reach: the opening by a disc one swath across. Coverage is
+        # covered / (covered + reachable ground missed); unsprayed ground outside the
+        # opening is unreachable, reported apart.
+        style = dict(join_style="round", quad_segs=64)
+        reachable = region.buffer(-half, **style).buffer(half, **style).intersection(region)
+        covered = footprint.intersection(region).area
+        missed = reachable.difference(footprint).area
+        theirs = covered / (covered + missed)
+        unreachable = max(region.area - covered - missed, 0.0)
         least = min(least, theirs)
         check(abs(ours - theirs) <= 1e-3,
               f"{label} {figures['name']}: covered {100 * ours:.3f}% (agripath) vs {100 * theirs:.3f}% (shapely)")
+        check(abs(figures["unreachable_m2"] - unreachable) <= max(0.5, 0.02 * unreachable),
+              f"{label} {figures['name']}: unreachable {figures['unreachable_m2']:.2f} m² (agripath) vs {unreachable:.2f} m² (shapely)")
         check(theirs >= 0.99, f"{label} {figures['name']}: {100 * theirs:.2f}% covered as flown (shapely)")
+        print(f"coverage: {label} {figures['name']}: unreachable {figures['unreachable_m2']:.2f} m² (shapely {unreachable:.2f} m²)")
     outside = footprint.difference(ground).area / footprint.area
     check(abs(outside - verdict["sprayed_outside_fraction"]) <= 1e-3,
           f"{label}: outside {verdict['sprayed_outside_fraction']} (agripath) vs {outside:.6f} (shapely)")

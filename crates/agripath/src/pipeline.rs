@@ -451,13 +451,13 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         vehicle.safe_height_m,
     );
     let title = format!(
-        "{}{} — {} fields, swath {} m, {:.0} m sprayed, {:.2}% covered",
+        "{}{} — {} fields, swath {} m, {:.0} m sprayed, {:.2}% covered as flown",
         if verdict.safe { "" } else { "UNSAFE: " },
         scenario.name,
         scenario.farm.fields.len(),
         vehicle.swath_width_m,
         mission.report.spray_length_m + mission.report.edge_length_m,
-        100.0 * mission.report.covered_fraction
+        100.0 * verdict.covered_fraction()
     );
     let json = |value: &serde_json::Value| {
         (serde_json::to_string_pretty(value).expect("JSON value") + "\n").into_bytes()

@@ -8,7 +8,7 @@
 //! is left where a swath end meets a slanted edge (the seed's layout leaves 2-4 % there).
 
 use geo::algorithm::buffer::{Buffer, BufferStyle, LineJoin};
-use geo::{BooleanOps, BoundingRect, Coord, Intersects, MultiPolygon, Polygon};
+use geo::{Area, BooleanOps, BoundingRect, Coord, Intersects, MultiPolygon, Polygon};
 
 use crate::model::{Field, Obstacle};
 
@@ -63,6 +63,70 @@ pub fn sprayable_region(
     offset(&region, -boundary_margin_m)
 }
 
+/// Chord length over radius of the arcs [`reachable_region`] draws (0.1: chords 25 cm long on
+/// a 2.5 m radius, 3 mm inside the arc).
+const ARC_SEGMENT_PER_RADIUS: f64 = 0.1;
+
+/// The part of `sprayable` a spray footprint `width_m` across can reach without spraying
+/// outside it: the morphological opening of the region by a disc of diameter `width_m`
+/// (erode by w/2, then grow by w/2, round joins), the ground a circular footprint can cover
+/// in the configuration-space view of coverage (Choset 2001). What it leaves out is where
+/// the region is narrower than one swath: the tip of a corner sharper than 90° (area
+/// (w/2)²·(cot(θ/2) − (π − θ)/2) for a corner of angle θ), a neck between two holes or
+/// between a hole and the boundary, a sliver. Ground there can only be sprayed by spraying
+/// outside too, or by passes shorter than their own width; the preflight reports it as
+/// unreachable instead of missed (decision 0023).
+pub fn reachable_region(sprayable: &MultiPolygon<f64>, width_m: f64) -> MultiPolygon<f64> {
+    if width_m <= 0.0 || sprayable.0.is_empty() {
+        return sprayable.clone();
+    }
+    let round = |region: &MultiPolygon<f64>, distance: f64| {
+        region.buffer_with_style(
+            BufferStyle::new(distance).line_join(LineJoin::Round(ARC_SEGMENT_PER_RADIUS)),
+        )
+    };
+    let eroded = round(sprayable, -width_m / 2.0);
+    if eroded.0.is_empty() {
+        return eroded;
+    }
+    // The grown region's arcs lie on the chords inside the true arcs, and its straight
+    // edges on the original ones up to rounding: clip to the region so that nothing
+    // outside it is ever called reachable.
+    round(&eroded, width_m / 2.0).intersection(sprayable)
+}
+
+/// Smallest piece of [`unreachable_ground`] kept, m²: below it a piece is the rounding of
+/// the offsets along a straight edge, not ground.
+const LEAST_UNREACHABLE_M2: f64 = 0.01;
+
+/// Per field of `farm`, the ground of its sprayable region (with `settings`' margins) that a
+/// swath `width_m` wide cannot reach ([`reachable_region`]): what the map and `plan.geojson`
+/// draw as unreachable.
+pub fn unreachable_ground(
+    farm: &crate::model::Farm,
+    settings: &super::CoverageSettings,
+    width_m: f64,
+) -> Vec<MultiPolygon<f64>> {
+    farm.fields
+        .iter()
+        .map(|field| {
+            let sprayable = sprayable_region(
+                field,
+                &farm.obstacles,
+                settings.boundary_margin_m,
+                settings.obstacle_margin_m,
+            );
+            let left = sprayable.difference(&reachable_region(&sprayable, width_m));
+            MultiPolygon::new(
+                left.0
+                    .into_iter()
+                    .filter(|piece| piece.unsigned_area() >= LEAST_UNREACHABLE_M2)
+                    .collect(),
+            )
+        })
+        .collect()
+}
+
 /// The closed rings of a region (outer boundaries and holes), first point repeated last.
 pub fn rings(region: &MultiPolygon<f64>) -> Vec<Vec<Coord<f64>>> {
     region
@@ -89,7 +153,7 @@ pub fn edge_pass_regions(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use geo::{Area, LineString};
+    use geo::LineString;
 
     fn square(min: f64, max: f64) -> Polygon<f64> {
         Polygon::new(
@@ -102,6 +166,70 @@ mod tests {
             ]),
             vec![],
         )
+    }
+
+    #[test]
+    fn the_reachable_region_leaves_out_sharp_tips_and_narrow_necks_only() {
+        // A square is reachable but for its four corners' (1 − π/4)·(w/2)² each.
+        let plain = MultiPolygon::new(vec![square(0.0, 100.0)]);
+        let reachable = reachable_region(&plain, 5.0);
+        let corners = 4.0 * (1.0 - std::f64::consts::FRAC_PI_4) * 2.5 * 2.5;
+        let left = plain.unsigned_area() - reachable.unsigned_area();
+        assert!((left - corners).abs() < 0.05, "{left} against {corners}");
+        // A 30° tip: (w/2)²·(cot 15° − 75°) is left.
+        let tip = MultiPolygon::new(vec![Polygon::new(
+            LineString::from(vec![
+                (0.0, 0.0),
+                (100.0, -100.0 * 15f64.to_radians().tan()),
+                (100.0, 100.0 * 15f64.to_radians().tan()),
+                (0.0, 0.0),
+            ]),
+            vec![],
+        )]);
+        let theta = 30f64.to_radians();
+        let expected =
+            2.5 * 2.5 * (1.0 / (theta / 2.0).tan() - (std::f64::consts::PI - theta) / 2.0);
+        let tip_left = tip.unsigned_area() - reachable_region(&tip, 5.0).unsigned_area();
+        // The other two corners are 75° each: (w/2)²·(cot 37.5° − 52.5°) apiece.
+        let other = 2.0 * 2.5 * 2.5 * (1.0 / 37.5f64.to_radians().tan() - 52.5f64.to_radians());
+        assert!(
+            (tip_left - expected - other).abs() < 0.1,
+            "{tip_left} against {}",
+            expected + other
+        );
+        // A neck 3 m wide between two holes is unreachable for a 5 m swath, not for a 2 m one.
+        let with_holes = MultiPolygon::new(vec![Polygon::new(
+            square(0.0, 100.0).exterior().clone(),
+            vec![
+                LineString::from(vec![
+                    (20.0, 40.0),
+                    (48.5, 40.0),
+                    (48.5, 60.0),
+                    (20.0, 60.0),
+                    (20.0, 40.0),
+                ]),
+                LineString::from(vec![
+                    (51.5, 40.0),
+                    (80.0, 40.0),
+                    (80.0, 60.0),
+                    (51.5, 60.0),
+                    (51.5, 40.0),
+                ]),
+            ],
+        )]);
+        let neck = 3.0 * 20.0;
+        let wide = with_holes.unsigned_area() - reachable_region(&with_holes, 5.0).unsigned_area();
+        let narrow =
+            with_holes.unsigned_area() - reachable_region(&with_holes, 2.0).unsigned_area();
+        assert!(wide > neck, "{wide}");
+        assert!(narrow < 5.0, "{narrow}");
+        // Nothing outside the region is ever reachable.
+        assert!(
+            reachable_region(&with_holes, 5.0)
+                .difference(&with_holes)
+                .unsigned_area()
+                < 1e-6
+        );
     }
 
     #[test]

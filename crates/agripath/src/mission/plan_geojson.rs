@@ -1,6 +1,7 @@
 //! `plan.geojson`: the plan as a FeatureCollection (contract in MISSION.md and `docs/cli.md`).
 //!
-//! Features carry `properties.kind`: `field`, `obstacle`, `access`, `edge`, `swath`,
+//! Features carry `properties.kind`: `field`, `unreachable` (ground of a field narrower than
+//! a swath, with `field` and `area_m2`), `obstacle`, `access`, `edge`, `swath`,
 //! `transfer`, `return` (a return point, `role: point`, and its leg to the supply point and
 //! back, `role: leg`), `supply`. Passes and legs carry `seq` (their place in the flight, from 0)
 //! and `sortie` (from 0); a pass's coordinates
@@ -85,6 +86,25 @@ pub fn plan_geojson(
             properties,
             json!({"type": "Polygon", "coordinates": polygon_coordinates(system, &field.polygon)}),
         ));
+    }
+    // Ground narrower than a swath (sharp tips, necks between holes): no pass reaches it
+    // without spraying outside too (decision 0023).
+    let unreachable =
+        crate::coverage::region::unreachable_ground(farm, &plan.settings, plan.swath_width_m);
+    for (index, ground) in unreachable.iter().enumerate() {
+        for piece in &ground.0 {
+            let mut properties = Map::new();
+            properties.insert("kind".into(), json!("unreachable"));
+            properties.insert("field".into(), json!(index));
+            properties.insert(
+                "area_m2".into(),
+                json!(crate::numbers::round(geo::Area::unsigned_area(piece), 1e-3)),
+            );
+            features.push(feature(
+                properties,
+                json!({"type": "Polygon", "coordinates": polygon_coordinates(system, piece)}),
+            ));
+        }
     }
     for obstacle in &farm.obstacles {
         let mut properties = Map::new();

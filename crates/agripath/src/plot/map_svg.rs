@@ -98,6 +98,9 @@ impl Canvas {
     }
 }
 
+/// Fill of ground narrower than a swath (unreachable): slate, apart from every sortie hue.
+const UNREACHABLE_COLOUR: &str = "#37474f";
+
 /// A round scale-bar length near a fifth of the map width.
 fn scale_bar_m(width_m: f64) -> f64 {
     let target = width_m / 5.0;
@@ -189,6 +192,17 @@ pub fn plan_svg(
             svg,
             r##"<path d="{}" fill="#c62828" fill-opacity="0.35" stroke="#8e0000" stroke-width="1"/>"##,
             canvas.polygon(&obstacle.polygon)
+        );
+    }
+    // Ground narrower than a swath, which no pass reaches without spraying outside.
+    let unreachable =
+        crate::coverage::region::unreachable_ground(farm, &plan.settings, plan.swath_width_m);
+    let any_unreachable = unreachable.iter().any(|ground| !ground.0.is_empty());
+    for piece in unreachable.iter().flat_map(|ground| &ground.0) {
+        let _ = writeln!(
+            svg,
+            r##"<path class="unreachable" d="{}" fill="{UNREACHABLE_COLOUR}" fill-opacity="0.8" fill-rule="evenodd" stroke="none"/>"##,
+            canvas.polygon(piece)
         );
     }
     // Roads and yards where the supply point may stand, in road grey.
@@ -361,6 +375,16 @@ pub fn plan_svg(
             svg,
             r##"<line x1="{x:.0}" y1="{base:.0}" x2="{:.0}" y2="{base:.0}" stroke="{colour}" stroke-width="3" stroke-dasharray="{dash}"/><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">{label}</text>"##,
             x + 28.0,
+            x + 34.0,
+            base + 4.0
+        );
+    }
+    if any_unreachable {
+        let x = PAD_PX + items.len() as f64 * 170.0;
+        let _ = writeln!(
+            svg,
+            r##"<rect x="{x:.0}" y="{:.0}" width="28" height="9" fill="{UNREACHABLE_COLOUR}" fill-opacity="0.8"/><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">no swath reaches</text>"##,
+            base - 4.5,
             x + 34.0,
             base + 4.0
         );

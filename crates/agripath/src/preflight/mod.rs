@@ -14,7 +14,9 @@
 //!   the obstacle margin);
 //! - **fence**: every sample inside the file's inclusion polygon and outside its exclusions;
 //! - **coverage** as flown (strips one swath wide along the spray legs, [`sprayed`]) of each
-//!   field's sprayable area, and the **spray outside** the fields, holes and obstacles
+//!   field's sprayable area: covered / (covered + missed), where missed is ground a swath
+//!   can reach ([`crate::coverage::region::reachable_region`]) left unsprayed; ground narrower than a swath (sharp
+//!   tips, necks) left unsprayed is reported apart as unreachable; and the **spray outside** the fields, holes and obstacles
 //!   excluded, as a share of all that is sprayed;
 //! - **tank** and **battery** per sortie, recomputed from the files and the vehicle.
 
@@ -451,17 +453,20 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
     }
 
     // Coverage and spray outside, as flown.
-    let regions: Vec<Rings> = world
+    let regions: Vec<sprayed::FieldGround> = world
         .farm
         .fields
         .iter()
         .map(|field| {
-            Rings::of_multi_polygon(&sprayable_region(
-                field,
-                &world.farm.obstacles,
-                settings.boundary_margin_m,
-                settings.obstacle_margin_m,
-            ))
+            sprayed::FieldGround::of(
+                &sprayable_region(
+                    field,
+                    &world.farm.obstacles,
+                    settings.boundary_margin_m,
+                    settings.obstacle_margin_m,
+                ),
+                world.vehicle.swath_width_m,
+            )
         })
         .collect();
     // Each field's own ground: with --allow-overlap a shared part belongs to the earlier
@@ -484,7 +489,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         .map(|obstacle| Rings::of_polygon(&obstacle.polygon))
         .collect();
     let measured = sprayed::measure(&strips, &regions, &ground, &excluded, ROW_M);
-    let mut coverage = Tally::new("coverage", "≥", 0.0, "share of the sprayable area");
+    let mut coverage = Tally::new("coverage", "≥", 0.0, "share of the ground a swath reaches");
     let mut field_figures = Vec::new();
     for (index, (field, figures)) in world.farm.fields.iter().zip(&measured.regions).enumerate() {
         let required = settings
@@ -492,18 +497,15 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             .get(index)
             .copied()
             .unwrap_or(0.99);
-        let covered = if figures.area_m2 > 0.0 {
-            figures.covered_m2 / figures.area_m2
-        } else {
-            1.0
-        };
+        let covered = figures.covered_fraction();
         coverage.limit = coverage.limit.max(required);
         coverage.record(covered, covered + 1e-9 < required, || {
             format!(
-                "field '{}': {:.2}% of its sprayable area covered as flown (needs ≥ {:.2}%)",
+                "field '{}': {:.2}% of the ground a swath can reach covered as flown (needs ≥ {:.2}%): {:.1} m² missed",
                 field.name,
                 100.0 * covered,
-                100.0 * required
+                100.0 * required,
+                figures.missed_m2()
             )
         });
         field_figures.push(FieldFlown {
@@ -511,8 +513,13 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             sprayable_area_m2: figures.area_m2,
             covered_fraction: covered,
             required_fraction: required,
-            missed_m2: (figures.area_m2 - figures.covered_m2).max(0.0),
+            missed_m2: figures.missed_m2(),
+            unreachable_m2: figures.unreachable_m2(),
             double_sprayed_m2: figures.doubled_m2,
+            over_applied_litres: world
+                .vehicle
+                .application_rate_l_per_ha
+                .map(|rate| crate::numbers::round(rate * figures.doubled_m2 / 1e4, 1e-3)),
         });
     }
     let outside_fraction = if measured.sprayed_m2 > 0.0 {
@@ -561,6 +568,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 sprayable_area_m2: round(field.sprayable_area_m2),
                 covered_fraction: crate::numbers::round(field.covered_fraction, 1e-6),
                 missed_m2: round(field.missed_m2),
+                unreachable_m2: round(field.unreachable_m2),
                 double_sprayed_m2: round(field.double_sprayed_m2),
                 ..field
             })
@@ -691,6 +699,26 @@ mod tests {
         assert!(verdict.safe, "{:?}", verdict.failures);
         assert!(verdict.fields[0].covered_fraction >= 0.99);
         assert!(verdict.sprayed_outside_fraction <= MAX_OUTSIDE_FRACTION);
+        // No rate, no litres; at 80 L/ha the double dose in litres.
+        assert_eq!(verdict.fields[0].over_applied_litres, None);
+        let vehicle = Vehicle {
+            application_rate_l_per_ha: Some(80.0),
+            ..scenario.vehicle.clone()
+        };
+        let world = World {
+            farm: &scenario.farm,
+            terrain: scenario.terrain.as_ref(),
+            vehicle: &vehicle,
+        };
+        let field = &check(&world, &settings, &files).fields[0];
+        assert!(field.double_sprayed_m2 > 0.0);
+        assert_eq!(
+            field.over_applied_litres,
+            Some(crate::numbers::round(
+                80.0 * field.double_sprayed_m2 / 1e4,
+                1e-3
+            ))
+        );
         // Planned from the launch marker, relative altitudes (no DEM).
         assert_eq!(verdict.altitude_reference, AltitudeReference::Relative);
     }

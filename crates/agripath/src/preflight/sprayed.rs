@@ -312,6 +312,27 @@ fn length(intervals: &[(f64, f64)]) -> f64 {
     intervals.iter().map(|(low, high)| high - low).sum()
 }
 
+/// A field's ground as the measure sees it: its sprayable region and the part of that a
+/// swath can reach ([`crate::coverage::region::reachable_region`]).
+#[derive(Debug, Clone)]
+pub struct FieldGround {
+    /// The sprayable region.
+    pub sprayable: Rings,
+    /// The part of it a swath can reach.
+    pub reachable: Rings,
+}
+
+impl FieldGround {
+    /// The ground of a field's `sprayable` region for a swath `width_m` wide.
+    pub fn of(sprayable: &geo::MultiPolygon<f64>, width_m: f64) -> Self {
+        let reachable = crate::coverage::region::reachable_region(sprayable, width_m);
+        Self {
+            sprayable: Rings::of_multi_polygon(sprayable),
+            reachable: Rings::of_multi_polygon(&reachable),
+        }
+    }
+}
+
 /// The figures of one region.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct RegionSprayed {
@@ -321,6 +342,34 @@ pub struct RegionSprayed {
     pub covered_m2: f64,
     /// Under two strips or more.
     pub doubled_m2: f64,
+    /// The reachable part's area, m².
+    pub reachable_area_m2: f64,
+    /// The reachable part under at least one strip, m².
+    pub reachable_covered_m2: f64,
+}
+
+impl RegionSprayed {
+    /// Reachable ground under no strip, m².
+    pub fn missed_m2(&self) -> f64 {
+        (self.reachable_area_m2 - self.reachable_covered_m2).max(0.0)
+    }
+
+    /// Ground no swath can reach that is left unsprayed, m² (unreachable ground a strip
+    /// does cover counts as covered).
+    pub fn unreachable_m2(&self) -> f64 {
+        (self.area_m2 - self.covered_m2 - self.missed_m2()).max(0.0)
+    }
+
+    /// The share covered of the ground that is covered or could be: covered / (covered +
+    /// missed), 1 for an empty region.
+    pub fn covered_fraction(&self) -> f64 {
+        let could_be = self.covered_m2 + self.missed_m2();
+        if could_be > 0.0 {
+            self.covered_m2 / could_be
+        } else {
+            1.0
+        }
+    }
 }
 
 /// The figures of a flight.
@@ -339,7 +388,7 @@ pub struct Sprayed {
 /// holes) less `excluded` (obstacles), on rows `row_m` apart.
 pub fn measure(
     strips: &[Strip],
-    regions: &[Rings],
+    regions: &[FieldGround],
     ground: &Rings,
     excluded: &[Rings],
     row_m: f64,
@@ -350,7 +399,7 @@ pub fn measure(
         low = low.min(strip.low_y);
         high = high.max(strip.high_y);
     }
-    for rings in regions {
+    for rings in regions.iter().map(|region| &region.sprayable) {
         if let (Some(first), Some(last)) = (
             rings.edges.first(),
             rings.edges.iter().map(|e| e.1).reduce(f64::max),
@@ -370,7 +419,15 @@ pub fn measure(
     order.sort_by(|&a, &b| strips[a].low_y.total_cmp(&strips[b].low_y));
     let mut next_strip = 0;
     let mut active: Vec<usize> = Vec::new();
-    let mut region_cursors: Vec<Cursor> = regions.iter().map(Cursor::new).collect();
+    let mut region_cursors: Vec<(Cursor, Cursor)> = regions
+        .iter()
+        .map(|region| {
+            (
+                Cursor::new(&region.sprayable),
+                Cursor::new(&region.reachable),
+            )
+        })
+        .collect();
     let mut ground_cursor = Cursor::new(ground);
     let mut excluded_cursors: Vec<Cursor> = excluded.iter().map(Cursor::new).collect();
     let (mut raw, mut covered, mut twice, mut inside) =
@@ -391,11 +448,15 @@ pub fn measure(
         }
         doubled(&raw, &mut twice);
         union(&mut raw, &mut covered);
-        for (cursor, figures) in region_cursors.iter_mut().zip(&mut result.regions) {
-            cursor.intervals(y, &mut inside);
+        for ((sprayable, reachable), figures) in region_cursors.iter_mut().zip(&mut result.regions)
+        {
+            sprayable.intervals(y, &mut inside);
             figures.area_m2 += length(&inside) * row_m;
             figures.covered_m2 += overlap_length(&inside, &covered) * row_m;
             figures.doubled_m2 += overlap_length(&inside, &twice) * row_m;
+            reachable.intervals(y, &mut inside);
+            figures.reachable_area_m2 += length(&inside) * row_m;
+            figures.reachable_covered_m2 += overlap_length(&inside, &covered) * row_m;
         }
         // The cursors walk every row, sprayed or not (rows come in increasing y).
         ground_cursor.intervals(y, &mut inside);
@@ -452,7 +513,11 @@ mod tests {
             })
             .collect();
         strips.push(Strip::new(Coord { x: 0.0, y: 5.0 }, Coord { x: 120.0, y: 5.0 }, 5.0).unwrap());
-        let measured = measure(&strips, std::slice::from_ref(&field), &field, &[], 0.05);
+        let ground = FieldGround {
+            sprayable: field.clone(),
+            reachable: field.clone(),
+        };
+        let measured = measure(&strips, std::slice::from_ref(&ground), &field, &[], 0.05);
         let figures = measured.regions[0];
         assert!((figures.area_m2 - 9600.0).abs() < 1e-6, "{figures:?}");
         assert!((figures.covered_m2 - 9600.0).abs() < 1e-6);
@@ -463,12 +528,50 @@ mod tests {
     }
 
     #[test]
+    fn unsprayed_ground_no_swath_reaches_is_unreachable_not_missed() {
+        // A 100 × 10 field whose reachable part is x in [0, 90]; one strip sprays x in
+        // [0, 50]: 400 m² of reachable ground missed, 100 m² unreachable and unsprayed.
+        let field = Rings::new([square(0.0, 0.0, 100.0).as_slice()]);
+        let sprayable = Rings::new([[
+            Coord { x: 0.0, y: 0.0 },
+            Coord { x: 100.0, y: 0.0 },
+            Coord { x: 100.0, y: 10.0 },
+            Coord { x: 0.0, y: 10.0 },
+        ]
+        .as_slice()]);
+        let reachable = Rings::new([[
+            Coord { x: 0.0, y: 0.0 },
+            Coord { x: 90.0, y: 0.0 },
+            Coord { x: 90.0, y: 10.0 },
+            Coord { x: 0.0, y: 10.0 },
+        ]
+        .as_slice()]);
+        let strip = Strip::new(Coord { x: 0.0, y: 5.0 }, Coord { x: 50.0, y: 5.0 }, 5.0).unwrap();
+        let ground = FieldGround {
+            sprayable,
+            reachable,
+        };
+        let figures =
+            measure(&[strip], std::slice::from_ref(&ground), &field, &[], 0.05).regions[0];
+        assert!((figures.missed_m2() - 400.0).abs() < 1e-6, "{figures:?}");
+        assert!(
+            (figures.unreachable_m2() - 100.0).abs() < 1e-6,
+            "{figures:?}"
+        );
+        assert!((figures.covered_fraction() - 500.0 / 900.0).abs() < 1e-9);
+    }
+
+    #[test]
     fn a_tilted_strip_has_its_rectangle_area() {
         let strip = Strip::new(Coord { x: 0.0, y: 0.0 }, Coord { x: 30.0, y: 40.0 }, 2.5).unwrap();
         let everywhere = Rings::new([square(-100.0, -100.0, 300.0).as_slice()]);
+        let ground = FieldGround {
+            sprayable: everywhere.clone(),
+            reachable: everywhere.clone(),
+        };
         let measured = measure(
             &[strip],
-            std::slice::from_ref(&everywhere),
+            std::slice::from_ref(&ground),
             &everywhere,
             &[],
             0.01,

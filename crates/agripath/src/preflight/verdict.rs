@@ -32,14 +32,21 @@ pub struct FieldFlown {
     pub name: String,
     /// Area of the field's sprayable region (within the margins), m².
     pub sprayable_area_m2: f64,
-    /// Share of the sprayable area under at least one strip as flown, 0..1 (1 when it is empty).
+    /// Share covered as flown of the ground that is covered or could be (covered + missed),
+    /// 0..1 (1 when it is empty).
     pub covered_fraction: f64,
     /// The share the field must reach, 0..1.
     pub required_fraction: f64,
-    /// Sprayable area under no strip, m².
+    /// Ground a swath can reach under no strip, m².
     pub missed_m2: f64,
+    /// Ground narrower than a swath (sharp tips, necks between holes) under no strip, m²:
+    /// it could only be sprayed by spraying outside too.
+    pub unreachable_m2: f64,
     /// Sprayable area under two strips or more, m².
     pub double_sprayed_m2: f64,
+    /// Litres put on the double-sprayed area beyond one dose (the vehicle's application rate
+    /// × `double_sprayed_m2`; ground under three strips counts once), `null` without a rate.
+    pub over_applied_litres: Option<f64>,
 }
 
 /// A sortie as flown.
@@ -109,6 +116,22 @@ impl Verdict {
         text
     }
 
+    /// Share of all fields' ground covered as flown, of what is covered or could be
+    /// (covered + missed: ground narrower than a swath left unsprayed is not counted), 0..1.
+    pub fn covered_fraction(&self) -> f64 {
+        let (mut covered, mut could_be) = (0.0, 0.0);
+        for field in &self.fields {
+            let reachable = (field.sprayable_area_m2 - field.unreachable_m2).max(0.0);
+            covered += field.covered_fraction * reachable;
+            could_be += reachable;
+        }
+        if could_be > 0.0 {
+            covered / could_be
+        } else {
+            1.0
+        }
+    }
+
     /// The one line of the printed summary.
     pub fn summary(&self) -> String {
         let coverage = self
@@ -116,8 +139,14 @@ impl Verdict {
             .iter()
             .map(|field| field.covered_fraction)
             .fold(f64::INFINITY, f64::min);
+        let unreachable: f64 = self.fields.iter().map(|field| field.unreachable_m2).sum();
+        let unreachable = if unreachable >= 0.05 {
+            format!(" ({unreachable:.1} m² of tips, corners and necks no swath reaches left out)")
+        } else {
+            String::new()
+        };
         format!(
-            "preflight ({} altitudes, read back from {} mission file(s)): {}; least coverage {:.2}%, sprayed outside {:.3}%, lowest clearance {:.2} m",
+            "preflight ({} altitudes, read back from {} mission file(s)): {}; least coverage {:.2}%{unreachable}, sprayed outside {:.3}%, lowest clearance {:.2} m",
             self.altitude_reference.key(),
             self.sorties.len(),
             if self.safe {
