@@ -17,6 +17,7 @@ import sys
 import tempfile
 
 AGRIPATH = sys.argv[1]
+EXTRA = sys.argv[4:]
 FARMS = int(sys.argv[2]) if len(sys.argv) > 2 else 20
 rng = random.Random(int(sys.argv[3]) if len(sys.argv) > 3 else 7)
 
@@ -63,7 +64,7 @@ with (tempfile.TemporaryDirectory() if not os.environ.get("KEEP") else open(os.d
         with open(path, "w") as handle:
             json.dump(farm(lon0, lat0), handle)
         out = os.path.join(scratch, f"out{index}")
-        run = subprocess.run([AGRIPATH, "plan", "--fields", path, "--out", out], capture_output=True, text=True)
+        run = subprocess.run([AGRIPATH, "plan", "--fields", path, "--out", out] + EXTRA, capture_output=True, text=True)
         if run.returncode not in (0, 3):
             print(f"farm {index}: exit {run.returncode}: {run.stderr.strip()}")
             continue

@@ -62,7 +62,10 @@ def field(cx, cy):
 
 
 rows = []
-with tempfile.TemporaryDirectory() as scratch:
+# KEEP=DIR keeps the farms and plan folders there to look at.
+with (tempfile.TemporaryDirectory() if not os.environ.get("KEEP") else open(os.devnull)) as _scratch:
+    scratch = os.environ.get("KEEP") or _scratch
+    os.makedirs(scratch, exist_ok=True)
     farm_index = 0
     while len(rows) < FIELDS:
         lon0, lat0 = rng.uniform(-170, 170), rng.uniform(-50, 60)

@@ -16,30 +16,48 @@
 //!
 //!   M(s) = Σ_i max(0, e_i − s)·Δv          (core short of the end).
 //!
-//! - `overlap` keeps today's end (the pass line): M = 0, D largest;
-//! - `gap` ends where the core first ends, s = min e_i: D = 0;
-//! - `balanced` minimises D(s) + k·M(s) with k = [`MISSED_WEIGHT`] (a missed strip is a pest
-//!   or weed left, a double dose costs product and may scorch the crop, and the preflight
-//!   holds coverage, not dose): D + k·M is convex and piecewise linear in s, its minimum is
-//!   the k/(k + 1) quantile of the e_i (its slope is #{e_i < s} − k·#{e_i > s}).
+//! The same holds at every x along the swath, not only at its ends: let c(x) be the share
+//! of the lines across the swath on which x is core. Spraying [x, x + dx] sprays twice
+//! (1 − c)·w·dx, leaving it misses c·w·dx. So the cut is pointwise: spray where
 //!
-//! No end moves past today's, so no cut sprays more or leaves the sprayable region.
+//! - `overlap`: everywhere (today's swath, ends on the pass line): M = 0, D largest;
+//! - `gap`: c = 1 (the whole width is core): D = 0 from the swaths;
+//! - `balanced`: c > 1/(k + 1), k = [`MISSED_WEIGHT`], which minimises D + k·M point by
+//!   point (a missed strip is a pest or weed left, a double dose costs product and may
+//!   scorch the crop, and the preflight holds coverage, not dose). At a swath's end this is
+//!   the k/(k + 1) quantile of the e_i; along a swath that runs beside the band (the first
+//!   swath along a slanted side, a swath grazing a hole's band) it turns the sprayer off
+//!   where most of its width is band.
+//!
+//! Gaps shorter than [`SHORTEST_GAP_M`] are sprayed through, pieces shorter than
+//! [`SHORTEST_CUT_SWATH_M`] are not flown; a swath may come out as several pieces (as a
+//! hole splits one). The core is the innermost pass region eroded by w/2 with round joins,
+//! which is where the pass's flown strip (rectangles with round turns) ends: with it `gap`
+//! leaves no swath/edge double dose at all (0.00 % of the area on the benchmark farms,
+//! against 1.40 % with the mitred core).
+//!
+//! No piece reaches past today's ends, so no cut sprays more or leaves the sprayable region.
 
 use std::str::FromStr;
 
 use geo::MultiPolygon;
 use serde::Serialize;
 
-use super::region::{offset, rings};
+use geo::algorithm::buffer::{Buffer, BufferStyle, LineJoin};
+
+use super::region::rings;
 use super::scan_lines::{scan_segments, Frame, RotatedRings, Segment};
 
 /// How much more a missed square metre weighs than a double-sprayed one in `balanced`.
 pub const MISSED_WEIGHT: f64 = 4.0;
+/// Chord over radius of the core's round joins (0.1: 3 mm inside the arc at w = 5 m).
+const CORE_ARC_SEGMENT_PER_RADIUS: f64 = 0.1;
 /// Lines across a swath on which the core's end is sampled.
 const ROWS: usize = 32;
-/// Shortest swath a cut may leave, metres; a shorter one keeps its ends (it lies in a sliver
-/// between bands, where a cut would leave the sliver unsprayed).
+/// Shortest piece of swath a cut leaves, metres; a shorter one is not flown.
 const SHORTEST_CUT_SWATH_M: f64 = 1.0;
+/// Shortest gap a cut opens in a swath, metres: the sprayer stays on over a shorter one.
+const SHORTEST_GAP_M: f64 = 1.0;
 
 /// Where a swath's spray on/off points sit where it runs into the edge-pass band.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
@@ -80,9 +98,9 @@ impl FromStr for EdgeCut {
     }
 }
 
-/// Moves the ends of `segments` (rotated frame `frame`, swaths `width_m` apart) by `cut`
-/// against the core: the sprayable region inside the band of the innermost edge pass
-/// (`innermost` is that pass's region, its ring the pass line).
+/// Cuts `segments` (rotated frame `frame`, swaths `width_m` apart) by `cut` against the
+/// core, the sprayable region inside the band of the innermost edge pass (`innermost` is
+/// that pass's region, its ring the pass line): the pieces of each swath to spray.
 pub fn cut_swath_ends(
     segments: &[Segment],
     innermost: &MultiPolygon<f64>,
@@ -93,7 +111,12 @@ pub fn cut_swath_ends(
     if cut == EdgeCut::Overlap || segments.is_empty() {
         return segments.to_vec();
     }
-    let core = offset(innermost, -width_m / 2.0);
+    // Round joins: where the pass line turns away from the core (a concave corner of the
+    // field) the pass sprays the disc of its turn, which a mitred core would call core and
+    // leave the swaths to spray again.
+    let core = innermost.buffer_with_style(
+        BufferStyle::new(-width_m / 2.0).line_join(LineJoin::Round(CORE_ARC_SEGMENT_PER_RADIUS)),
+    );
     let core_rings = rings(&core);
     let rotated = RotatedRings::new(core_rings.iter().map(Vec::as_slice), frame);
     // Sample rows at y_swath + v_i, v_i = −w/2 + (i + ½)·Δv, all swaths on one grid.
@@ -126,66 +149,65 @@ pub fn cut_swath_ends(
             .or_default()
             .push((row.start_x, row.end_x));
     }
-    let quantile = match cut {
-        EdgeCut::Balanced => MISSED_WEIGHT / (MISSED_WEIGHT + 1.0),
-        _ => 0.0,
+    // Spray at x when more than this share of the lines across the swath are core there.
+    let threshold = match cut {
+        EdgeCut::Balanced => 1.0 / (MISSED_WEIGHT + 1.0),
+        _ => 1.0 - 0.5 / ROWS as f64,
     };
-    segments
-        .iter()
-        .map(|segment| {
-            let lowest = row_of(segment.y - width_m / 2.0 + spacing / 2.0);
-            let mut starts = Vec::with_capacity(ROWS);
-            let mut ends = Vec::with_capacity(ROWS);
-            for row in lowest..lowest + ROWS as i64 {
-                let overlapping: Vec<&(f64, f64)> = by_row
-                    .get(&row)
-                    .into_iter()
-                    .flatten()
-                    .filter(|(low, high)| *low < segment.end_x && *high > segment.start_x)
-                    .collect();
-                // No core on this line along the swath: all of it is band, already sprayed.
-                let start = overlapping
-                    .iter()
-                    .map(|(low, _)| *low)
-                    .fold(segment.end_x, f64::min)
-                    .max(segment.start_x);
-                let end = overlapping
-                    .iter()
-                    .map(|(_, high)| *high)
-                    .fold(segment.start_x, f64::max)
-                    .min(segment.end_x);
-                starts.push(start);
-                ends.push(end);
-            }
-            starts.sort_by(f64::total_cmp);
-            ends.sort_by(f64::total_cmp);
-            // The end: the `quantile` of the e_i (the k/(k+1) one: most of the core reached);
-            // the start likewise from the other side.
-            let at = |sorted: &[f64], share: f64| {
-                let index = ((share * sorted.len() as f64).ceil() as usize).clamp(1, sorted.len());
-                sorted[index - 1]
-            };
-            let (new_start, new_end) = match cut {
-                EdgeCut::Gap => (starts[ROWS - 1], ends[0]),
-                _ => (at(&starts, 1.0 - quantile), at(&ends, quantile)),
-            };
-            let (new_start, new_end) = (new_start.max(segment.start_x), new_end.min(segment.end_x));
-            if new_end - new_start < SHORTEST_CUT_SWATH_M {
-                *segment
-            } else {
-                Segment {
-                    start_x: new_start,
-                    end_x: new_end,
-                    ..*segment
+    let mut events: Vec<(f64, i32)> = Vec::new();
+    let mut pieces: Vec<Segment> = Vec::with_capacity(segments.len());
+    for segment in segments {
+        let lowest = row_of(segment.y - width_m / 2.0 + spacing / 2.0);
+        events.clear();
+        for row in lowest..lowest + ROWS as i64 {
+            for &(low, high) in by_row.get(&row).into_iter().flatten() {
+                let (low, high) = (low.max(segment.start_x), high.min(segment.end_x));
+                if high > low {
+                    events.push((low, 1));
+                    events.push((high, -1));
                 }
             }
-        })
-        .collect()
+        }
+        // Ends before starts at one x: two core intervals that only touch leave no gap.
+        events.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let first_piece = pieces.len();
+        let (mut depth, mut on_since) = (0, None);
+        for &(x, change) in events.iter() {
+            depth += change;
+            let spraying = depth as f64 > threshold * ROWS as f64;
+            match (on_since, spraying) {
+                (None, true) => on_since = Some(x),
+                (Some(from), false) => {
+                    on_since = None;
+                    // Spray stays on over a gap shorter than SHORTEST_GAP_M.
+                    match pieces[first_piece..].last_mut() {
+                        Some(last) if from - last.end_x < SHORTEST_GAP_M => last.end_x = x,
+                        _ => pieces.push(Segment {
+                            start_x: from,
+                            end_x: x,
+                            ..*segment
+                        }),
+                    }
+                }
+                _ => {}
+            }
+        }
+        let mut kept = first_piece;
+        for index in first_piece..pieces.len() {
+            if pieces[index].end_x - pieces[index].start_x >= SHORTEST_CUT_SWATH_M {
+                pieces[kept] = pieces[index];
+                kept += 1;
+            }
+        }
+        pieces.truncate(kept);
+    }
+    pieces
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::coverage::region::offset;
     use geo::{polygon, Area, BooleanOps, Polygon};
 
     /// A 100 × 60 m field at heading 0 (swaths along x), one edge pass of w = 5 m: the core is
@@ -269,6 +291,32 @@ mod tests {
             (balanced_d / balanced_m / ratio - 1.0).abs() < 0.25,
             "{balanced_d} {balanced_m} {ratio}"
         );
+    }
+
+    /// A swath that runs beside the band: the core (y ≥ 5) covers the upper 70 % of its
+    /// width on x < 50 and 10 % on x > 50. `gap` sprays none of it, `balanced` only x < 50,
+    /// `overlap` all of it.
+    #[test]
+    fn a_swath_beside_the_band_is_sprayed_only_where_most_of_it_is_core() {
+        let innermost = MultiPolygon::new(vec![polygon![
+            (x: -2.5, y: 1.5), (x: 50.0, y: 1.5), (x: 50.0, y: 4.5),
+            (x: 102.5, y: 4.5), (x: 102.5, y: 40.0), (x: -2.5, y: 40.0)
+        ]]);
+        let segment = Segment {
+            line: 0,
+            y: 5.0,
+            start_x: 0.0,
+            end_x: 100.0,
+        };
+        let frame = Frame::new(0.0);
+        let cut = |mode| cut_swath_ends(&[segment], &innermost, frame, 5.0, mode);
+        assert_eq!(cut(EdgeCut::Overlap), vec![segment]);
+        assert!(cut(EdgeCut::Gap).is_empty(), "{:?}", cut(EdgeCut::Gap));
+        let balanced = cut(EdgeCut::Balanced);
+        assert_eq!(balanced.len(), 1, "{balanced:?}");
+        assert!(balanced[0].start_x.abs() < 1e-9, "{balanced:?}");
+        // Where the core's edge steps up (rounded by the erosion), c falls through 0.2.
+        assert!((balanced[0].end_x - 50.0).abs() < 2.5, "{balanced:?}");
     }
 
     #[test]
