@@ -449,6 +449,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         mission.sorties.as_ref(),
         vehicle.spray_height_m,
         vehicle.safe_height_m,
+        &verdict.missed_ground,
     );
     let title = format!(
         "{}{} — {} fields, swath {} m, {:.0} m sprayed, {:.2}% covered as flown",
@@ -479,6 +480,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         mission.sorties.as_ref(),
         vehicle.spray_height_m,
         vehicle.safe_height_m,
+        &verdict.missed_ground,
     );
     let (extent, png) = terrain_overlay(scenario);
     let underlay = Underlay {
@@ -495,6 +497,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         mission.sorties.as_ref(),
         Some(&underlay),
         &title,
+        &verdict.missed_ground,
     );
     let rows = crate::sheet::sortie_rows(
         &scenario.farm,

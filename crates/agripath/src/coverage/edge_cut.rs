@@ -63,10 +63,11 @@ const SHORTEST_GAP_M: f64 = 1.0;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum EdgeCut {
-    /// On the innermost pass line: no gap, the most double dose (the layout before issue 22).
+    /// On the innermost pass line: no gap, the most double dose (the layout before issue 22);
+    /// the default, as on the command line (decision 0019).
+    #[default]
     Overlap,
     /// Least double-sprayed plus [`MISSED_WEIGHT`] × missed area.
-    #[default]
     Balanced,
     /// Where the core first ends: no double dose, the most missed.
     Gap,
@@ -317,6 +318,13 @@ mod tests {
         assert!(balanced[0].start_x.abs() < 1e-9, "{balanced:?}");
         // Where the core's edge steps up (rounded by the erosion), c falls through 0.2.
         assert!((balanced[0].end_x - 50.0).abs() < 2.5, "{balanced:?}");
+    }
+
+    #[test]
+    fn the_library_default_is_the_command_line_default() {
+        let command_line = crate::request::plan::PlanOptions::default().edge_cut;
+        assert_eq!(command_line.parse::<EdgeCut>(), Ok(EdgeCut::default()));
+        assert_eq!(EdgeCut::default(), EdgeCut::Overlap);
     }
 
     #[test]

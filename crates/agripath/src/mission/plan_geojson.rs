@@ -1,7 +1,8 @@
 //! `plan.geojson`: the plan as a FeatureCollection (contract in MISSION.md and `docs/cli.md`).
 //!
 //! Features carry `properties.kind`: `field`, `unreachable` (ground of a field narrower than
-//! a swath, with `field` and `area_m2`), `obstacle`, `access`, `edge`, `swath`,
+//! a swath, with `field` and `area_m2`), `missed` (reachable ground the flight left
+//! unsprayed, as the preflight measured it; the same properties), `obstacle`, `access`, `edge`, `swath`,
 //! `transfer`, `return` (a return point, `role: point`, and its leg to the supply point and
 //! back, `role: leg`), `supply`. Passes and legs carry `seq` (their place in the flight, from 0)
 //! and `sortie` (from 0); a pass's coordinates
@@ -68,6 +69,7 @@ pub fn plan_geojson(
     sorties: Option<&PlannedSorties>,
     spray_height_m: f64,
     safe_height_m: f64,
+    missed: &[geo::MultiPolygon<f64>],
 ) -> Value {
     let system = farm.coordinate_system;
     let mut features = Vec::new();
@@ -91,10 +93,21 @@ pub fn plan_geojson(
     // without spraying outside too (decision 0023).
     let unreachable =
         crate::coverage::region::unreachable_ground(farm, &plan.settings, plan.swath_width_m);
-    for (index, ground) in unreachable.iter().enumerate() {
+    // And reachable ground the flight missed, as the preflight measured it (issue 22).
+    let patches = unreachable
+        .iter()
+        .enumerate()
+        .map(|(index, ground)| ("unreachable", index, ground))
+        .chain(
+            missed
+                .iter()
+                .enumerate()
+                .map(|(index, ground)| ("missed", index, ground)),
+        );
+    for (kind, index, ground) in patches {
         for piece in &ground.0 {
             let mut properties = Map::new();
-            properties.insert("kind".into(), json!("unreachable"));
+            properties.insert("kind".into(), json!(kind));
             properties.insert("field".into(), json!(index));
             properties.insert(
                 "area_m2".into(),

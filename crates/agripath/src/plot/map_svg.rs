@@ -6,7 +6,7 @@
 
 use std::fmt::Write;
 
-use geo::{Centroid, Polygon};
+use geo::{Centroid, MultiPolygon, Polygon};
 
 use super::line_chart::escape;
 use crate::coverage::drape::GroundPoint;
@@ -101,6 +101,9 @@ impl Canvas {
 /// Fill of ground narrower than a swath (unreachable): slate, apart from every sortie hue.
 const UNREACHABLE_COLOUR: &str = "#37474f";
 
+/// Fill of reachable ground the flight missed: signal red.
+const MISSED_COLOUR: &str = "#d50000";
+
 /// A round scale-bar length near a fifth of the map width.
 fn scale_bar_m(width_m: f64) -> f64 {
     let target = width_m / 5.0;
@@ -121,6 +124,7 @@ pub fn plan_svg(
     sorties: Option<&PlannedSorties>,
     underlay: Option<&Underlay>,
     title: &str,
+    missed: &[MultiPolygon<f64>],
 ) -> String {
     // The farm, and the supply point where it stands off the fields (it may be 200 m out).
     let mut bounds = farm.bounds();
@@ -202,6 +206,15 @@ pub fn plan_svg(
         let _ = writeln!(
             svg,
             r##"<path class="unreachable" d="{}" fill="{UNREACHABLE_COLOUR}" fill-opacity="0.8" fill-rule="evenodd" stroke="none"/>"##,
+            canvas.polygon(piece)
+        );
+    }
+    // Reachable ground the flight missed, as the preflight measured it.
+    let any_missed = missed.iter().any(|ground| !ground.0.is_empty());
+    for piece in missed.iter().flat_map(|ground| &ground.0) {
+        let _ = writeln!(
+            svg,
+            r##"<path class="missed" d="{}" fill="{MISSED_COLOUR}" fill-opacity="0.9" stroke="{MISSED_COLOUR}" stroke-width="0.6"/>"##,
             canvas.polygon(piece)
         );
     }
@@ -384,6 +397,16 @@ pub fn plan_svg(
         let _ = writeln!(
             svg,
             r##"<rect x="{x:.0}" y="{:.0}" width="28" height="9" fill="{UNREACHABLE_COLOUR}" fill-opacity="0.8"/><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">no swath reaches</text>"##,
+            base - 4.5,
+            x + 34.0,
+            base + 4.0
+        );
+    }
+    if any_missed {
+        let x = PAD_PX + (items.len() + usize::from(any_unreachable)) as f64 * 170.0;
+        let _ = writeln!(
+            svg,
+            r##"<rect x="{x:.0}" y="{:.0}" width="28" height="9" fill="{MISSED_COLOUR}"/><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">missed as flown</text>"##,
             base - 4.5,
             x + 34.0,
             base + 4.0

@@ -28,6 +28,7 @@
 
 pub mod flown;
 pub mod folder;
+mod missed;
 pub mod read_back;
 pub mod settings;
 pub mod sprayed;
@@ -488,7 +489,8 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         .iter()
         .map(|obstacle| Rings::of_polygon(&obstacle.polygon))
         .collect();
-    let measured = sprayed::measure(&strips, &regions, &ground, &excluded, ROW_M);
+    let mut measured = sprayed::measure(&strips, &regions, &ground, &excluded, ROW_M);
+    let missed_ground = std::mem::take(&mut measured.missed);
     let mut coverage = Tally::new("coverage", "≥", 0.0, "share of the ground a swath reaches");
     let mut field_figures = Vec::new();
     for (index, (field, figures)) in world.farm.fields.iter().zip(&measured.regions).enumerate() {
@@ -593,6 +595,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         } else {
             0.0
         }),
+        missed_ground,
     }
 }
 

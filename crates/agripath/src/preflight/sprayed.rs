@@ -13,6 +13,8 @@
 
 use geo::Coord;
 
+use super::missed::MissedPieces;
+
 /// The sector a turn sweeps: {p : |p − centre| < radius, (p − centre)·into > 0,
 /// (p − centre)·out_of < 0}.
 #[derive(Debug, Clone, Copy)]
@@ -382,6 +384,8 @@ pub struct Sprayed {
     /// Sprayed area outside the ground that may be sprayed (off the fields, over holes or
     /// obstacles).
     pub outside_m2: f64,
+    /// Per region, the reachable ground missed, as polygons.
+    pub missed: Vec<geo::MultiPolygon<f64>>,
 }
 
 /// Measures `strips` against `regions`, and their spray outside `ground` (fields with their
@@ -434,6 +438,9 @@ pub fn measure(
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let (mut blocked, mut piece, mut allowed, mut merged) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    let mut missed_rows: Vec<MissedPieces> =
+        regions.iter().map(|_| MissedPieces::default()).collect();
+    let mut missed = Vec::new();
     let rows = ((high - low) / row_m).ceil() as usize;
     for row in 0..rows {
         let y = low + (row as f64 + 0.5) * row_m;
@@ -448,7 +455,10 @@ pub fn measure(
         }
         doubled(&raw, &mut twice);
         union(&mut raw, &mut covered);
-        for ((sprayable, reachable), figures) in region_cursors.iter_mut().zip(&mut result.regions)
+        for (((sprayable, reachable), figures), pieces) in region_cursors
+            .iter_mut()
+            .zip(&mut result.regions)
+            .zip(&mut missed_rows)
         {
             sprayable.intervals(y, &mut inside);
             figures.area_m2 += length(&inside) * row_m;
@@ -457,6 +467,8 @@ pub fn measure(
             reachable.intervals(y, &mut inside);
             figures.reachable_area_m2 += length(&inside) * row_m;
             figures.reachable_covered_m2 += overlap_length(&inside, &covered) * row_m;
+            subtract(&inside, &covered, &mut missed);
+            pieces.add_row(y, &missed);
         }
         // The cursors walk every row, sprayed or not (rows come in increasing y).
         ground_cursor.intervals(y, &mut inside);
@@ -474,6 +486,10 @@ pub fn measure(
         result.sprayed_m2 += sprayed * row_m;
         result.outside_m2 += (sprayed - overlap_length(&covered, &allowed)) * row_m;
     }
+    result.missed = missed_rows
+        .into_iter()
+        .map(|pieces| pieces.finish(row_m))
+        .collect();
     result
 }
 

@@ -96,6 +96,10 @@ pub struct Verdict {
     pub sorties: Vec<SortieFlown>,
     /// Least height above the ground of any airborne sample (takeoff and landing aside), m.
     pub lowest_clearance_m: f64,
+    /// Per field, the reachable ground missed as flown, for the map and `plan.geojson` (not
+    /// in `report.json`: `missed_m2` gives its area).
+    #[serde(skip)]
+    pub missed_ground: Vec<geo::MultiPolygon<f64>>,
 }
 
 impl Verdict {
