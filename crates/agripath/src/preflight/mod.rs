@@ -490,7 +490,6 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         .map(|obstacle| Rings::of_polygon(&obstacle.polygon))
         .collect();
     let mut measured = sprayed::measure(&strips, &regions, &ground, &excluded, ROW_M);
-    let missed_ground = std::mem::take(&mut measured.missed);
     let mut coverage = Tally::new("coverage", "≥", 0.0, "share of the ground a swath reaches");
     let mut field_figures = Vec::new();
     for (index, (field, figures)) in world.farm.fields.iter().zip(&measured.regions).enumerate() {
@@ -595,7 +594,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         } else {
             0.0
         }),
-        missed_ground,
+        missed_ground: std::mem::take(&mut measured.missed),
     }
 }
 
