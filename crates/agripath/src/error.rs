@@ -14,6 +14,10 @@ pub struct InputError {
     pub file: PathBuf,
     /// Where in the file, when known: "feature 3 (S4)", "row 12", "key vehicle.swath_width_m".
     pub place: Option<String>,
+    /// The line and column (both from 1, columns in characters) of a fault in a text file,
+    /// when the parser gives one: printed `file:line:column:` as compilers do, so editors
+    /// and terminals jump to it.
+    pub line_column: Option<(usize, usize)>,
     /// What is wrong.
     pub fault: Fault,
 }
@@ -21,6 +25,9 @@ pub struct InputError {
 impl fmt::Display for InputError {
     fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(formatter, "{}", self.file.display())?;
+        if let Some((line, column)) = self.line_column {
+            write!(formatter, ":{line}:{column}")?;
+        }
         if let Some(place) = &self.place {
             write!(formatter, ": {place}")?;
         }
@@ -34,7 +41,20 @@ impl InputError {
         Self {
             file: file.as_ref().to_path_buf(),
             place: None,
+            line_column: None,
             fault,
+        }
+    }
+
+    /// A TOML file `file` that does not parse (or holds a value of the wrong type), placed
+    /// at the line and column where the parser's span begins in `text`, the file's text.
+    pub fn toml(file: impl AsRef<Path>, error: &toml::de::Error, text: &str) -> Self {
+        Self {
+            line_column: error
+                .span()
+                .filter(|span| span.start <= text.len())
+                .map(|span| line_column(text, span.start)),
+            ..Self::new(file, Fault::Toml(toml_message(error)))
         }
     }
 
@@ -47,6 +67,28 @@ impl InputError {
         });
         self
     }
+}
+
+/// The TOML parser's message in one line (it may span several).
+pub(crate) fn toml_message(error: &toml::de::Error) -> String {
+    error.message().trim().replace('\n', " ")
+}
+
+/// Line and column, both counted from 1 (columns in characters), of byte `offset` of
+/// `text`; an offset inside a character counts as that character.
+pub(crate) fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let mut end = offset.min(text.len());
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    let before = &text[..end];
+    let line = before.matches('\n').count() + 1;
+    let column = before
+        .rsplit('\n')
+        .next()
+        .map_or(0, |tail| tail.chars().count())
+        + 1;
+    (line, column)
 }
 
 /// What is wrong with an input.

@@ -22,6 +22,9 @@ pub const CMD_DO_CHANGE_SPEED: u16 = 178;
 pub const CMD_DO_SET_SERVO: u16 = 183;
 /// `MAV_CMD_DO_SPRAYER`: turn the sprayer on or off.
 pub const CMD_DO_SPRAYER: u16 = 216;
+/// `MAV_CMD_DO_SET_CAM_TRIGG_DIST`: trigger the camera every p1 metres (0: stop); p3 = 1
+/// takes one photo at once.
+pub const CMD_DO_SET_CAM_TRIGG_DIST: u16 = 206;
 
 /// A command as mission files store it: number, frame, p1…p7 (`None` = NaN/null).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -86,6 +89,11 @@ impl Command {
             Action::Land => place(CMD_NAV_LAND, [Some(0.0), Some(0.0), Some(0.0), None]),
             // Ground speed (1), m/s, throttle unchanged (−1).
             Action::Speed { mps } => act(CMD_DO_CHANGE_SPEED, [1.0, mps, -1.0]),
+            // Distance, shutter time unchanged (0), one photo at once when starting.
+            Action::CameraTrigger { distance_m } => act(
+                CMD_DO_SET_CAM_TRIGG_DIST,
+                [distance_m, 0.0, if distance_m > 0.0 { 1.0 } else { 0.0 }],
+            ),
             Action::Spray { on } => match sprayer {
                 SprayerCommand::DoSprayer => {
                     act(CMD_DO_SPRAYER, [if on { 1.0 } else { 0.0 }, 0.0, 0.0])

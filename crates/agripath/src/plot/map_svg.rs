@@ -99,7 +99,7 @@ impl Canvas {
 }
 
 /// A round scale-bar length near a fifth of the map width.
-fn scale_bar_m(width_m: f64) -> f64 {
+pub(super) fn scale_bar_m(width_m: f64) -> f64 {
     let target = width_m / 5.0;
     let magnitude = 10f64.powf(target.log10().floor());
     [1.0, 2.0, 5.0, 10.0]

@@ -5,14 +5,16 @@
 //! ground at home) to its altitude; NAV_WAYPOINT flies straight to its place; NAV_LAND flies
 //! to its place at the current altitude and descends to the ground; DO_CHANGE_SPEED sets the
 //! ground speed (p2); DO_SPRAYER (p1 = 1 on) or DO_SET_SERVO on the sprayer's channel switch
-//! the spray. Altitudes: frame 0 above sea level, frame 3 above home's ground, frame 10 above
+//! the spray; DO_SET_CAM_TRIGG_DIST (p1 > 0 on, 0 off) switches a survey camera, read as
+//! the same on/off state. Altitudes: frame 0 above sea level, frame 3 above home's ground, frame 10 above
 //! the terrain under the vehicle (interpolated along the leg, as terrain following does).
 
 use super::read_back::FileItem;
 use crate::mission::flight::SprayerCommand;
 use crate::mission::mavlink::{
-    CMD_DO_CHANGE_SPEED, CMD_DO_SET_SERVO, CMD_DO_SPRAYER, CMD_NAV_LAND, CMD_NAV_TAKEOFF,
-    CMD_NAV_WAYPOINT, FRAME_GLOBAL, FRAME_GLOBAL_RELATIVE_ALT, FRAME_GLOBAL_TERRAIN_ALT,
+    CMD_DO_CHANGE_SPEED, CMD_DO_SET_CAM_TRIGG_DIST, CMD_DO_SET_SERVO, CMD_DO_SPRAYER, CMD_NAV_LAND,
+    CMD_NAV_TAKEOFF, CMD_NAV_WAYPOINT, FRAME_GLOBAL, FRAME_GLOBAL_RELATIVE_ALT,
+    FRAME_GLOBAL_TERRAIN_ALT,
 };
 use crate::terrain::Terrain;
 
@@ -228,6 +230,15 @@ pub fn fly(
             }
             CMD_DO_SPRAYER => {
                 spraying = item.params[0] == 1.0;
+            }
+            // A survey's camera: triggering by distance is its work "on" (what coverage and
+            // the outside checks measure), 0 is off.
+            CMD_DO_SET_CAM_TRIGG_DIST => {
+                let distance = item.params[0];
+                if !(distance.is_finite() && distance >= 0.0) {
+                    return Err(fail(format!("camera trigger distance {distance} m")));
+                }
+                spraying = distance > 0.0;
             }
             CMD_DO_SET_SERVO => match sprayer {
                 SprayerCommand::Servo {
