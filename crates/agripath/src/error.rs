@@ -231,3 +231,23 @@ pub enum TerrainError {
         y: f64,
     },
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_toml_error_is_placed_at_file_line_column_in_one_line() {
+        let text = "name = \"x\"\n# a comment\nswath_width_m = = 3\n";
+        let error = toml::from_str::<toml::Table>(text).unwrap_err();
+        let message = InputError::toml("farm/vehicle.toml", &error, text).to_string();
+        assert!(
+            message.starts_with("farm/vehicle.toml:3:17: not valid TOML: "),
+            "{message}"
+        );
+        assert!(!message.contains('\n'), "{message}");
+        // Columns count characters, not bytes.
+        assert_eq!(line_column("é = 1\nab", 8), (2, 2));
+        assert_eq!(line_column("é", 1), (1, 1));
+    }
+}

@@ -114,3 +114,48 @@ impl Command {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_camera_trigger_is_do_set_cam_trigg_dist_with_its_distance_then_zero() {
+        let item = |action| Item {
+            action,
+            lon: 105.6,
+            lat: -10.5,
+            ground_m: 150.0,
+            above_ground_m: 60.0,
+        };
+        let on = Command::of(
+            &item(Action::work(true, Some(12.0))),
+            AltitudeReference::SeaLevel,
+            150.0,
+            SprayerCommand::DoSprayer,
+        );
+        assert_eq!(on.command, CMD_DO_SET_CAM_TRIGG_DIST);
+        assert_eq!(on.params[..3], [Some(12.0), Some(0.0), Some(1.0)]);
+        let off = Command::of(
+            &item(Action::work(false, Some(12.0))),
+            AltitudeReference::SeaLevel,
+            150.0,
+            SprayerCommand::DoSprayer,
+        );
+        assert_eq!(
+            (off.command, off.params[0], off.params[2]),
+            (206, Some(0.0), Some(0.0))
+        );
+        // A sprayer keeps its sprayer command.
+        let spray = Command::of(
+            &item(Action::work(true, None)),
+            AltitudeReference::SeaLevel,
+            150.0,
+            SprayerCommand::DoSprayer,
+        );
+        assert_eq!(
+            (spray.command, spray.params[0]),
+            (CMD_DO_SPRAYER, Some(1.0))
+        );
+    }
+}

@@ -401,6 +401,55 @@ mod tests {
         assert!(count >= 4, "expected an example per seed drone and the T16");
     }
 
+    fn survey(text: &str) -> Result<Vehicle, Fault> {
+        let stated: toml::Table = toml::from_str(text).unwrap();
+        let mut vehicle: Vehicle = toml::from_str(text).unwrap();
+        vehicle.apply_camera(&stated)?;
+        vehicle.validate()?;
+        Ok(vehicle)
+    }
+
+    #[test]
+    fn a_camera_makes_a_survey_vehicle_without_a_tank() {
+        let camera = "[camera]\nfootprint_width_m = 90.0\nfootprint_length_m = 60.0\nside_overlap_percent = 70.0\nfront_overlap_percent = 80.0\n";
+        let vehicle = survey(camera).unwrap();
+        assert!(vehicle.is_survey());
+        assert_eq!(vehicle.swath_width_m, 27.0);
+        assert_eq!(vehicle.trigger_distance_m(), Some(12.0));
+        // No seed 003 tank by default: sorties end for the battery only.
+        assert_eq!(vehicle.spray_length_per_tank_m(), None);
+        let direct = survey("swath_width_m = 20.0\n[camera]\ntrigger_distance_m = 8.0\n").unwrap();
+        assert_eq!(
+            (direct.swath_width_m, direct.trigger_distance_m()),
+            (20.0, Some(8.0))
+        );
+        let agreeing = format!("swath_width_m = 27.0\n{camera}");
+        assert_eq!(survey(&agreeing).unwrap().swath_width_m, 27.0);
+    }
+
+    #[test]
+    fn a_survey_vehicle_with_a_tank_or_contradicting_figures_is_refused() {
+        let cases = [
+            ("tank_l = 10.0\napplication_rate_l_per_ha = 10.0\n[camera]\ntrigger_distance_m = 8.0\n", "tank_l and [camera]"),
+            ("tank_spray_time_s = 600.0\n[camera]\ntrigger_distance_m = 8.0\n", "tank_spray_time_s and [camera]"),
+            ("swath_width_m = 30.0\n[camera]\nfootprint_width_m = 90.0\nside_overlap_percent = 70.0\ntrigger_distance_m = 8.0\n", "swath_width_m = 30 is invalid: disagrees"),
+            ("[camera]\nfootprint_width_m = 90.0\n", "needs trigger_distance_m"),
+            ("[camera]\ntrigger_distance_m = 0.0\n", "camera.trigger_distance_m = 0 is invalid"),
+            ("[camera]\ntrigger_distance_m = 8.0\nside_overlap_percent = 60.0\n", "needs camera.footprint_width_m"),
+            ("[camera]\nfootprint_length_m = 60.0\nfront_overlap_percent = 100.0\n", "front_overlap_percent = 100 is invalid"),
+            ("[camera]\ntrigger_distance_m = 8.0\nfootprint_length_m = 60.0\nfront_overlap_percent = 80.0\n", "disagrees with footprint_length_m"),
+        ];
+        for (text, expected) in cases {
+            let error = survey(text).unwrap_err().to_string();
+            assert!(error.contains(expected), "{text}: {error}");
+        }
+        let error = toml::from_str::<Vehicle>("[camera]\nshutter = 1\n").unwrap_err();
+        assert!(
+            error.message().contains("unknown field `shutter`"),
+            "{error}"
+        );
+    }
+
     #[test]
     fn bad_values_are_named() {
         let error = Vehicle::from_toml("swath_width_m = -1").unwrap_err();

@@ -268,3 +268,67 @@ pub fn fly(
     }
     Ok(legs)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn item(command: u16, params: [f64; 7]) -> FileItem {
+        FileItem {
+            command,
+            frame: if matches!(command, CMD_NAV_TAKEOFF | CMD_NAV_WAYPOINT | CMD_NAV_LAND) {
+                FRAME_GLOBAL_RELATIVE_ALT
+            } else {
+                FRAME_GLOBAL
+            },
+            params,
+        }
+    }
+
+    fn at(lon: f64) -> [f64; 7] {
+        [0.0, 1.0, 0.0, 0.0, 0.0, lon, 30.0]
+    }
+
+    #[test]
+    fn the_camera_trigger_is_the_survey_on_and_off_state() {
+        let trigger = |distance: f64| {
+            item(
+                CMD_DO_SET_CAM_TRIGG_DIST,
+                [distance, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+            )
+        };
+        let items = [
+            item(CMD_NAV_TAKEOFF, at(0.0)),
+            item(CMD_NAV_WAYPOINT, at(1.0)),
+            trigger(12.0),
+            item(CMD_NAV_WAYPOINT, at(2.0)),
+            trigger(0.0),
+            item(CMD_NAV_WAYPOINT, at(3.0)),
+            item(CMD_NAV_LAND, at(3.0)),
+        ];
+        let to_plan = |lon: f64, lat: f64| (lon * 100.0, lat * 100.0);
+        let legs = fly(
+            &items,
+            (0.0, 0.0),
+            0.0,
+            SprayerCommand::DoSprayer,
+            5.0,
+            &to_plan,
+        )
+        .unwrap();
+        let on: Vec<(f64, bool)> = legs.iter().map(|leg| (leg.to.x, leg.spraying)).collect();
+        assert_eq!(on[..3], [(0.0, false), (100.0, false), (200.0, true)]);
+        assert_eq!(on[3], (300.0, false));
+        let negative = [item(CMD_NAV_TAKEOFF, at(0.0)), trigger(-1.0)];
+        let error = fly(
+            &negative,
+            (0.0, 0.0),
+            0.0,
+            SprayerCommand::DoSprayer,
+            5.0,
+            &to_plan,
+        )
+        .unwrap_err();
+        assert_eq!(error.item, 2);
+    }
+}
