@@ -339,7 +339,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             vec!["validate".into(), bad("scenario_overlap_type.toml")],
             bad("scenario_overlap_type.toml"),
-            "line 2, column 17: invalid type: string \"yes\", expected a boolean",
+            "scenario_overlap_type.toml:2:17: not valid TOML: invalid type: string \"yes\", expected a boolean",
         ),
         (
             vec!["validate".into(), bad("scenario_missing_vehicle.toml")],

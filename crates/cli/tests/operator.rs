@@ -383,7 +383,7 @@ fn terrain_png_draws_the_fields_the_supply_point_and_a_legend_on_the_terrain() {
     assert!(!of_colour([198, 40, 40]).is_empty(), "the obstacle");
     assert!(!of_colour([255, 235, 59]).is_empty(), "the supply point");
     // The legend's colour ramp, both ends.
-    for end in [[46, 125, 50], [245, 242, 238]] {
+    for end in [[74, 140, 84], [245, 242, 236]] {
         assert!(of_colour(end).len() >= 8, "ramp end {end:?}");
     }
     let _ = std::fs::remove_dir_all(&folder);

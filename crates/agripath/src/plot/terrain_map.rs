@@ -6,7 +6,7 @@
 //! A pixel of height z is c = ramp(t) · (0.35 + 0.65 · s), with t = (z − z_min) / (z_max −
 //! z_min) over the heights in the picture (t = 0.5 when the ground is flat) and s the
 //! hillshade's grey / 255 (lit from the north-west); the ramp is piecewise linear through
-//! green, yellow-green, sand, brown and near-white, the hypsometric tints of printed maps.
+//! green, yellow, brown and near-white, the hypsometric tints of printed maps.
 //! Cells without data stay transparent. The picture keeps the hillshade's size and extent
 //! (north up, square pixels); the legend sits in the corner where it hides the fewest drawn
 //! field pixels. Everything is drawn into the raster (no resvg), so `terrain.png` is the same
@@ -30,14 +30,27 @@ pub const SUPPLY_COLOUR: [u8; 3] = [255, 235, 59];
 const INK: [u8; 3] = [34, 34, 34];
 const PAPER: [u8; 3] = [255, 255, 255];
 
-/// The ramp's stops: (t, colour).
-const RAMP: [(f64, [u8; 3]); 5] = [
-    (0.0, [46, 125, 50]),
-    (0.3, [156, 204, 101]),
-    (0.55, [230, 215, 140]),
-    (0.8, [161, 120, 80]),
-    (1.0, [245, 242, 238]),
+/// Height tint from low to high: green, yellow, brown, near white (the track's top view
+/// tints its terrain with the same ramp).
+const RAMP: [(f64, [f64; 3]); 4] = [
+    (0.0, [74.0, 140.0, 84.0]),
+    (0.35, [222.0, 214.0, 128.0]),
+    (0.7, [168.0, 118.0, 72.0]),
+    (1.0, [245.0, 242.0, 236.0]),
 ];
+
+/// The tint of height fraction `fraction` ∈ [0, 1] of the relief, linear between the stops.
+pub fn height_tint(fraction: f64) -> [f64; 3] {
+    let fraction = fraction.clamp(0.0, 1.0);
+    for pair in RAMP.windows(2) {
+        let ((low, a), (high, b)) = (pair[0], pair[1]);
+        if fraction <= high {
+            let t = (fraction - low) / (high - low);
+            return [0, 1, 2].map(|k| a[k] + t * (b[k] - a[k]));
+        }
+    }
+    RAMP[RAMP.len() - 1].1
+}
 
 /// What `terrain.png` shows.
 pub struct TerrainPicture<'a> {
@@ -51,21 +64,9 @@ pub struct TerrainPicture<'a> {
     pub supply: Option<Coord<f64>>,
 }
 
-/// The colour of the ramp at `t` ∈ [0, 1].
+/// The colour of the ramp at `t` ∈ [0, 1], in bytes.
 pub fn ramp(t: f64) -> [u8; 3] {
-    let t = t.clamp(0.0, 1.0);
-    let upper = RAMP
-        .iter()
-        .position(|(stop, _)| *stop >= t)
-        .unwrap_or(RAMP.len() - 1)
-        .max(1);
-    let (low_t, low) = RAMP[upper - 1];
-    let (high_t, high) = RAMP[upper];
-    let share = (t - low_t) / (high_t - low_t);
-    std::array::from_fn(|channel| {
-        (f64::from(low[channel]) + share * (f64::from(high[channel]) - f64::from(low[channel])))
-            .round() as u8
-    })
+    height_tint(t).map(|channel| channel.round() as u8)
 }
 
 /// An RGBA raster, row-major from the north-west corner.
@@ -460,10 +461,11 @@ mod tests {
 
     #[test]
     fn the_ramp_runs_through_its_stops() {
-        assert_eq!(ramp(0.0), RAMP[0].1);
-        assert_eq!(ramp(1.0), RAMP[4].1);
-        assert_eq!(ramp(0.3), RAMP[1].1);
-        assert_eq!(ramp(-1.0), RAMP[0].1);
+        assert_eq!(ramp(0.0), [74, 140, 84]);
+        assert_eq!(ramp(1.0), [245, 242, 236]);
+        assert_eq!(ramp(0.35), [222, 214, 128]);
+        assert_eq!(ramp(-1.0), ramp(0.0));
+        assert_eq!(height_tint(0.175), [148.0, 177.0, 106.0]);
         // No tint is the field blue: the outline cannot be mistaken for ground.
         assert!((0..=100).all(|step| ramp(f64::from(step) / 100.0) != FIELD_COLOUR));
     }
