@@ -14,10 +14,6 @@ pub struct InputError {
     pub file: PathBuf,
     /// Where in the file, when known: "feature 3 (S4)", "row 12", "key vehicle.swath_width_m".
     pub place: Option<String>,
-    /// The line and column (both from 1, columns in characters) of a fault in a text file,
-    /// when the parser gives one: printed `file:line:column:` as compilers do, so editors
-    /// and terminals jump to it.
-    pub line_column: Option<(usize, usize)>,
     /// What is wrong.
     pub fault: Fault,
 }
@@ -25,7 +21,13 @@ pub struct InputError {
 impl fmt::Display for InputError {
     fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(formatter, "{}", self.file.display())?;
-        if let Some((line, column)) = self.line_column {
+        // A TOML fault's line and column as compilers print them, `file:line:column:`, so
+        // editors and terminals jump to it.
+        if let Fault::Toml {
+            line_column: Some((line, column)),
+            ..
+        } = self.fault
+        {
             write!(formatter, ":{line}:{column}")?;
         }
         if let Some(place) = &self.place {
@@ -41,7 +43,6 @@ impl InputError {
         Self {
             file: file.as_ref().to_path_buf(),
             place: None,
-            line_column: None,
             fault,
         }
     }
@@ -49,13 +50,22 @@ impl InputError {
     /// A TOML file `file` that does not parse (or holds a value of the wrong type), placed
     /// at the line and column where the parser's span begins in `text`, the file's text.
     pub fn toml(file: impl AsRef<Path>, error: &toml::de::Error, text: &str) -> Self {
-        Self {
-            line_column: error
-                .span()
-                .filter(|span| span.start <= text.len())
-                .map(|span| line_column(text, span.start)),
-            ..Self::new(file, Fault::Toml(toml_message(error)))
-        }
+        let line_column = error
+            .span()
+            .filter(|span| span.start <= text.len())
+            .map(|span| line_column(text, span.start));
+        Self::new(
+            file,
+            Fault::Toml {
+                message: toml_message(error),
+                line_column: line_column.map(|(line, column)| {
+                    (
+                        u32::try_from(line).unwrap_or(u32::MAX),
+                        u32::try_from(column).unwrap_or(u32::MAX),
+                    )
+                }),
+            },
+        )
     }
 
     /// Adds (or prefixes) the place in the file where the fault lies.
@@ -103,9 +113,15 @@ pub enum Fault {
     /// The text is not JSON; the parser's message.
     #[error("not valid JSON: {0}")]
     Json(String),
-    /// The text is not TOML; the parser's message.
-    #[error("not valid TOML: {0}")]
-    Toml(String),
+    /// The text is not TOML (or a value has the wrong type); the parser's message in one line.
+    #[error("not valid TOML: {message}")]
+    Toml {
+        /// What the parser says.
+        message: String,
+        /// Line and column in the file, both from 1 (columns in characters), when the parser
+        /// gives a place: [`InputError`] prints them `file:line:column`.
+        line_column: Option<(u32, u32)>,
+    },
     /// The text is not KML agripath can read; the reason.
     #[error("not valid KML: {0}")]
     Kml(String),

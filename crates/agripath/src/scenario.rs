@@ -244,7 +244,13 @@ fn load_vehicle(parts: &ScenarioParts) -> Result<Vehicle, InputError> {
         toml::Value::Table(table.clone())
             .try_into()
             .map_err(|error: toml::de::Error| {
-                InputError::new(&source, Fault::Toml(one_line(&error, "")))
+                InputError::new(
+                    &source,
+                    Fault::Toml {
+                        message: one_line(&error, ""),
+                        line_column: None,
+                    },
+                )
             })?;
     vehicle
         .apply_camera(&table)

@@ -188,8 +188,10 @@ impl Vehicle {
 
     /// Parses and validates a vehicle file's text; errs on bad TOML or an invalid value.
     pub fn from_toml(text: &str) -> Result<Self, Fault> {
-        let vehicle: Self =
-            toml::from_str(text).map_err(|error| Fault::Toml(one_line(&error, text)))?;
+        let vehicle: Self = toml::from_str(text).map_err(|error| Fault::Toml {
+            message: one_line(&error, text),
+            line_column: None,
+        })?;
         vehicle.validate()?;
         Ok(vehicle)
     }

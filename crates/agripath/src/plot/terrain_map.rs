@@ -86,10 +86,10 @@ impl Canvas {
         let index = (row as usize * self.width + column as usize) * 4;
         let below = f64::from(self.pixels[index + 3]) / 255.0;
         let alpha = opacity + below * (1.0 - opacity);
-        for channel in 0..3 {
-            let old = f64::from(self.pixels[index + channel]) * below * (1.0 - opacity);
-            let new = f64::from(colour[channel]) * opacity;
-            self.pixels[index + channel] = ((old + new) / alpha.max(1e-9)).round() as u8;
+        for (slot, &channel) in self.pixels[index..index + 3].iter_mut().zip(&colour) {
+            let old = f64::from(*slot) * below * (1.0 - opacity);
+            let new = f64::from(channel) * opacity;
+            *slot = ((old + new) / alpha.max(1e-9)).round() as u8;
         }
         self.pixels[index + 3] = (alpha * 255.0).round() as u8;
     }
@@ -241,9 +241,11 @@ pub fn terrain_map_png(picture: &TerrainPicture) -> Vec<u8> {
         };
         let light = 0.35 + 0.65 * f64::from(shaded.pixels[cell * 2]) / 255.0;
         let colour = ramp(t);
-        for channel in 0..3 {
-            canvas.pixels[cell * 4 + channel] =
-                (f64::from(colour[channel]) * light).round().min(255.0) as u8;
+        for (slot, &channel) in canvas.pixels[cell * 4..cell * 4 + 3]
+            .iter_mut()
+            .zip(&colour)
+        {
+            *slot = (f64::from(channel) * light).round().min(255.0) as u8;
         }
         canvas.pixels[cell * 4 + 3] = 255;
     }
