@@ -16,7 +16,7 @@ use std::io::BufWriter;
 
 use geo::{Coord, LineString};
 
-use super::pixel_font::{glyph, text_width, ADVANCE, GLYPH_HEIGHT, GLYPH_WIDTH};
+use super::pixel_font::{glyph, text_width, ADVANCE, CAP_HEIGHT, GLYPH_HEIGHT, GLYPH_WIDTH};
 use crate::model::Farm;
 use crate::terrain::hillshade::Shaded;
 use crate::terrain::Terrain;
@@ -305,7 +305,7 @@ impl Legend {
     /// Its rows, top to bottom: the ramp with its ends, the symbols, the scale bar.
     fn draw(&self, canvas: &mut Canvas) {
         let unit = self.scale as i64;
-        let line = (GLYPH_HEIGHT as i64 + 4) * unit;
+        let line = (GLYPH_HEIGHT as i64 + 3) * unit;
         let pad = 6 * unit;
         let ramp_width = 100 * unit;
         let bar_px = (self.scale_bar_m / self.metres_per_pixel).round() as i64;
@@ -368,7 +368,7 @@ impl Legend {
         let ramp_end = x + ramp_width.max(panel_width - 2 * pad);
         canvas.text(ramp_end - highest_width, y, &self.highest, self.scale, INK);
         y += line + line / 2;
-        let middle = |y: i64| y as f64 + GLYPH_HEIGHT as f64 * unit as f64 / 2.0;
+        let middle = |y: i64| y as f64 + CAP_HEIGHT as f64 * unit as f64 / 2.0;
         for (colour, word) in &keys {
             canvas.segment(
                 (x as f64, middle(y)),
@@ -399,7 +399,7 @@ impl Legend {
             PAPER,
             1.0,
         );
-        let label_top = y + bar_height / 2 - (GLYPH_HEIGHT as i64 * unit) / 2;
+        let label_top = y + bar_height / 2 - (CAP_HEIGHT as i64 * unit) / 2;
         canvas.text(
             x + bar_px + 4 * unit,
             label_top,
