@@ -1,7 +1,8 @@
 """Mission files checked by the tools autopilots use.
 
-Every `.waypoints` file of two plans (the embedded demo; the Christmas Island plantation in
-lon/lat over the real DEM, with terrain-frame altitudes and a servo sprayer) is loaded with
+Every `.waypoints` file of the plans (the embedded demo; the Christmas Island plantation in
+lon/lat over the real DEM, with sea-level altitudes, with terrain-frame altitudes and a servo
+sprayer, and surveyed by a camera drone) is loaded with
 pymavlink's `mavwp.MAVWPLoader` (what MAVProxy and Mission Planner-compatible tools use),
 each item packed as an ArduPilot MISSION_ITEM (which refuses out-of-range fields), and the
 matching `.plan` must hold the same commands, frames and parameters. A point-to-point track
@@ -23,7 +24,7 @@ from pymavlink.dialects.v20 import ardupilotmega as mavlink
 
 AGRIPATH = sys.argv[1]
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-KNOWN_COMMANDS = {16, 21, 22, 178, 183, 216}
+KNOWN_COMMANDS = {16, 21, 22, 178, 183, 206, 216}
 
 passed = failed = 0
 
@@ -97,6 +98,18 @@ with tempfile.TemporaryDirectory() as scratch:
     subprocess.run([AGRIPATH, "plan", os.path.join(ROOT, "data/scenarios/christmas_island.toml"), "--altitude", "terrain",
                     "--sprayer", "servo:9:1900:1100", "--out", island], check=True, stdout=subprocess.DEVNULL)
     check_folder(island, {10})
+    # A survey vehicle: camera triggers (MAV_CMD_DO_SET_CAM_TRIGG_DIST, 206), no sprayer item.
+    survey = os.path.join(scratch, "survey")
+    subprocess.run([AGRIPATH, "plan", os.path.join(ROOT, "data/scenarios/christmas_island_survey.toml"),
+                    "--out", survey], check=True, stdout=subprocess.DEVNULL)
+    check_folder(survey, {0})
+    for path in sorted(glob.glob(os.path.join(survey, "*.waypoints"))):
+        loader = mavwp.MAVWPLoader()
+        loader.load(path)
+        commands = [loader.wp(index).command for index in range(loader.count())]
+        check(mavlink.MAV_CMD_DO_SET_CAM_TRIGG_DIST == 206 and 206 in commands,
+              f"{os.path.basename(path)}: camera trigger items")
+        check(not {183, 216} & set(commands), f"{os.path.basename(path)}: no sprayer item in a survey")
 
     # A track over SPSO's real DEM: its pixel frame placed on Earth through the DEM's
     # georeferencing (GDA94 / MGA zone 48), checked against PROJ.

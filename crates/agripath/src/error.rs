@@ -21,6 +21,15 @@ pub struct InputError {
 impl fmt::Display for InputError {
     fn fmt(&self, formatter: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(formatter, "{}", self.file.display())?;
+        // A TOML fault's line and column as compilers print them, `file:line:column:`, so
+        // editors and terminals jump to it.
+        if let Fault::Toml {
+            line_column: Some((line, column)),
+            ..
+        } = self.fault
+        {
+            write!(formatter, ":{line}:{column}")?;
+        }
         if let Some(place) = &self.place {
             write!(formatter, ": {place}")?;
         }
@@ -38,6 +47,27 @@ impl InputError {
         }
     }
 
+    /// A TOML file `file` that does not parse (or holds a value of the wrong type), placed
+    /// at the line and column where the parser's span begins in `text`, the file's text.
+    pub fn toml(file: impl AsRef<Path>, error: &toml::de::Error, text: &str) -> Self {
+        let line_column = error
+            .span()
+            .filter(|span| span.start <= text.len())
+            .map(|span| line_column(text, span.start));
+        Self::new(
+            file,
+            Fault::Toml {
+                message: toml_message(error),
+                line_column: line_column.map(|(line, column)| {
+                    (
+                        u32::try_from(line).unwrap_or(u32::MAX),
+                        u32::try_from(column).unwrap_or(u32::MAX),
+                    )
+                }),
+            },
+        )
+    }
+
     /// Adds (or prefixes) the place in the file where the fault lies.
     pub fn at(mut self, place: impl Into<String>) -> Self {
         let place = place.into();
@@ -47,6 +77,28 @@ impl InputError {
         });
         self
     }
+}
+
+/// The TOML parser's message in one line (it may span several).
+pub(crate) fn toml_message(error: &toml::de::Error) -> String {
+    error.message().trim().replace('\n', " ")
+}
+
+/// Line and column, both counted from 1 (columns in characters), of byte `offset` of
+/// `text`; an offset inside a character counts as that character.
+pub(crate) fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let mut end = offset.min(text.len());
+    while !text.is_char_boundary(end) {
+        end -= 1;
+    }
+    let before = &text[..end];
+    let line = before.matches('\n').count() + 1;
+    let column = before
+        .rsplit('\n')
+        .next()
+        .map_or(0, |tail| tail.chars().count())
+        + 1;
+    (line, column)
 }
 
 /// What is wrong with an input.
@@ -61,9 +113,15 @@ pub enum Fault {
     /// The text is not JSON; the parser's message.
     #[error("not valid JSON: {0}")]
     Json(String),
-    /// The text is not TOML; the parser's message.
-    #[error("not valid TOML: {0}")]
-    Toml(String),
+    /// The text is not TOML (or a value has the wrong type); the parser's message in one line.
+    #[error("not valid TOML: {message}")]
+    Toml {
+        /// What the parser says.
+        message: String,
+        /// Line and column in the file, both from 1 (columns in characters), when the parser
+        /// gives a place: [`InputError`] prints them `file:line:column`.
+        line_column: Option<(u32, u32)>,
+    },
     /// The text is not KML agripath can read; the reason.
     #[error("not valid KML: {0}")]
     Kml(String),
@@ -188,4 +246,24 @@ pub enum TerrainError {
         /// Northing in the planning frame, metres.
         y: f64,
     },
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_toml_error_is_placed_at_file_line_column_in_one_line() {
+        let text = "name = \"x\"\n# a comment\nswath_width_m = = 3\n";
+        let error = toml::from_str::<toml::Table>(text).unwrap_err();
+        let message = InputError::toml("farm/vehicle.toml", &error, text).to_string();
+        assert!(
+            message.starts_with("farm/vehicle.toml:3:17: not valid TOML: "),
+            "{message}"
+        );
+        assert!(!message.contains('\n'), "{message}");
+        // Columns count characters, not bytes.
+        assert_eq!(line_column("é = 1\nab", 8), (2, 2));
+        assert_eq!(line_column("é", 1), (1, 1));
+    }
 }

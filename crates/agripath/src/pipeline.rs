@@ -16,6 +16,7 @@ use crate::plot::map_svg::{plan_svg, Underlay};
 use crate::plot::plan_html::{plan_html, Overlay};
 #[cfg(feature = "png")]
 use crate::plot::raster::svg_to_png;
+use crate::plot::terrain_map::{terrain_map_png, TerrainPicture};
 use crate::report::Report;
 use crate::scenario::Scenario;
 use crate::sequence::{ordering_problem, passes_of, route, route_of_tour, Route, TransferModel};
@@ -25,7 +26,7 @@ use crate::sortie::route::{RoutePoint, Speeds, WorkRoute};
 use crate::sortie::{plan_sorties, PlannedSorties, SortieModel, SortiePlanner, SortieSettings};
 use crate::supply::evaluator::{plan_cost_s, FixedRouteSplit};
 use crate::supply::{SupplyChoice, SupplyRequest, SupplySource};
-use crate::terrain::hillshade::hillshade;
+use crate::terrain::hillshade::{hillshade, Shaded};
 use crate::terrain::Extent;
 
 /// The start point the inputs give: the given one, else the field file's launch marker (a
@@ -320,24 +321,35 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
     })
 }
 
-/// The hillshade under the plan: the farm's box with a margin, heights exaggerated so that
-/// low relief still shows ((50 m / relief) clamped to 1..10).
-pub fn terrain_overlay(scenario: &Scenario) -> (Extent, Vec<u8>) {
-    let bounds = scenario.farm.bounds();
-    let margin = 0.05 * bounds.width().max(bounds.height()) + 10.0;
+/// The hillshade under the plan: the farm's box, and the supply point where it stands off
+/// the fields, with a margin; heights exaggerated so that low relief still shows ((50 m /
+/// relief) clamped to 1..10).
+pub fn terrain_overlay(scenario: &Scenario, supply: Option<geo::Coord<f64>>) -> Shaded {
+    let farm_box = scenario.farm.bounds();
+    let (mut low, mut high) = (farm_box.min(), farm_box.max());
+    if let Some(supply) = supply {
+        low = geo::Coord {
+            x: low.x.min(supply.x),
+            y: low.y.min(supply.y),
+        };
+        high = geo::Coord {
+            x: high.x.max(supply.x),
+            y: high.y.max(supply.y),
+        };
+    }
+    let margin = 0.05 * (high.x - low.x).max(high.y - low.y) + 10.0;
     let extent = Extent {
-        min_x: bounds.min().x - margin,
-        min_y: bounds.min().y - margin,
-        max_x: bounds.max().x + margin,
-        max_y: bounds.max().y + margin,
+        min_x: low.x - margin,
+        min_y: low.y - margin,
+        max_x: high.x + margin,
+        max_y: high.y + margin,
     };
     let relief = scenario
         .terrain
         .height_range_m(extent)
         .map_or(0.0, |(low, high)| high - low);
     let exaggeration = (50.0 / relief.max(1e-9)).clamp(1.0, 10.0);
-    let shaded = hillshade(scenario.terrain.as_ref(), extent, 1024, exaggeration);
-    (extent, shaded.to_png())
+    hillshade(scenario.terrain.as_ref(), extent, 1024, exaggeration)
 }
 
 /// Whether a file of a plan folder is one a ground station or autopilot flies (left out when
@@ -482,7 +494,29 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         vehicle.safe_height_m,
         &verdict.missed_ground,
     );
-    let (extent, png) = terrain_overlay(scenario);
+    let supply = mission
+        .route
+        .launch
+        .map(|leg| geo::Coord {
+            x: leg.from.x,
+            y: leg.from.y,
+        })
+        .or_else(|| {
+            mission.sorties.as_ref().map(|split| geo::Coord {
+                x: split.supply.x,
+                y: split.supply.y,
+            })
+        });
+    let shaded = terrain_overlay(scenario, supply);
+    let (extent, png) = (shaded.extent, shaded.to_png());
+    // The operator's terrain map: tinted, with the fields, the supply point and a legend (the
+    // maps above draw their own fields over the plain hillshade).
+    let terrain_map = terrain_map_png(&TerrainPicture {
+        terrain: scenario.terrain.as_ref(),
+        shaded: &shaded,
+        farm: &scenario.farm,
+        supply,
+    });
     let underlay = Underlay {
         png: &png,
         min_x: extent.min_x,
@@ -534,7 +568,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
     ));
     files.push(("sheet.html".to_string(), sheet.into_bytes()));
     files.extend(mission_files);
-    files.push(("terrain.png".to_string(), png));
+    files.push(("terrain.png".to_string(), terrain_map));
     Ok(Rendered {
         files,
         verdict,

@@ -116,8 +116,8 @@ impl Scenario {
         allow_overlap: bool,
     ) -> Result<Self, InputError> {
         let text = read_text(path)?;
-        let file: ScenarioFile = toml::from_str(&text)
-            .map_err(|error| InputError::new(path, Fault::Toml(one_line(&error, &text))))?;
+        let file: ScenarioFile =
+            toml::from_str(&text).map_err(|error| InputError::toml(path, &error, &text))?;
         let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
         let coordinates = match file.crs.as_deref() {
             None => CoordinateChoice::FromFile,
@@ -208,12 +208,12 @@ fn load_vehicle(parts: &ScenarioParts) -> Result<Vehicle, InputError> {
     let (mut table, source) = match &parts.vehicle_file {
         Some(path) => {
             let text = read_text(path)?;
-            let table: toml::Table = toml::from_str(&text)
-                .map_err(|error| InputError::new(path, Fault::Toml(one_line(&error, &text))))?;
+            let table: toml::Table =
+                toml::from_str(&text).map_err(|error| InputError::toml(path, &error, &text))?;
             // Read as a vehicle straight from the text too, so that a wrong type or an unknown
             // key is reported at its line and column (the merged table below has no places).
             toml::from_str::<Vehicle>(&text)
-                .map_err(|error| InputError::new(path, Fault::Toml(one_line(&error, &text))))?;
+                .map_err(|error| InputError::toml(path, &error, &text))?;
             (table, path.clone())
         }
         None => (toml::Table::new(), PathBuf::new()),
@@ -240,13 +240,21 @@ fn load_vehicle(parts: &ScenarioParts) -> Result<Vehicle, InputError> {
             "--safe-height",
         ),
     ];
-    let vehicle: Vehicle =
-        toml::Value::Table(table)
+    let mut vehicle: Vehicle =
+        toml::Value::Table(table.clone())
             .try_into()
             .map_err(|error: toml::de::Error| {
-                InputError::new(&source, Fault::Toml(one_line(&error, "")))
+                InputError::new(
+                    &source,
+                    Fault::Toml {
+                        message: one_line(&error, ""),
+                        line_column: None,
+                    },
+                )
             })?;
-    let mut vehicle = vehicle;
+    vehicle
+        .apply_camera(&table)
+        .map_err(|fault| InputError::new(&source, fault))?;
     for (key, value, flag) in overrides {
         if let Some(value) = value {
             match key {

@@ -41,10 +41,10 @@ pub enum Command {
     ///
     /// Writes into DIR: plan.geojson, report.json, plan.svg (and plan.png), plan.html (the
     /// offline viewer), sheet.html (the mission sheet to print; sheet.pdf with --pdf),
-    /// mission.kml, waypoints.csv, terrain.png, and per sortie NN sortie_NN.plan
-    /// (QGroundControl) and sortie_NN.waypoints (QGC WPL 110). Inputs: a scenario TOML, or
-    /// --fields (GeoJSON, KML, KMZ) with --terrain (GeoTIFF, ESRI ASCII grid, XYZ, flat) and
-    /// --vehicle (TOML).
+    /// mission.kml, waypoints.csv, terrain.png (the terrain map: fields, legend, scale), and
+    /// per sortie NN sortie_NN.plan (QGroundControl) and sortie_NN.waypoints (QGC WPL 110).
+    /// Inputs: a scenario TOML, or --fields (GeoJSON, KML, KMZ) with --terrain (GeoTIFF, ESRI
+    /// ASCII grid, XYZ, flat) and --vehicle (TOML; a [camera] section makes it a survey).
     Plan {
         #[command(flatten)]
         inputs: ScenarioInputs,

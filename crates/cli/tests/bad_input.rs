@@ -339,7 +339,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             vec!["validate".into(), bad("scenario_overlap_type.toml")],
             bad("scenario_overlap_type.toml"),
-            "line 2, column 17: invalid type: string \"yes\", expected a boolean",
+            "scenario_overlap_type.toml:2:17: not valid TOML: invalid type: string \"yes\", expected a boolean",
         ),
         (
             vec!["validate".into(), bad("scenario_missing_vehicle.toml")],
@@ -834,7 +834,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             vehicle("vehicle_unknown_key.toml"),
             bad("vehicle_unknown_key.toml"),
-            "line 1, column 1: unknown field `swath_widht_m`",
+            "vehicle_unknown_key.toml:1:1: not valid TOML: unknown field `swath_widht_m`",
         ),
         (
             vehicle("vehicle_nan.toml"),
@@ -844,7 +844,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             vehicle("vehicle_wrong_type.toml"),
             bad("vehicle_wrong_type.toml"),
-            "line 1, column 17: invalid type",
+            "vehicle_wrong_type.toml:1:17: not valid TOML: invalid type",
         ),
         (
             vehicle("vehicle_tank_without_rate.toml"),

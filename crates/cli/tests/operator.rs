@@ -339,3 +339,222 @@ fn a_vehicle_too_weak_for_the_farm_is_blamed_on_its_file_with_a_lon_lat_place() 
     assert_eq!(message.lines().count(), 1, "{message}");
     let _ = std::fs::remove_dir_all(&folder);
 }
+
+/// A PNG's size and RGBA pixels.
+fn rgba(path: &Path) -> (usize, usize, Vec<u8>) {
+    let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(path).unwrap()));
+    let mut reader = decoder.read_info().unwrap();
+    let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut pixels).unwrap();
+    assert_eq!(info.color_type, png::ColorType::Rgba, "{path:?}");
+    (info.width as usize, info.height as usize, pixels)
+}
+
+#[test]
+fn terrain_png_draws_the_fields_the_supply_point_and_a_legend_on_the_terrain() {
+    let folder = scratch("terrain-map");
+    let out = folder.join("island");
+    let scenario = data("scenarios/christmas_island.toml");
+    stdout(&agripath_without_browser(&[
+        "plan",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]));
+    let (width, height, pixels) = rgba(&out.join("terrain.png"));
+    // The hillshade's size: 1024 pixels on the farm box's longer side.
+    assert_eq!(width.max(height), 1024, "{width} × {height}");
+    let of_colour = |colour: [u8; 3]| {
+        pixels
+            .chunks(4)
+            .enumerate()
+            .filter(|(_, pixel)| pixel[..3] == colour && pixel[3] == 255)
+            .map(|(index, _)| (index % width, index / width))
+            .collect::<Vec<_>>()
+    };
+    // Field outlines (agripath::plot::terrain_map::FIELD_COLOUR) around most of the picture:
+    // the picture is the farm's box with a 5 % margin.
+    let field = of_colour([21, 101, 192]);
+    assert!(field.len() > 3000, "{} field-outline pixels", field.len());
+    let span = |axis: fn(&(usize, usize)) -> usize| {
+        field.iter().map(axis).max().unwrap() - field.iter().map(axis).min().unwrap()
+    };
+    assert!(span(|p| p.0) > width * 3 / 4 && span(|p| p.1) > height * 3 / 4);
+    assert!(!of_colour([198, 40, 40]).is_empty(), "the obstacle");
+    assert!(!of_colour([255, 235, 59]).is_empty(), "the supply point");
+    // The legend's colour ramp, both ends.
+    for end in [[74, 140, 84], [245, 242, 236]] {
+        assert!(of_colour(end).len() >= 8, "ramp end {end:?}");
+    }
+    let _ = std::fs::remove_dir_all(&folder);
+}
+
+#[test]
+fn a_broken_vehicle_toml_is_reported_at_file_line_column_in_one_line() {
+    let folder = scratch("broken-toml");
+    let broken = folder.join("broken.toml");
+    std::fs::write(
+        &broken,
+        "name = \"broken\"\n# swath below\nswath_width_m = = 6.5\n",
+    )
+    .unwrap();
+    let fields = data("christmas_island_fields.kml");
+    let out = folder.join("out");
+    let output = agripath_without_browser(&[
+        "plan",
+        "--fields",
+        fields.to_str().unwrap(),
+        "--vehicle",
+        broken.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(2));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(message.lines().count(), 1, "{message}");
+    let expected = format!(
+        "agripath: error: {}:3:17: not valid TOML: ",
+        broken.display()
+    );
+    assert!(message.starts_with(&expected), "{message}");
+    assert!(!out.exists(), "nothing written");
+    let _ = std::fs::remove_dir_all(&folder);
+}
+
+/// The mission items of a `.plan`: (command, p1).
+fn plan_commands(path: &Path) -> Vec<(u64, f64)> {
+    let plan: serde_json::Value = serde_json::from_slice(&std::fs::read(path).unwrap()).unwrap();
+    plan["mission"]["items"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|item| {
+            (
+                item["command"].as_u64().unwrap(),
+                item["params"][0].as_f64().unwrap_or(f64::NAN),
+            )
+        })
+        .collect()
+}
+
+#[test]
+fn a_survey_vehicle_triggers_its_camera_on_each_swath_and_has_no_tank() {
+    let folder = scratch("survey");
+    let out = folder.join("survey");
+    let scenario = data("scenarios/christmas_island_survey.toml");
+    let printed = stdout(&agripath_without_browser(&[
+        "plan",
+        scenario.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]));
+    assert!(printed.contains("survey: camera every 12 m"), "{printed}");
+    let report = report(&out);
+    assert_eq!(report["preflight"]["safe"], true);
+    // 90 m footprint at 70 % side overlap; 60 m along the track at 80 % front overlap.
+    assert_eq!(report["swath_width_m"], 27.0);
+    let survey = &report["survey"];
+    assert_eq!(survey["trigger_distance_m"], 12.0);
+    let length =
+        report["spray_length_m"].as_f64().unwrap() + report["edge_length_m"].as_f64().unwrap();
+    assert_eq!(
+        survey["photos_estimate"].as_u64().unwrap(),
+        (length / 12.0).round() as u64
+    );
+    assert!(report["litres"].is_null());
+    let sorties = report["sorties"].as_u64().unwrap() as usize;
+    for number in 1..=sorties {
+        let commands = plan_commands(&out.join(format!("sortie_{number:02}.plan")));
+        assert!(
+            commands
+                .iter()
+                .all(|(command, _)| *command != 216 && *command != 183),
+            "sortie {number}: a sprayer command in a survey"
+        );
+        let triggers: Vec<f64> = commands
+            .iter()
+            .filter(|(command, _)| *command == 206)
+            .map(|(_, distance)| *distance)
+            .collect();
+        assert!(triggers.len() >= 2, "sortie {number}: {triggers:?}");
+        // On with the distance at each swath's start, off (0) at its end.
+        for pair in triggers.chunks(2) {
+            assert_eq!(pair, [12.0, 0.0], "sortie {number}");
+        }
+        let waypoints =
+            std::fs::read_to_string(out.join(format!("sortie_{number:02}.waypoints"))).unwrap();
+        let rows_206 = waypoints
+            .lines()
+            .filter(|line| line.split('\t').nth(3) == Some("206"))
+            .count();
+        assert_eq!(rows_206, triggers.len(), "sortie {number}: .waypoints");
+    }
+    let details = report["sortie_details"].as_array().unwrap();
+    assert!(details
+        .iter()
+        .all(|sortie| sortie["tank_percent"].is_null()));
+    let sheet = std::fs::read_to_string(out.join("sheet.html")).unwrap();
+    assert!(sheet.contains("<th class=\"number\">photos</th>") && !sheet.contains(">litres<"));
+    assert!(sheet.contains("survey camera, a photo every 12 m"));
+    // Sorties end for the battery alone: a weaker battery, more sorties, still no tank.
+    let weak = folder.join("weak_survey.toml");
+    let vehicle = std::fs::read_to_string(data("vehicles/survey_camera.toml")).unwrap();
+    std::fs::write(
+        &weak,
+        vehicle.replace(
+            "battery_endurance_s = 1500.0",
+            "battery_endurance_s = 600.0",
+        ),
+    )
+    .unwrap();
+    let terrain = data("spso/ChrismasTerrain.tif");
+    let weak_out = folder.join("weak");
+    stdout(&agripath_without_browser(&[
+        "plan",
+        "--fields",
+        data("christmas_island_fields.kml").to_str().unwrap(),
+        "--terrain",
+        terrain.to_str().unwrap(),
+        "--vehicle",
+        weak.to_str().unwrap(),
+        "--out",
+        weak_out.to_str().unwrap(),
+    ]));
+    let weak_report = self::report(&weak_out);
+    assert!(weak_report["sorties"].as_u64().unwrap() as usize > sorties);
+    let weak_details = weak_report["sortie_details"].as_array().unwrap();
+    assert!(weak_details
+        .iter()
+        .all(|sortie| sortie["tank_percent"].is_null()
+            && sortie["battery_percent"].as_f64().unwrap() <= 100.0));
+    let _ = std::fs::remove_dir_all(&folder);
+}
+
+#[test]
+fn a_track_waypoints_file_gives_each_place_once() {
+    let folder = scratch("track-once");
+    let scenario = data("tracks/christmas_island_track.toml");
+    stdout(&agripath_without_browser(&[
+        "track",
+        scenario.to_str().unwrap(),
+        "--algorithm",
+        "lattice",
+        "--runs",
+        "1",
+        "--out",
+        folder.to_str().unwrap(),
+    ]));
+    let text = std::fs::read_to_string(folder.join("lattice.waypoints")).unwrap();
+    // Place and altitude of each row after the header: columns 9-11.
+    let places: Vec<Vec<&str>> = text
+        .lines()
+        .skip(1)
+        .map(|line| line.split('\t').skip(8).take(3).collect())
+        .collect();
+    assert!(places.len() >= 5, "{text}");
+    // Row 0 is home and row 1 the takeoff above it; after that no row repeats the one before.
+    for pair in places[1..].windows(2) {
+        assert_ne!(pair[0], pair[1], "a waypoint repeated:\n{text}");
+    }
+    let _ = std::fs::remove_dir_all(&folder);
+}

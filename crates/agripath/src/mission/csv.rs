@@ -18,6 +18,7 @@ pub fn waypoints_csv(missions: &[SortieMission]) -> String {
                 Action::Land => ("land", String::new()),
                 Action::Speed { mps } => ("speed", format!("{mps}")),
                 Action::Spray { on } => ("spray", if on { "on".into() } else { "off".into() }),
+                Action::CameraTrigger { distance_m } => ("camera", format!("{distance_m}")),
             };
             let _ = writeln!(
                 text,

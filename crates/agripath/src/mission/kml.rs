@@ -126,7 +126,9 @@ pub fn mission_kml(
         let mut last: Option<&Item> = None;
         for item in &mission.items {
             match item.action {
-                Action::Spray { on } => spraying = on,
+                Action::Spray { .. } | Action::CameraTrigger { .. } => {
+                    spraying = item.action.work_state() == Some(true);
+                }
                 _ if item.moves() => {
                     let point = (item.lon, item.lat, height(item));
                     if pieces.last().is_none_or(|(kind, _)| *kind != spraying) {
@@ -141,11 +143,21 @@ pub fn mission_kml(
                 _ => {}
             }
         }
+        // A survey's camera stretches are named for what they are.
+        let work = if mission
+            .items
+            .iter()
+            .any(|item| matches!(item.action, Action::CameraTrigger { .. }))
+        {
+            "survey"
+        } else {
+            "spray"
+        };
         for (sprayed, points) in pieces.iter().filter(|(_, points)| points.len() >= 2) {
             let _ = writeln!(
                 kml,
                 "<Placemark><name>{}</name><styleUrl>#{}</styleUrl><LineString><altitudeMode>{mode}</altitudeMode><coordinates>{}</coordinates></LineString></Placemark>",
-                if *sprayed { "spray" } else { "transit" },
+                if *sprayed { work } else { "transit" },
                 if *sprayed { style.as_str() } else { "transit" },
                 coordinates(points)
             );

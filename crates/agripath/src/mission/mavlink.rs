@@ -22,6 +22,9 @@ pub const CMD_DO_CHANGE_SPEED: u16 = 178;
 pub const CMD_DO_SET_SERVO: u16 = 183;
 /// `MAV_CMD_DO_SPRAYER`: turn the sprayer on or off.
 pub const CMD_DO_SPRAYER: u16 = 216;
+/// `MAV_CMD_DO_SET_CAM_TRIGG_DIST`: trigger the camera every p1 metres (0: stop); p3 = 1
+/// takes one photo at once.
+pub const CMD_DO_SET_CAM_TRIGG_DIST: u16 = 206;
 
 /// A command as mission files store it: number, frame, p1…p7 (`None` = NaN/null).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -86,6 +89,11 @@ impl Command {
             Action::Land => place(CMD_NAV_LAND, [Some(0.0), Some(0.0), Some(0.0), None]),
             // Ground speed (1), m/s, throttle unchanged (−1).
             Action::Speed { mps } => act(CMD_DO_CHANGE_SPEED, [1.0, mps, -1.0]),
+            // Distance, shutter time unchanged (0), one photo at once when starting.
+            Action::CameraTrigger { distance_m } => act(
+                CMD_DO_SET_CAM_TRIGG_DIST,
+                [distance_m, 0.0, if distance_m > 0.0 { 1.0 } else { 0.0 }],
+            ),
             Action::Spray { on } => match sprayer {
                 SprayerCommand::DoSprayer => {
                     act(CMD_DO_SPRAYER, [if on { 1.0 } else { 0.0 }, 0.0, 0.0])
@@ -104,5 +112,50 @@ impl Command {
                 ),
             },
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_camera_trigger_is_do_set_cam_trigg_dist_with_its_distance_then_zero() {
+        let item = |action| Item {
+            action,
+            lon: 105.6,
+            lat: -10.5,
+            ground_m: 150.0,
+            above_ground_m: 60.0,
+        };
+        let on = Command::of(
+            &item(Action::work(true, Some(12.0))),
+            AltitudeReference::SeaLevel,
+            150.0,
+            SprayerCommand::DoSprayer,
+        );
+        assert_eq!(on.command, CMD_DO_SET_CAM_TRIGG_DIST);
+        assert_eq!(on.params[..3], [Some(12.0), Some(0.0), Some(1.0)]);
+        let off = Command::of(
+            &item(Action::work(false, Some(12.0))),
+            AltitudeReference::SeaLevel,
+            150.0,
+            SprayerCommand::DoSprayer,
+        );
+        assert_eq!(
+            (off.command, off.params[0], off.params[2]),
+            (206, Some(0.0), Some(0.0))
+        );
+        // A sprayer keeps its sprayer command.
+        let spray = Command::of(
+            &item(Action::work(true, None)),
+            AltitudeReference::SeaLevel,
+            150.0,
+            SprayerCommand::DoSprayer,
+        );
+        assert_eq!(
+            (spray.command, spray.params[0]),
+            (CMD_DO_SPRAYER, Some(1.0))
+        );
     }
 }

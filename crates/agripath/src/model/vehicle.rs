@@ -1,5 +1,11 @@
 //! The drone's figures: swath, heights, speeds, tank and battery. Read from TOML
 //! (`data/vehicles/*.toml` are commented examples); every number carries its unit in its name.
+//!
+//! A vehicle with a `[camera]` section is a survey vehicle (decision 0022): it has no tank,
+//! its sorties end for the battery only, and the mission files trigger the camera by
+//! distance along each swath. With a footprint width w and side overlap s %, the swath (the
+//! spacing of swaths) is w · (1 − s/100); with a footprint length l along the track and front
+//! overlap f %, the trigger distance is l · (1 − f/100), unless stated directly.
 
 use std::path::Path;
 
@@ -43,6 +49,103 @@ pub struct Vehicle {
     pub refill_base_s: f64,
     /// …rising linearly to T_pmax for a full tank.
     pub refill_max_s: f64,
+    /// A survey camera instead of a sprayer (`[camera]`); `None` for a sprayer.
+    pub camera: Option<Camera>,
+}
+
+/// A survey camera, triggered by distance along each swath (`MAV_CMD_DO_SET_CAM_TRIGG_DIST`).
+#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Camera {
+    /// Ground distance between photos along a swath, metres; else derived from the
+    /// footprint length and the front overlap.
+    pub trigger_distance_m: Option<f64>,
+    /// Ground footprint of one photo across the track, metres.
+    pub footprint_width_m: Option<f64>,
+    /// Ground footprint of one photo along the track, metres.
+    pub footprint_length_m: Option<f64>,
+    /// Overlap of neighbouring swaths' photos, percent of the footprint width.
+    pub side_overlap_percent: Option<f64>,
+    /// Overlap of consecutive photos along a swath, percent of the footprint length.
+    pub front_overlap_percent: Option<f64>,
+}
+
+impl Camera {
+    /// Swath spacing from the footprint and the side overlap, when both are given: w · (1 − s/100).
+    pub fn swath_width_m(&self) -> Option<f64> {
+        // w · (100 − s) / 100 keeps round figures round (90 m at 70 % is 27 m, not 27.000000000000004).
+        Some(self.footprint_width_m? * (100.0 - self.side_overlap_percent?) / 100.0)
+    }
+
+    /// The trigger distance: stated, or l · (1 − f/100) from the footprint length and front overlap.
+    pub fn trigger_distance_m(&self) -> Option<f64> {
+        self.trigger_distance_m.or_else(|| {
+            Some(self.footprint_length_m? * (100.0 - self.front_overlap_percent?) / 100.0)
+        })
+    }
+
+    /// Checks the figures given and that a trigger distance follows from them.
+    fn validate(&self) -> Result<(), Fault> {
+        let lengths = [
+            ("camera.trigger_distance_m", self.trigger_distance_m),
+            ("camera.footprint_width_m", self.footprint_width_m),
+            ("camera.footprint_length_m", self.footprint_length_m),
+        ];
+        for (what, value) in lengths {
+            if let Some(value) = value {
+                if !(value.is_finite() && value > 0.0 && value <= 10_000.0) {
+                    return Err(invalid(
+                        what,
+                        value,
+                        "must be a finite number above 0, at most 10000 m",
+                    ));
+                }
+            }
+        }
+        let overlaps = [
+            ("camera.side_overlap_percent", self.side_overlap_percent),
+            ("camera.front_overlap_percent", self.front_overlap_percent),
+        ];
+        for (what, value) in overlaps {
+            if let Some(value) = value {
+                if !(value.is_finite() && (0.0..100.0).contains(&value)) {
+                    return Err(invalid(
+                        what,
+                        value,
+                        "must be a percentage in 0..100 (100 % would never move on)",
+                    ));
+                }
+            }
+        }
+        if self.side_overlap_percent.is_some() && self.footprint_width_m.is_none() {
+            return Err(Fault::Structure(
+                "camera.side_overlap_percent needs camera.footprint_width_m".into(),
+            ));
+        }
+        if self.front_overlap_percent.is_some() != self.footprint_length_m.is_some() {
+            return Err(Fault::Structure(
+                "camera.footprint_length_m and camera.front_overlap_percent go together".into(),
+            ));
+        }
+        match (self.trigger_distance_m, self.footprint_length_m, self.front_overlap_percent) {
+            (None, None, _) => Err(Fault::Structure(
+                "a [camera] needs trigger_distance_m, or footprint_length_m with front_overlap_percent".into(),
+            )),
+            (Some(stated), Some(length), Some(front))
+                if (stated - length * (100.0 - front) / 100.0).abs() > 1e-3 =>
+            {
+                Err(invalid(
+                    "camera.trigger_distance_m",
+                    stated,
+                    &format!(
+                        "disagrees with footprint_length_m × (1 − front_overlap_percent/100) = {}: give one of them",
+                        crate::error::figure(length * (100.0 - front) / 100.0)
+                    ),
+                ))
+            }
+            _ => Ok(()),
+        }
+    }
 }
 
 impl Default for Vehicle {
@@ -63,6 +166,7 @@ impl Default for Vehicle {
             battery_swap_s: 60.0,
             refill_base_s: 20.0,
             refill_max_s: 120.0,
+            camera: None,
         }
     }
 }
@@ -71,19 +175,80 @@ impl Vehicle {
     /// Reads and validates a vehicle file.
     pub fn from_file(path: &Path) -> Result<Self, InputError> {
         let text = read_text(path)?;
-        Self::from_toml(&text).map_err(|fault| InputError::new(path, fault))
+        let stated: toml::Table =
+            toml::from_str(&text).map_err(|error| InputError::toml(path, &error, &text))?;
+        let mut vehicle: Self =
+            toml::from_str(&text).map_err(|error| InputError::toml(path, &error, &text))?;
+        vehicle
+            .apply_camera(&stated)
+            .and_then(|()| vehicle.validate())
+            .map_err(|fault| InputError::new(path, fault))?;
+        Ok(vehicle)
     }
 
     /// Parses and validates a vehicle file's text; errs on bad TOML or an invalid value.
     pub fn from_toml(text: &str) -> Result<Self, Fault> {
-        let vehicle: Self =
-            toml::from_str(text).map_err(|error| Fault::Toml(one_line(&error, text)))?;
+        let vehicle: Self = toml::from_str(text).map_err(|error| Fault::Toml {
+            message: one_line(&error, text),
+            line_column: None,
+        })?;
         vehicle.validate()?;
         Ok(vehicle)
     }
 
+    /// Whether the vehicle surveys (has a camera) rather than sprays.
+    pub fn is_survey(&self) -> bool {
+        self.camera.is_some()
+    }
+
+    /// The survey camera's trigger distance, metres (`None` for a sprayer).
+    pub fn trigger_distance_m(&self) -> Option<f64> {
+        self.camera.as_ref().and_then(Camera::trigger_distance_m)
+    }
+
+    /// Completes a survey vehicle from what its file (`stated`, the keys as written) says: the
+    /// swath from the camera's footprint and side overlap, and no tank. A tank key beside a
+    /// camera, or a stated swath the footprint contradicts, is refused rather than ignored.
+    pub fn apply_camera(&mut self, stated: &toml::Table) -> Result<(), Fault> {
+        let Some(camera) = &self.camera else {
+            return Ok(());
+        };
+        for key in ["tank_l", "application_rate_l_per_ha", "tank_spray_time_s"] {
+            if stated.contains_key(key) {
+                return Err(Fault::Structure(format!(
+                    "{key} and [camera] do not go together: a survey vehicle has no tank (remove {key}, or the camera for a sprayer)"
+                )));
+            }
+        }
+        camera.validate()?;
+        if let Some(width) = camera.swath_width_m() {
+            if stated.contains_key("swath_width_m") && (self.swath_width_m - width).abs() > 1e-3 {
+                return Err(invalid(
+                    "swath_width_m",
+                    self.swath_width_m,
+                    &format!(
+                        "disagrees with the camera's footprint_width_m × (1 − side_overlap_percent/100) = {}: give one of them",
+                        crate::error::figure(width)
+                    ),
+                ));
+            }
+            self.swath_width_m = width;
+        }
+        // The seed 003 tank a file without tank keys gets by default is not this vehicle's.
+        self.tank_spray_time_s = None;
+        Ok(())
+    }
+
     /// Checks every figure once; afterwards the vehicle is usable everywhere.
     pub fn validate(&self) -> Result<(), Fault> {
+        if let Some(camera) = &self.camera {
+            camera.validate()?;
+            if self.tank_l.is_some() || self.application_rate_l_per_ha.is_some() {
+                return Err(Fault::Structure(
+                    "tank_l and [camera] do not go together: a survey vehicle has no tank".into(),
+                ));
+            }
+        }
         let positive = [
             ("swath_width_m", self.swath_width_m),
             ("spray_speed_mps", self.spray_speed_mps),
@@ -172,8 +337,11 @@ impl Vehicle {
         Ok(())
     }
 
-    /// Metres of swath one tank sprays, if the tank limits a sortie.
+    /// Metres of swath one tank sprays, if the tank limits a sortie (never for a survey).
     pub fn spray_length_per_tank_m(&self) -> Option<f64> {
+        if self.is_survey() {
+            return None;
+        }
         let by_volume = match (self.tank_l, self.application_rate_l_per_ha) {
             // litres / (litres per m²) / swath width
             (Some(tank), Some(rate)) => Some(tank / (rate / 10_000.0) / self.swath_width_m),
@@ -198,23 +366,14 @@ fn invalid(what: &str, value: f64, why: &str) -> Fault {
 }
 
 /// TOML errors span several lines with a caret drawing; the CLI promises one line.
-/// A TOML error in one line, placed at its line and column in `text` (the file it was read
-/// from; empty when the value did not come from text).
+/// A TOML error in one line, placed at its line and column in `text` (the text it was read
+/// from; empty when the value did not come from text). For a file, [`InputError::toml`]
+/// places it as `file:line:column` instead.
 pub(crate) fn one_line(error: &toml::de::Error, text: &str) -> String {
-    let message = error.message().trim().replace('\n', " ");
+    let message = crate::error::toml_message(error);
     match error.span() {
         Some(span) if span.start <= text.len() => {
-            let mut end = span.start;
-            while !text.is_char_boundary(end) {
-                end -= 1;
-            }
-            let before = &text[..end];
-            let line = before.matches('\n').count() + 1;
-            let column = before
-                .rsplit('\n')
-                .next()
-                .map_or(0, |tail| tail.chars().count())
-                + 1;
+            let (line, column) = crate::error::line_column(text, span.start);
             format!("line {line}, column {column}: {message}")
         }
         _ => message,
@@ -242,6 +401,55 @@ mod tests {
             count += 1;
         }
         assert!(count >= 4, "expected an example per seed drone and the T16");
+    }
+
+    fn survey(text: &str) -> Result<Vehicle, Fault> {
+        let stated: toml::Table = toml::from_str(text).unwrap();
+        let mut vehicle: Vehicle = toml::from_str(text).unwrap();
+        vehicle.apply_camera(&stated)?;
+        vehicle.validate()?;
+        Ok(vehicle)
+    }
+
+    #[test]
+    fn a_camera_makes_a_survey_vehicle_without_a_tank() {
+        let camera = "[camera]\nfootprint_width_m = 90.0\nfootprint_length_m = 60.0\nside_overlap_percent = 70.0\nfront_overlap_percent = 80.0\n";
+        let vehicle = survey(camera).unwrap();
+        assert!(vehicle.is_survey());
+        assert_eq!(vehicle.swath_width_m, 27.0);
+        assert_eq!(vehicle.trigger_distance_m(), Some(12.0));
+        // No seed 003 tank by default: sorties end for the battery only.
+        assert_eq!(vehicle.spray_length_per_tank_m(), None);
+        let direct = survey("swath_width_m = 20.0\n[camera]\ntrigger_distance_m = 8.0\n").unwrap();
+        assert_eq!(
+            (direct.swath_width_m, direct.trigger_distance_m()),
+            (20.0, Some(8.0))
+        );
+        let agreeing = format!("swath_width_m = 27.0\n{camera}");
+        assert_eq!(survey(&agreeing).unwrap().swath_width_m, 27.0);
+    }
+
+    #[test]
+    fn a_survey_vehicle_with_a_tank_or_contradicting_figures_is_refused() {
+        let cases = [
+            ("tank_l = 10.0\napplication_rate_l_per_ha = 10.0\n[camera]\ntrigger_distance_m = 8.0\n", "tank_l and [camera]"),
+            ("tank_spray_time_s = 600.0\n[camera]\ntrigger_distance_m = 8.0\n", "tank_spray_time_s and [camera]"),
+            ("swath_width_m = 30.0\n[camera]\nfootprint_width_m = 90.0\nside_overlap_percent = 70.0\ntrigger_distance_m = 8.0\n", "swath_width_m = 30 is invalid: disagrees"),
+            ("[camera]\nfootprint_width_m = 90.0\n", "needs trigger_distance_m"),
+            ("[camera]\ntrigger_distance_m = 0.0\n", "camera.trigger_distance_m = 0 is invalid"),
+            ("[camera]\ntrigger_distance_m = 8.0\nside_overlap_percent = 60.0\n", "needs camera.footprint_width_m"),
+            ("[camera]\nfootprint_length_m = 60.0\nfront_overlap_percent = 100.0\n", "front_overlap_percent = 100 is invalid"),
+            ("[camera]\ntrigger_distance_m = 8.0\nfootprint_length_m = 60.0\nfront_overlap_percent = 80.0\n", "disagrees with footprint_length_m"),
+        ];
+        for (text, expected) in cases {
+            let error = survey(text).unwrap_err().to_string();
+            assert!(error.contains(expected), "{text}: {error}");
+        }
+        let error = toml::from_str::<Vehicle>("[camera]\nshutter = 1\n").unwrap_err();
+        assert!(
+            error.message().contains("unknown field `shutter`"),
+            "{error}"
+        );
     }
 
     #[test]

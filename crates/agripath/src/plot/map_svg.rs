@@ -105,7 +105,7 @@ const UNREACHABLE_COLOUR: &str = "#37474f";
 const MISSED_COLOUR: &str = "#d50000";
 
 /// A round scale-bar length near a fifth of the map width.
-fn scale_bar_m(width_m: f64) -> f64 {
+pub(super) fn scale_bar_m(width_m: f64) -> f64 {
     let target = width_m / 5.0;
     let magnitude = 10f64.powf(target.log10().floor());
     [1.0, 2.0, 5.0, 10.0]

@@ -5,14 +5,16 @@
 //! ground at home) to its altitude; NAV_WAYPOINT flies straight to its place; NAV_LAND flies
 //! to its place at the current altitude and descends to the ground; DO_CHANGE_SPEED sets the
 //! ground speed (p2); DO_SPRAYER (p1 = 1 on) or DO_SET_SERVO on the sprayer's channel switch
-//! the spray. Altitudes: frame 0 above sea level, frame 3 above home's ground, frame 10 above
+//! the spray; DO_SET_CAM_TRIGG_DIST (p1 > 0 on, 0 off) switches a survey camera, read as
+//! the same on/off state. Altitudes: frame 0 above sea level, frame 3 above home's ground, frame 10 above
 //! the terrain under the vehicle (interpolated along the leg, as terrain following does).
 
 use super::read_back::FileItem;
 use crate::mission::flight::SprayerCommand;
 use crate::mission::mavlink::{
-    CMD_DO_CHANGE_SPEED, CMD_DO_SET_SERVO, CMD_DO_SPRAYER, CMD_NAV_LAND, CMD_NAV_TAKEOFF,
-    CMD_NAV_WAYPOINT, FRAME_GLOBAL, FRAME_GLOBAL_RELATIVE_ALT, FRAME_GLOBAL_TERRAIN_ALT,
+    CMD_DO_CHANGE_SPEED, CMD_DO_SET_CAM_TRIGG_DIST, CMD_DO_SET_SERVO, CMD_DO_SPRAYER, CMD_NAV_LAND,
+    CMD_NAV_TAKEOFF, CMD_NAV_WAYPOINT, FRAME_GLOBAL, FRAME_GLOBAL_RELATIVE_ALT,
+    FRAME_GLOBAL_TERRAIN_ALT,
 };
 use crate::terrain::Terrain;
 
@@ -229,6 +231,15 @@ pub fn fly(
             CMD_DO_SPRAYER => {
                 spraying = item.params[0] == 1.0;
             }
+            // A survey's camera: triggering by distance is its work "on" (what coverage and
+            // the outside checks measure), 0 is off.
+            CMD_DO_SET_CAM_TRIGG_DIST => {
+                let distance = item.params[0];
+                if !(distance.is_finite() && distance >= 0.0) {
+                    return Err(fail(format!("camera trigger distance {distance} m")));
+                }
+                spraying = distance > 0.0;
+            }
             CMD_DO_SET_SERVO => match sprayer {
                 SprayerCommand::Servo {
                     channel,
@@ -256,4 +267,68 @@ pub fn fly(
         }
     }
     Ok(legs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn item(command: u16, params: [f64; 7]) -> FileItem {
+        FileItem {
+            command,
+            frame: if matches!(command, CMD_NAV_TAKEOFF | CMD_NAV_WAYPOINT | CMD_NAV_LAND) {
+                FRAME_GLOBAL_RELATIVE_ALT
+            } else {
+                FRAME_GLOBAL
+            },
+            params,
+        }
+    }
+
+    fn at(lon: f64) -> [f64; 7] {
+        [0.0, 1.0, 0.0, 0.0, 0.0, lon, 30.0]
+    }
+
+    #[test]
+    fn the_camera_trigger_is_the_survey_on_and_off_state() {
+        let trigger = |distance: f64| {
+            item(
+                CMD_DO_SET_CAM_TRIGG_DIST,
+                [distance, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0],
+            )
+        };
+        let items = [
+            item(CMD_NAV_TAKEOFF, at(0.0)),
+            item(CMD_NAV_WAYPOINT, at(1.0)),
+            trigger(12.0),
+            item(CMD_NAV_WAYPOINT, at(2.0)),
+            trigger(0.0),
+            item(CMD_NAV_WAYPOINT, at(3.0)),
+            item(CMD_NAV_LAND, at(3.0)),
+        ];
+        let to_plan = |lon: f64, lat: f64| (lon * 100.0, lat * 100.0);
+        let legs = fly(
+            &items,
+            (0.0, 0.0),
+            0.0,
+            SprayerCommand::DoSprayer,
+            5.0,
+            &to_plan,
+        )
+        .unwrap();
+        let on: Vec<(f64, bool)> = legs.iter().map(|leg| (leg.to.x, leg.spraying)).collect();
+        assert_eq!(on[..3], [(0.0, false), (100.0, false), (200.0, true)]);
+        assert_eq!(on[3], (300.0, false));
+        let negative = [item(CMD_NAV_TAKEOFF, at(0.0)), trigger(-1.0)];
+        let error = fly(
+            &negative,
+            (0.0, 0.0),
+            0.0,
+            SprayerCommand::DoSprayer,
+            5.0,
+            &to_plan,
+        )
+        .unwrap_err();
+        assert_eq!(error.item, 2);
+    }
 }

@@ -117,6 +117,9 @@ pub struct Report {
     /// Litres for the whole plan: the application rate over the swath-wide strips of every
     /// spray metre (`null` when the vehicle gives no rate). The sorties' litres add up to it.
     pub litres: Option<f64>,
+    /// A survey vehicle's camera work (absent for a sprayer, whose report it leaves as it was).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub survey: Option<SurveyReport>,
     /// Transfers and returns to the supply point, seconds.
     pub non_spray_time_s: f64,
     /// Spraying and non-spraying time, seconds.
@@ -134,6 +137,18 @@ pub struct Report {
     pub preflight: Option<crate::preflight::Verdict>,
 }
 
+/// What a survey flies with its camera on (decision 0022).
+#[derive(Debug, Clone, Serialize)]
+pub struct SurveyReport {
+    /// Ground distance between photos along a swath, metres.
+    pub trigger_distance_m: f64,
+    /// Swaths and edge passes flown with the camera triggering, metres.
+    pub survey_length_m: f64,
+    /// Photos to expect: survey length / trigger distance (each swath adds its first
+    /// photo, so the camera takes a few more).
+    pub photos_estimate: u64,
+}
+
 /// One sortie in `report.json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct SortieReport {
@@ -145,6 +160,10 @@ pub struct SortieReport {
     pub litres: Option<f64>,
     /// Share of a tank used, percent (`null` when the tank does not limit a sortie).
     pub tank_percent: Option<f64>,
+    /// A survey's photos to expect in this sortie: its survey metres / trigger distance
+    /// (absent for a sprayer).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub photos_estimate: Option<u64>,
     /// Out from the supply point, along the route and back, seconds.
     pub flight_time_s: f64,
     /// Share of the battery endurance used, percent.
@@ -242,6 +261,9 @@ impl Report {
                     spray_m: round(sortie.spray_m, 1e-4),
                     litres: sortie.litres.map(|l| round(l, 1e-3)),
                     tank_percent: sortie.tank_fraction.map(|f| round(100.0 * f, 1e-3)),
+                    photos_estimate: vehicle
+                        .trigger_distance_m()
+                        .map(|distance| (sortie.spray_m / distance).round() as u64),
                     flight_time_s: round(sortie.flight_s, 1e-3),
                     battery_percent: round(100.0 * sortie.battery_fraction, 1e-3),
                     return_point: (index + 1 < split.plan.sorties.len()).then(|| {
@@ -331,6 +353,14 @@ impl Report {
                     1e-3,
                 )
             }),
+            survey: vehicle
+                .trigger_distance_m()
+                .map(|trigger_distance_m| SurveyReport {
+                    trigger_distance_m,
+                    survey_length_m: round(spray_length_m + edge_length_m, 1e-4),
+                    photos_estimate: ((spray_length_m + edge_length_m) / trigger_distance_m).round()
+                        as u64,
+                }),
             non_spray_time_s: round(non_spray_time_s, 1e-3),
             total_time_s: round(spray_time_s + non_spray_time_s, 1e-3),
             runtime_s,
@@ -438,6 +468,12 @@ impl Report {
             self.non_spray_time_s / 60.0,
             self.runtime_s
         ));
+        if let Some(survey) = &self.survey {
+            text.push_str(&format!(
+                "survey: camera every {} m over {:.1} m, about {} photos; no tank, sorties end for the battery\n",
+                survey.trigger_distance_m, survey.survey_length_m, survey.photos_estimate
+            ));
+        }
         text.push_str(&format!("altitudes: {}\n", self.altitude_assumption));
         if let Some(verdict) = &self.preflight {
             text.push_str(&verdict.summary());

@@ -9,7 +9,9 @@
 //! Figures come from the plan's report (litres, flight time, battery: seed 003 Table 5's
 //! per-sortie figures), the route (which passes each sortie begins), and the mission items
 //! (distance over the ground, item to item). The sprayed area of a sortie is its spray
-//! length times the swath width.
+//! length times the swath width. For a survey vehicle (decision 0022) the sheet says survey:
+//! the camera's trigger distance and photos (survey metres / trigger distance) where a
+//! sprayer has litres.
 
 mod pdf;
 
@@ -35,6 +37,8 @@ pub struct SortieRow {
     pub sprayed_area_ha: f64,
     /// Litres sprayed (`None`: the application rate is not known).
     pub litres: Option<f64>,
+    /// A survey's photos to expect (`None` for a sprayer).
+    pub photos: Option<u64>,
     /// Out from the supply point, along the route and back, seconds.
     pub flight_time_s: f64,
     /// Share of the battery endurance used, percent (`None` for one flight without sorties).
@@ -81,6 +85,10 @@ pub fn sortie_rows(
                 fields,
                 sprayed_area_ha: spray_m * report.swath_width_m / 10_000.0,
                 litres: detail.and_then(|d| d.litres),
+                photos: match detail {
+                    Some(detail) => detail.photos_estimate,
+                    None => report.survey.as_ref().map(|survey| survey.photos_estimate),
+                },
                 flight_time_s: detail.map_or(report.total_time_s, |d| d.flight_time_s),
                 battery_percent: detail.map(|d| d.battery_percent),
                 distance_m: ground_distance_m(mission),
@@ -171,6 +179,12 @@ pub struct SheetParts<'a> {
 /// The page.
 pub fn sheet_html(parts: &SheetParts) -> String {
     let report = parts.report;
+    let survey = report.survey.as_ref();
+    let (area_word, work_word) = if survey.is_some() {
+        ("to survey", "surveying")
+    } else {
+        ("sprayable", "spraying")
+    };
     let mut html = String::new();
     let _ = write!(
         html,
@@ -185,7 +199,7 @@ pub fn sheet_html(parts: &SheetParts) -> String {
     term(
         "Fields",
         format!(
-            "{} ({:.2} ha sprayable, {:.2} % covered as planned)",
+            "{} ({:.2} ha {area_word}, {:.2} % covered as planned)",
             report.fields.len(),
             report.sprayable_area_m2 / 10_000.0,
             100.0 * report.covered_fraction
@@ -194,13 +208,25 @@ pub fn sheet_html(parts: &SheetParts) -> String {
     term("Coordinates", escape(&report.coordinate_system));
     term(
         "Vehicle",
-        format!(
-            "{}: swath {} m, spray height {} m, safe height {} m",
-            escape(&report.vehicle),
-            report.swath_width_m,
-            report.spray_height_m,
-            report.safe_height_m
-        ),
+        match survey {
+            Some(survey) => format!(
+                "{}: survey camera, a photo every {} m along the swaths (about {} photos over {:.0} m), no tank; swath {} m, survey height {} m, safe height {} m",
+                escape(&report.vehicle),
+                survey.trigger_distance_m,
+                survey.photos_estimate,
+                survey.survey_length_m,
+                report.swath_width_m,
+                report.spray_height_m,
+                report.safe_height_m
+            ),
+            None => format!(
+                "{}: swath {} m, spray height {} m, safe height {} m",
+                escape(&report.vehicle),
+                report.swath_width_m,
+                report.spray_height_m,
+                report.safe_height_m
+            ),
+        },
     );
     term(
         "Altitudes",
@@ -248,7 +274,7 @@ pub fn sheet_html(parts: &SheetParts) -> String {
     term(
         "Time",
         format!(
-            "{} spraying, {} not spraying (turns, transfers, returns, refills and swaps), {} in all; the sorties below fly {} of it",
+            "{} {work_word}, {} not {work_word} (turns, transfers, returns, refills and swaps), {} in all; the sorties below fly {} of it",
             clock(report.spray_time_s),
             clock(report.non_spray_time_s),
             clock(report.total_time_s),
@@ -271,7 +297,7 @@ pub fn sheet_html(parts: &SheetParts) -> String {
         );
     }
     html.push_str("</dl>\n");
-    sortie_table(&mut html, parts.rows, parts.lon_lat);
+    sortie_table(&mut html, parts.rows, parts.lon_lat, survey.is_some());
     let map = parts
         .map_svg
         .trim_start_matches(|c| c != '<')
@@ -283,9 +309,22 @@ pub fn sheet_html(parts: &SheetParts) -> String {
     html
 }
 
-fn sortie_table(html: &mut String, rows: &[SortieRow], lon_lat: bool) {
-    html.push_str("<h2>Sorties</h2>\n<table>\n<tr><th>#</th><th>fields (passes begun)</th><th class=\"number\">area ha</th><th class=\"number\">litres</th><th class=\"number\">time</th><th class=\"number\">battery</th><th class=\"number\">distance km</th><th>return point</th></tr>\n");
-    let litres_known = rows.iter().all(|row| row.litres.is_some());
+fn sortie_table(html: &mut String, rows: &[SortieRow], lon_lat: bool, survey: bool) {
+    let _ = writeln!(
+        html,
+        "<h2>Sorties</h2>\n<table>\n<tr><th>#</th><th>fields (passes begun)</th><th class=\"number\">area ha</th><th class=\"number\">{}</th><th class=\"number\">time</th><th class=\"number\">battery</th><th class=\"number\">distance km</th><th>return point</th></tr>",
+        if survey { "photos" } else { "litres" }
+    );
+    // A survey's column is its photos; a sprayer's its litres.
+    let amount = |row: &SortieRow| {
+        if survey {
+            row.photos.map(|photos| photos as f64)
+        } else {
+            row.litres
+        }
+    };
+    let decimals = usize::from(!survey);
+    let litres_known = rows.iter().all(|row| amount(row).is_some());
     for row in rows {
         let _ = writeln!(
             html,
@@ -297,7 +336,7 @@ fn sortie_table(html: &mut String, rows: &[SortieRow], lon_lat: bool) {
                 .collect::<Vec<_>>()
                 .join(", "),
             row.sprayed_area_ha,
-            row.litres.map_or("—".into(), |l| format!("{l:.1}")),
+            amount(row).map_or("—".into(), |l| format!("{l:.decimals$}")),
             clock(row.flight_time_s),
             row.battery_percent.map_or("—".into(), |b| format!("{b:.0} %")),
             row.distance_m / 1000.0,
@@ -314,7 +353,7 @@ fn sortie_table(html: &mut String, rows: &[SortieRow], lon_lat: bool) {
         rows.len(),
         rows.iter().map(|row| row.sprayed_area_ha).sum::<f64>(),
         if litres_known {
-            format!("{:.1}", rows.iter().filter_map(|row| row.litres).sum::<f64>())
+            format!("{:.decimals$}", rows.iter().filter_map(amount).sum::<f64>())
         } else {
             "—".into()
         },

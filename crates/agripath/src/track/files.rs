@@ -58,11 +58,27 @@ impl PlannerRuns {
     }
 }
 
+/// Track points closer than this, metres, are one waypoint (the files give places to ~0.1 mm
+/// and altitudes to 1 mm).
+const SAME_PLACE_M: f64 = 0.01;
+
 /// Mission waypoints of a whole track: takeoff at the start, climbing to the cruise's first
 /// altitude (vertically above the start), the cruise's points (at most 100, evenly thinned for
 /// a smoothed curve), the point above the goal, land at the goal; altitudes above sea level.
 pub fn mission(scenario: &TrackScenario, track: &[[f64; 3]]) -> String {
-    let (points, _) = scenario.cruise_of(track);
+    let (cruise, _) = scenario.cruise_of(track);
+    // Each place once: a lattice path or a smoothed curve may repeat a point (a clamped
+    // spline's ends, a knot the refinement left in place), which would be a waypoint flown
+    // to where the drone already is.
+    let mut points: Vec<[f64; 3]> = Vec::with_capacity(cruise.len());
+    for &point in cruise {
+        let repeated = points.last().is_some_and(|last: &[f64; 3]| {
+            (0..3).map(|k| (point[k] - last[k]).powi(2)).sum::<f64>() < SAME_PLACE_M * SAME_PLACE_M
+        });
+        if !repeated {
+            points.push(point);
+        }
+    }
     let item = |action: Action, p: [f64; 3]| {
         let (lon, lat) = scenario.lon_lat(p[0], p[1]);
         let ground = scenario.terrain.height(p[0], p[1]);

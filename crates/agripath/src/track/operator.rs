@@ -72,8 +72,8 @@ fn iterations() -> usize {
 /// Parses an operator's track scenario (`path` names it in messages) and builds the planning scenario; errs on bad TOML, an invalid value or a DEM that cannot be read.
 pub fn read(path: &Path, text: &str) -> Result<TrackScenario, InputError> {
     let fail = |fault: Fault| InputError::new(path, fault);
-    let parsed: OperatorScenario = toml::from_str(text)
-        .map_err(|error| fail(Fault::Toml(crate::model::vehicle::one_line(&error, text))))?;
+    let parsed: OperatorScenario =
+        toml::from_str(text).map_err(|error| InputError::toml(path, &error, text))?;
     let numbers = parsed
         .start
         .iter()

@@ -13,6 +13,7 @@ use std::io::BufWriter;
 
 use super::scenario::TrackScenario;
 use crate::plot::line_chart::{escape, tick_label, ticks};
+use crate::plot::terrain_map::height_tint;
 use crate::terrain::{hillshade::hillshade, Extent};
 
 /// One track to draw.
@@ -25,26 +26,6 @@ pub struct DrawnTrack<'a> {
     pub points: &'a [[f64; 3]],
     /// Whether the track passed the safety check (drawn dashed when not).
     pub safe: bool,
-}
-
-/// Height tint from low to high: green, yellow, brown, near white.
-const RAMP: [(f64, [f64; 3]); 4] = [
-    (0.0, [74.0, 140.0, 84.0]),
-    (0.35, [222.0, 214.0, 128.0]),
-    (0.7, [168.0, 118.0, 72.0]),
-    (1.0, [245.0, 242.0, 236.0]),
-];
-
-fn tint(fraction: f64) -> [f64; 3] {
-    let fraction = fraction.clamp(0.0, 1.0);
-    for pair in RAMP.windows(2) {
-        let ((low, a), (high, b)) = (pair[0], pair[1]);
-        if fraction <= high {
-            let t = (fraction - low) / (high - low);
-            return [0, 1, 2].map(|k| a[k] + t * (b[k] - a[k]));
-        }
-    }
-    RAMP[RAMP.len() - 1].1
 }
 
 fn rgb_png(width: usize, height: usize, pixels: &[u8]) -> Vec<u8> {
@@ -88,7 +69,7 @@ fn relief(scenario: &TrackScenario, extent: Extent) -> (Vec<u8>, f64, f64) {
     let span = (high - low).max(1e-9);
     let mut pixels = Vec::with_capacity(width * height * 3);
     for (index, &value) in heights.iter().enumerate() {
-        let colour = tint((value - low) / span);
+        let colour = height_tint((value - low) / span);
         let light = 0.55 + 0.45 * f64::from(shaded.pixels[2 * index]) / 255.0;
         pixels.extend(colour.map(|channel| (channel * light).round().clamp(0.0, 255.0) as u8));
     }
@@ -309,7 +290,7 @@ pub fn top_view(scenario: &TrackScenario, title: &str, tracks: &[DrawnTrack]) ->
     let (bar_top, bar_height) = (ly + 8.0, 120.0);
     for step in 0..24 {
         let fraction = 1.0 - step as f64 / 23.0;
-        let [r, g, b] = tint(fraction).map(|c| c.round() as u8);
+        let [r, g, b] = height_tint(fraction).map(|c| c.round() as u8);
         let _ = write!(
             svg,
             r#"<rect x="{lx:.0}" y="{:.1}" width="16" height="{:.1}" fill="rgb({r},{g},{b})"/>"#,

@@ -3,7 +3,8 @@
 //!
 //! A sortie takes off at the supply point to the cruise height (spray height + h), flies to
 //! above its first route point, descends to spray height, then follows the route: the
-//! sprayer goes on at each swath start and off at its end (`DO_SPRAYER`, or `DO_SET_SERVO`),
+//! sprayer goes on at each swath start and off at its end (`DO_SPRAYER`, or `DO_SET_SERVO`;
+//! a survey vehicle's camera instead: `DO_SET_CAM_TRIGG_DIST` with its distance, then 0),
 //! the speed changes between spraying and transit (`DO_CHANGE_SPEED`), transfers that leave a
 //! field climb to the cruise height and back. At its last point the sprayer goes off and the
 //! drone climbs, flies back and lands at the supply point.
@@ -51,6 +52,34 @@ pub enum Action {
         /// `true`: on; `false`: off.
         on: bool,
     },
+    /// A survey camera: a photo every `distance_m` along the track from here on (one at
+    /// once), or none after this with 0.
+    CameraTrigger {
+        /// Ground distance between photos, metres; 0 stops triggering.
+        distance_m: f64,
+    },
+}
+
+impl Action {
+    /// The work switched on (`true`) or off at a swath's ends: the sprayer, or for a survey
+    /// vehicle (`trigger_distance_m`) the camera's distance trigger.
+    pub fn work(on: bool, trigger_distance_m: Option<f64>) -> Self {
+        match trigger_distance_m {
+            Some(distance_m) => Self::CameraTrigger {
+                distance_m: if on { distance_m } else { 0.0 },
+            },
+            None => Self::Spray { on },
+        }
+    }
+
+    /// Whether the action switches the work on or off: `Some(true)` for on.
+    pub fn work_state(&self) -> Option<bool> {
+        match *self {
+            Self::Spray { on } => Some(on),
+            Self::CameraTrigger { distance_m } => Some(distance_m > 0.0),
+            _ => None,
+        }
+    }
 }
 
 /// A command with its place: longitude, latitude, terrain height and height above it.
@@ -286,7 +315,7 @@ pub fn build_missions(
                         end += 1;
                     }
                     items.push(item(
-                        Action::Spray { on: true },
+                        Action::work(true, vehicle.trigger_distance_m()),
                         &points[index],
                         spray_height,
                     ));
@@ -297,7 +326,7 @@ pub fn build_missions(
                     }
                     // Off at the swath's end: nothing sprays on turns, transfers or returns.
                     items.push(item(
-                        Action::Spray { on: false },
+                        Action::work(false, vehicle.trigger_distance_m()),
                         &points[end],
                         spray_height,
                     ));
