@@ -13,6 +13,13 @@
 //!      whose removal joins two near ends (or-3opt), moved next to a neighbouring end, either
 //!      way round.
 //!    - The neighbour lists hold the 10 nearest ends and the 6 nearest ends in other fields.
+//!    - On a path with a free end (`Start::Open`, and the last pass of `Start::From`), the
+//!      free end is the dummy node of an open path at zero cost from every end: the head or
+//!      the tail flown backwards, and a chain moved to the very start or end, are tried from
+//!      every position.
+//!    - Then the run search (`runs.rs`): the tour cut into runs (a field's passes joined by
+//!      transfers that stay in it), the runs reordered and re-cornered as whole blocks, and
+//!      the pass-level search again where they now meet.
 //! 3. Iterated local search: a seeded double-bridge kick, then 1-2 again; a kick is kept only
 //!    when the tour gets cheaper. The number of kicks is the budget: the iterations of
 //!    `swarm`'s Runner, which drives [`IteratedLocalSearch`] like every other search.
@@ -21,11 +28,12 @@ use swarm::{Optimizer, Runner, Termination};
 
 mod construction;
 mod moves;
+mod runs;
 
 pub use construction::{block_local_search, boustrophedon, exact_field_order, LARGE_FARM_FIELDS};
 
 use super::greedy::greedy_with_starts;
-use super::tour::{End, OrderingProblem, Start, Step};
+use super::tour::{End, OrderingProblem, Step};
 #[cfg(test)]
 use construction::{block_steps, boustrophedon_by_grid};
 pub use moves::nearest_ends;
@@ -176,7 +184,9 @@ impl<'g> IteratedLocalSearch<'g> {
             tour,
             neighbours: &self.neighbours,
             groups: &self.group_of,
-            closed: problem.start == Start::Free,
+            closed: problem.start.is_closed(),
+            from_start: !problem.start.free_first(),
+            home: problem.start.returns_home(),
         };
         search.reindex();
         search.descend(active, budget);
@@ -227,6 +237,15 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
         self.neighbours = neighbours;
         for start in starts {
             let tour = self.descend(problem, start, 0..n, 50 * n + 10_000);
+            // Then the order and corners of its runs, and the pass-level moves again where
+            // the runs now meet (runs.rs), its kicks drawn from this run's stream.
+            let seed = swarm::below(run.stream(), 1 << 30) as u64;
+            let reordered = runs::run_search(problem, &tour, &self.group_of, seed);
+            let tour = if reordered == tour {
+                tour
+            } else {
+                self.descend(problem, reordered, 0..n, 50 * n + 10_000)
+            };
             run.evaluate(&tour);
         }
         if n < 8 {
@@ -261,7 +280,7 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
 mod tests {
     use super::*;
     use crate::coverage::drape::GroundPoint;
-    use crate::sequence::tour::is_permutation;
+    use crate::sequence::tour::{is_permutation, Start};
     use crate::sequence::TransferModel;
 
     /// Three "fields" of three parallel passes each, far apart on a line.
@@ -289,13 +308,16 @@ mod tests {
                 ]);
             }
         }
+        let west = GroundPoint {
+            x: -50.0,
+            y: 2000.0,
+            ground_m: 0.0,
+        };
         for start in [
-            Start::Free,
-            Start::Fixed(GroundPoint {
-                x: -50.0,
-                y: 2000.0,
-                ground_m: 0.0,
-            }),
+            Start::Closed,
+            Start::Open,
+            Start::From(west),
+            Start::Fixed(west),
         ] {
             let problem = OrderingProblem::new(ends.clone(), start, &model);
             let exact = exact_field_order(&problem, &groups).unwrap();
@@ -303,7 +325,7 @@ mod tests {
             let chained = boustrophedon(&problem, &groups);
             assert!(problem.tour_cost(&exact) <= problem.tour_cost(&chained) + 1e-9);
             // From the west the best order visits the fields west to east: 0, 2, 1.
-            if let Start::Fixed(_) = start {
+            if let Start::From(_) = start {
                 let order: Vec<usize> = exact.iter().map(|step| step.pass / 3).collect();
                 assert_eq!(order, [0, 0, 0, 2, 2, 2, 1, 1, 1]);
             }
@@ -343,7 +365,7 @@ mod tests {
             }
         }
         assert!(groups.len() > LARGE_FARM_FIELDS);
-        let problem = OrderingProblem::new(ends, Start::Free, &model);
+        let problem = OrderingProblem::new(ends, Start::Closed, &model);
         let grid = boustrophedon_by_grid(&problem, &groups);
         assert!(is_permutation(&grid, 2 * side * side));
         for pair in grid.chunks(2) {

@@ -13,13 +13,24 @@ pub(super) struct Search<'a, 'b> {
     pub(super) neighbours: &'a [Vec<End>],
     /// The group (field) of each pass.
     pub(super) groups: &'a [usize],
+    /// The tour wraps around (`Start::Closed`).
     pub(super) closed: bool,
+    /// The tour begins at the start point (`Start::Fixed`, `Start::From`).
+    pub(super) from_start: bool,
+    /// The tour ends at the start point (`Start::Fixed`).
+    pub(super) home: bool,
 }
 
 impl Search<'_, '_> {
+    /// The cost of a transfer between two ends, either of which may be the start point;
+    /// `None` (an open end of the path) costs nothing: that is the open path's dummy node,
+    /// at zero cost from every end.
     fn edge(&self, from: Option<End>, to: Option<End>) -> f64 {
         match (from, to) {
-            (Some(START), Some(to)) => self.problem.cost_from_start(to),
+            (Some(START), Some(START)) => 0.0,
+            (Some(START), Some(end)) | (Some(end), Some(START)) => {
+                self.problem.cost_from_start(end)
+            }
             (Some(from), Some(to)) => self.problem.cost(from, to),
             _ => 0.0,
         }
@@ -31,8 +42,10 @@ impl Search<'_, '_> {
             Some(self.tour[p - 1].exit())
         } else if self.closed {
             Some(self.tour[self.tour.len() - 1].exit())
-        } else {
+        } else if self.from_start {
             Some(START)
+        } else {
+            None
         }
     }
 
@@ -42,6 +55,8 @@ impl Search<'_, '_> {
             Some(self.tour[q + 1].entry())
         } else if self.closed {
             Some(self.tour[0].entry())
+        } else if self.home {
+            Some(START)
         } else {
             None
         }
@@ -93,6 +108,14 @@ impl Search<'_, '_> {
                 candidates.push((q, p - 1));
             }
         }
+        // A free end of the path (the open path's dummy node, at zero cost from every end):
+        // flying the whole head or the whole tail backwards changes one transfer only.
+        if self.previous(0).is_none() && p > 0 {
+            candidates.push((0, p - 1));
+        }
+        if self.next(self.tour.len() - 1).is_none() {
+            candidates.push((p, self.tour.len() - 1));
+        }
         let (gain, from, to) = candidates
             .into_iter()
             .map(|(from, to)| (self.reversal_gain(from, to), from, to))
@@ -133,7 +156,7 @@ impl Search<'_, '_> {
         }
         for length in lengths {
             let j = i + length - 1;
-            if j >= n || (self.closed && length >= n) {
+            if j >= n || length >= n {
                 continue;
             }
             if let Some((gain, insert_at, reversed)) = self.best_insertion(i, j) {
@@ -166,8 +189,8 @@ impl Search<'_, '_> {
     /// Best place to move chain i..=j to: (gain, insertion index before removal, reversed).
     fn best_insertion(&self, i: usize, j: usize) -> Option<(f64, usize, bool)> {
         let n = self.tour.len();
-        if self.closed && i == 0 && j == n - 1 {
-            return None;
+        if i == 0 && j == n - 1 {
+            return None; // the whole tour: only a reversal, which 2-opt makes
         }
         let (before, after) = (self.previous(i), self.next(j));
         let entry = self.tour[i].entry();
@@ -206,6 +229,13 @@ impl Search<'_, '_> {
             let q = self.position[end / 2];
             consider(q, self);
             consider(q + 1, self);
+        }
+        // Free ends of the path: the chain may become its new first or last stretch.
+        if self.previous(0).is_none() {
+            consider(0, self);
+        }
+        if self.next(n - 1).is_none() {
+            consider(n, self);
         }
         best
     }
