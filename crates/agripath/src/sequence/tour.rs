@@ -173,6 +173,12 @@ impl<'a> OrderingProblem<'a> {
         self.ends[end / 2][end % 2]
     }
 
+    /// Whether every end-to-end cost is precomputed (at most 2,000 ends): then a cost costs a
+    /// lookup, and a scan of all ends by cost is cheap.
+    pub fn has_cost_matrix(&self) -> bool {
+        self.matrix.is_some()
+    }
+
     /// Eq. (8) between two ends (symmetric).
     pub fn cost(&self, from: End, to: End) -> f64 {
         match &self.matrix {

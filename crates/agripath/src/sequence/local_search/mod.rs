@@ -12,7 +12,8 @@
 //!    - Or-opt: a chain of 1-3 consecutive passes, a field's whole block, or a longer chain
 //!      whose removal joins two near ends (or-3opt), moved next to a neighbouring end, either
 //!      way round.
-//!    - The neighbour lists hold the 10 nearest ends and the 6 nearest ends in other fields.
+//!    - The neighbour lists hold the 10 cheapest ends by eq. (8) and the 6 cheapest in other
+//!      fields (by planar distance above 2,000 ends, where the costs are not precomputed).
 //!    - On a path with a free end (`Start::Open`, and the last pass of `Start::From`), the
 //!      free end is the dummy node of an open path at zero cost from every end: the head or
 //!      the tail flown backwards, and a chain moved to the very start or end, are tried from
@@ -36,7 +37,7 @@ use super::greedy::greedy_with_starts;
 use super::tour::{End, OrderingProblem, Step};
 #[cfg(test)]
 use construction::{block_steps, boustrophedon_by_grid};
-pub use moves::nearest_ends;
+pub use moves::{cheapest_ends, nearest_ends};
 use moves::Search;
 
 /// Positions examined after a kick before giving up on it.
@@ -217,13 +218,13 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
                 self.group_of[pass] = group;
             }
         }
-        // Near ends of any other pass, and near ends in other fields: without the latter, a
+        // Cheap ends of any other pass, and cheap ends in other fields: without the latter, a
         // field's own swath ends (a swath width apart) fill the list and moves between fields
         // are never tried.
         let group_of = &self.group_of;
-        let mut neighbours = nearest_ends(problem, NEIGHBOURS, |end, other| other / 2 != end / 2);
+        let mut neighbours = cheapest_ends(problem, NEIGHBOURS, |end, other| other / 2 != end / 2);
         if groups.len() > 1 {
-            let across = nearest_ends(problem, OTHER_FIELD_NEIGHBOURS, |end, other| {
+            let across = cheapest_ends(problem, OTHER_FIELD_NEIGHBOURS, |end, other| {
                 group_of[other / 2] != group_of[end / 2]
             });
             for (list, extra) in neighbours.iter_mut().zip(across) {
