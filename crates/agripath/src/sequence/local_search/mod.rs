@@ -37,8 +37,8 @@ use super::greedy::greedy_with_starts;
 use super::tour::{End, OrderingProblem, Step};
 #[cfg(test)]
 use construction::{block_steps, boustrophedon_by_grid};
-pub use moves::{cheapest_ends, nearest_ends};
 use moves::Search;
+pub use moves::{cheapest_ends, nearest_ends};
 
 /// Positions examined after a kick before giving up on it.
 const KICK_MOVES: usize = 400;

@@ -398,3 +398,46 @@ pub fn nearest_ends(
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coverage::drape::GroundPoint;
+    use crate::sequence::tour::Start;
+    use crate::sequence::TransferModel;
+
+    /// Passes scattered over the demo farm: the lists by cost hold, for every end, exactly
+    /// the `count` cheapest accepted ends by eq. (8), cheapest first.
+    #[test]
+    fn cheapest_ends_are_the_cheapest_accepted_ends_by_eq_8() {
+        let scenario = crate::demo::scenario().unwrap();
+        let model = TransferModel::new(&scenario.farm, 18.0);
+        let ground = |x: f64, y: f64| GroundPoint {
+            x,
+            y,
+            ground_m: 0.0,
+        };
+        let ends: Vec<[GroundPoint; 2]> = (0..24)
+            .map(|k| {
+                let x = 37.0 * k as f64 - 120.0;
+                let y = 19.0 * (k % 7) as f64;
+                [ground(x, y), ground(x + 13.0, y + 90.0)]
+            })
+            .collect();
+        let problem = OrderingProblem::new(ends, Start::Open, &model);
+        assert!(problem.has_cost_matrix());
+        let accept = |end: End, other: End| other / 2 != end / 2;
+        let lists = cheapest_ends(&problem, 5, accept);
+        for (end, list) in lists.iter().enumerate() {
+            assert_eq!(list.len(), 5);
+            let mut expected: Vec<End> = (0..48).filter(|&other| accept(end, other)).collect();
+            expected.sort_by(|&a, &b| {
+                problem
+                    .cost(end, a)
+                    .total_cmp(&problem.cost(end, b))
+                    .then(a.cmp(&b))
+            });
+            assert_eq!(list[..], expected[..5], "end {end}");
+        }
+    }
+}
