@@ -34,7 +34,7 @@ use agripath::coverage::CoverageSettings;
 use agripath::pipeline::{plan_mission, PlannedMission};
 use agripath::scenario::{Scenario, ScenarioParts};
 use agripath::sequence::ordering_problem;
-use agripath::sequence::tour::OrderingProblem;
+use agripath::sequence::tour::{OrderingProblem, Start};
 use agripath::sequence::{passes_of, Pass, TransferModel};
 use agripath::settings::PlanSettings;
 use agripath::sortie::route::{RoutePoint, Segment};
@@ -369,7 +369,7 @@ fn instance(
         y: split.supply.y,
         ground_m: split.supply.ground_m,
     };
-    let (problem, _) = ordering_problem(&mission.coverage, &model, Some(supply));
+    let (problem, _) = ordering_problem(&mission.coverage, &model, Start::Fixed(supply));
     let (transfer_m, climbs) = transfer_matrices(&problem);
     let count = 2 * passes.len();
     let end_point = |end: usize| problem.point(end);

@@ -1,10 +1,13 @@
-//! Ordering benchmark (issue 4): time of each sequencer on seed 001's instance (130 swaths,
-//! Table 7's layout) and of `best` on random farms up to 5,000 swaths, one core. With
-//! `--export DIR` it also writes each instance (pass ends, start, full cost matrix when
-//! small enough) and our tour cost as JSON, for `benches/ordering_vs_lkh.py`. Run:
+//! Ordering benchmark (issues 4 and 19): time of each sequencer on seed 001's instance (130
+//! swaths, Table 7's layout) from C1; `best`'s open path and closed tour, with their times,
+//! on the seed 001 farm and on 12 irregular farms of 100-250 swaths
+//! (`agripath::bench::farms::irregular_farm`); and `best` on random farms up to 5,000
+//! swaths, one core. With `--export DIR` it also writes each open/closed instance (the full
+//! cost matrix between pass ends) and our costs as JSON, for `benches/ordering_vs_lkh.py`,
+//! which runs this and prints ours / LKH. `--lkh-only` skips the first and last parts. Run:
 //!
 //! ```sh
-//! cargo run --release -p agripath --example bench_sequence [-- --export DIR]
+//! cargo run --release -p agripath --example bench_sequence [-- --export DIR] [--lkh-only]
 //! ```
 
 use std::time::Instant;
@@ -14,7 +17,8 @@ use agripath::coverage::{plan_coverage, CoveragePlan, CoverageSettings};
 use agripath::model::{CoordinateSystem, Farm, Field, Vehicle};
 use agripath::sequence::ant_colony::AntColonySettings;
 use agripath::sequence::local_search::LocalSearchSettings;
-use agripath::sequence::{passes_of, route, Sequencer, TransferModel};
+use agripath::sequence::tour::Start;
+use agripath::sequence::{ordering_problem, passes_of, route, Sequencer, TransferModel};
 use agripath::terrain::Flat;
 use geo::{Coord, LineString, Polygon};
 use swarm::random::{run_stream, uniform};
@@ -89,20 +93,25 @@ fn median_ms(runs: usize, mut work: impl FnMut() -> f64) -> (f64, f64) {
     (times[runs / 2], cost)
 }
 
-fn export(
-    folder: &str,
-    name: &str,
-    plan: &CoveragePlan,
-    model: &TransferModel,
-    start: Option<GroundPoint>,
-    best: f64,
-) {
-    let passes = passes_of(plan);
-    let ends: Vec<[GroundPoint; 2]> = passes
+/// One instance for LKH: the eq. (8) matrix between pass ends (node 2p is pass p's first end,
+/// 2p + 1 its last) and our open-path and closed-tour costs with their times.
+struct Instance<'a> {
+    name: &'a str,
+    plan: &'a CoveragePlan,
+    model: &'a TransferModel<'a>,
+    open: Measured,
+    closed: Measured,
+}
+
+/// A tour's cost, its median time in milliseconds, and its ends in flight order.
+struct Measured(f64, f64, Vec<usize>);
+
+fn export(folder: &str, instance: &Instance) {
+    let passes = passes_of(instance.plan);
+    let nodes: Vec<GroundPoint> = passes
         .iter()
-        .map(|(_, points)| [points[0], points[points.len() - 1]])
+        .flat_map(|(_, points)| [points[0], points[points.len() - 1]])
         .collect();
-    let nodes: Vec<GroundPoint> = ends.iter().flatten().copied().collect();
     let matrix: Vec<Vec<f64>> = nodes
         .iter()
         .map(|from| {
@@ -113,52 +122,141 @@ fn export(
                         0.0
                     } else {
                         // Centimetres are all LKH sees; fewer digits keep the file small.
-                        (model.cost(*from, *to) * 100.0).round() / 100.0
+                        (instance.model.cost(*from, *to) * 100.0).round() / 100.0
                     }
                 })
                 .collect()
         })
         .collect();
-    let from_start: Option<Vec<f64>> =
-        start.map(|start| nodes.iter().map(|to| model.cost(start, *to)).collect());
     let value = serde_json::json!({
-        "name": name,
+        "name": instance.name,
         "passes": passes.len(),
-        "start_costs": from_start,
         "matrix": matrix,
-        "best_tour_cost_m": best,
+        "open_m": instance.open.0,
+        "open_ms": instance.open.1,
+        "open_ends": instance.open.2,
+        "closed_m": instance.closed.0,
+        "closed_ms": instance.closed.1,
+        "closed_ends": instance.closed.2,
     });
     std::fs::create_dir_all(folder).unwrap();
-    std::fs::write(format!("{folder}/{name}.json"), value.to_string()).unwrap();
+    std::fs::write(
+        format!("{folder}/{}.json", instance.name),
+        value.to_string(),
+    )
+    .unwrap();
 }
 
+/// `best` on `plan` from `start`: the problem built (its cost matrix) and ordered, median of
+/// 3 runs.
+fn measure(plan: &CoveragePlan, model: &TransferModel, start: Start) -> Measured {
+    let best = Sequencer::Best(LocalSearchSettings::default());
+    let mut tour = Vec::new();
+    let (ms, cost) = median_ms(3, || {
+        let (problem, groups) = ordering_problem(plan, model, start);
+        tour = best.sequencer().order(&problem, &groups);
+        problem.tour_cost(&tour)
+    });
+    let ends = tour.iter().flat_map(|step| [step.entry(), step.exit()]);
+    if std::env::var_os("BENCH_MATRIX").is_some() {
+        let (matrix_ms, _) = median_ms(3, || {
+            let (problem, _) = ordering_problem(plan, model, start);
+            problem.cost(0, 1)
+        });
+        eprintln!("    of which the cost matrix: {matrix_ms:.1} ms");
+    }
+    Measured(cost, ms, ends.collect())
+}
+
+/// `best`'s open path and closed tour on `plan`, printed and exported.
+fn open_and_closed(name: &str, plan: &CoveragePlan, model: &TransferModel, folder: Option<&str>) {
+    let open = measure(plan, model, Start::Open);
+    let closed = measure(plan, model, Start::Closed);
+    println!(
+        "  {name:<14} {:>5} passes: open {:>9.1} m {:>7.1} ms   closed {:>9.1} m {:>7.1} ms",
+        passes_of(plan).len(),
+        open.0,
+        open.1,
+        closed.0,
+        closed.1
+    );
+    if let Some(folder) = folder {
+        export(
+            folder,
+            &Instance {
+                name,
+                plan,
+                model,
+                open,
+                closed,
+            },
+        );
+    }
+}
+
+/// Swath targets of the irregular farms against LKH: 100-250, cycling.
+const LKH_TARGETS: [usize; 4] = [110, 150, 190, 230];
+/// Irregular farms against LKH.
+const LKH_FARMS: u64 = 12;
+
 fn main() {
-    let export_to = std::env::args().skip_while(|arg| arg != "--export").nth(1);
+    let arguments: Vec<String> = std::env::args().collect();
+    let export_to = arguments
+        .iter()
+        .skip_while(|arg| *arg != "--export")
+        .nth(1)
+        .cloned();
+    let lkh_only = arguments.iter().any(|arg| arg == "--lkh-only");
     let scenario = agripath::demo::scenario().unwrap();
     let plan = agripath::repro::seed001_table8::instance(&scenario).unwrap();
     let model = TransferModel::new(&scenario.farm, 18.0);
-    let start = Some(GroundPoint {
+    let start = Start::From(GroundPoint {
         x: 0.0,
         y: 0.0,
         ground_m: 0.0,
     });
     let swaths: usize = plan.fields.iter().map(|f| f.swaths.len()).sum();
-    println!("seed 001 farm, {swaths} swaths from C1 (median of 5 runs, one core):");
-    for (label, sequencer) in [
-        ("greedy", Sequencer::Greedy),
-        (
-            "aco (200 × 50)",
-            Sequencer::AntColony(AntColonySettings::default()),
-        ),
-        ("best", Sequencer::Best(LocalSearchSettings::default())),
-    ] {
-        let (ms, cost) = median_ms(5, || route(&plan, &model, start, &sequencer).tour_cost_m);
-        println!("  {label:<16} {ms:>9.1} ms   tour {cost:.1} m");
-        if label == "best" {
-            if let Some(folder) = &export_to {
-                export(folder, "seed001_c1", &plan, &model, start, cost);
-            }
+    if !lkh_only {
+        println!("seed 001 farm, {swaths} swaths from C1 (median of 5 runs, one core):");
+        for (label, sequencer) in [
+            ("greedy", Sequencer::Greedy),
+            (
+                "aco (200 × 50)",
+                Sequencer::AntColony(AntColonySettings::default()),
+            ),
+            ("best", Sequencer::Best(LocalSearchSettings::default())),
+        ] {
+            let (ms, cost) = median_ms(5, || route(&plan, &model, start, &sequencer).tour_cost_m);
+            println!("  {label:<16} {ms:>9.1} ms   tour {cost:.1} m");
         }
+    }
+    println!("best, open path and closed tour (median of 3 runs, one core):");
+    open_and_closed("seed001_t7", &plan, &model, export_to.as_deref());
+    // The seed 001 farm as planned by default (headland passes, the layout's own headings).
+    let default_plan = plan_coverage(
+        &scenario.farm,
+        scenario.terrain.as_ref(),
+        &scenario.vehicle,
+        &CoverageSettings::default(),
+    )
+    .unwrap();
+    let default_model = TransferModel::new(&scenario.farm, scenario.vehicle.safe_height_m);
+    open_and_closed(
+        "seed001_farm",
+        &default_plan,
+        &default_model,
+        export_to.as_deref(),
+    );
+    for seed in 1..=LKH_FARMS {
+        let target = LKH_TARGETS[(seed as usize - 1) % LKH_TARGETS.len()];
+        let farm = agripath::bench::farms::irregular_farm(seed, target, 5.0);
+        let plan = layout(&farm);
+        let model = TransferModel::new(&farm, 18.0);
+        let name = format!("irregular_{seed:02}");
+        open_and_closed(&name, &plan, &model, export_to.as_deref());
+    }
+    if lkh_only {
+        return;
     }
     println!("random farms, best (median of 3 runs):");
     for (fields, target) in [
@@ -174,17 +272,7 @@ fn main() {
         let count: usize = plan.fields.iter().map(|f| f.swaths.len()).sum();
         let model = TransferModel::new(&farm, 18.0);
         let best = Sequencer::Best(LocalSearchSettings::default());
-        let (ms, cost) = median_ms(3, || route(&plan, &model, None, &best).tour_cost_m);
-        println!("  {fields:>3} fields, {count:>5} swaths: {ms:>9.1} ms   closed tour {cost:.1} m");
-        if let (Some(folder), true) = (&export_to, count <= 2100) {
-            export(
-                folder,
-                &format!("random_{count}"),
-                &plan,
-                &model,
-                None,
-                cost,
-            );
-        }
+        let (ms, cost) = median_ms(3, || route(&plan, &model, Start::Open, &best).tour_cost_m);
+        println!("  {fields:>3} fields, {count:>5} swaths: {ms:>9.1} ms   open path {cost:.1} m");
     }
 }

@@ -17,6 +17,7 @@ use agripath::coverage::plan_coverage;
 use agripath::input::CoordinateChoice;
 use agripath::pipeline::{plan_mission, supply_point};
 use agripath::scenario::{Scenario, ScenarioParts, VehicleOverrides};
+use agripath::sequence::tour::Start;
 use agripath::sequence::{route, TransferModel};
 use agripath::settings::PlanSettings;
 
@@ -71,7 +72,7 @@ fn row(name: &str, scenario: &Scenario, runs: usize) -> (f64, f64, f64) {
     .expect("a layout");
     let transfers = TransferModel::new(&scenario.farm, scenario.vehicle.safe_height_m);
     let route_ms = median_ms(runs, || {
-        route(&coverage, &transfers, None, &settings.sequencer);
+        route(&coverage, &transfers, Start::Closed, &settings.sequencer);
     });
     let choice_ms = median_ms(runs, || {
         supply_point(scenario, &settings, &coverage, &transfers, None).expect("a point");

@@ -19,7 +19,10 @@ use crate::plot::raster::svg_to_png;
 use crate::plot::terrain_map::{terrain_map_png, TerrainPicture};
 use crate::report::Report;
 use crate::scenario::Scenario;
-use crate::sequence::{ordering_problem, passes_of, route, route_of_tour, Route, TransferModel};
+use crate::sequence::tour::Start;
+use crate::sequence::{
+    ordering_problem, passes_of, route, route_of_tour, start_of, Route, TransferModel,
+};
 use crate::settings::PlanSettings;
 use crate::sortie::joint::{JointProblem, JointSettings};
 use crate::sortie::route::{RoutePoint, Speeds, WorkRoute};
@@ -128,13 +131,13 @@ fn joint_route(
     settings: &PlanSettings,
 ) -> Route {
     let supply = start.or_else(|| {
-        let free = route(coverage, model, None, &settings.sequencer);
+        let free = route(coverage, model, Start::Closed, &settings.sequencer);
         free.visits.first().map(|visit| visit.points[0])
     });
     let Some(supply) = supply else {
-        return route(coverage, model, start, &settings.sequencer);
+        return route(coverage, model, start_of(start), &settings.sequencer);
     };
-    let (problem, groups) = ordering_problem(coverage, model, Some(supply));
+    let (problem, groups) = ordering_problem(coverage, model, Start::Fixed(supply));
     let ordered = settings.sequencer.sequencer().order(&problem, &groups);
     let sorties = sortie_model(
         &scenario.vehicle,
@@ -155,7 +158,7 @@ fn joint_route(
         ..JointSettings::default()
     };
     let tour = crate::sortie::joint::improve(&joint, ordered, &joint_settings);
-    route_of_tour(coverage, model, Some(supply), &problem, &tour)
+    route_of_tour(coverage, model, &problem, &tour)
 }
 
 /// The supply point of the plan and the rule that chose it ([`crate::supply`]): the point
@@ -186,7 +189,9 @@ pub fn supply_point(
         (None, SupplyRequest::FromInputs) => return Ok(None),
     };
     let vehicle = &scenario.vehicle;
-    let free = route(coverage, transfers, None, &settings.sequencer);
+    // The flight will come back to the point being chosen: the route it is scored along is
+    // the closed tour, flown open from and back to each candidate (decision 0018).
+    let free = route(coverage, transfers, Start::Closed, &settings.sequencer);
     let work_route = WorkRoute::from_route(&free, Speeds::of(vehicle));
     let Some(&first) = work_route.points().first() else {
         return Ok(None);
@@ -296,7 +301,8 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
     let route = if settings.sorties.planner == Some(SortiePlanner::Joint) {
         joint_route(scenario, &coverage, &model, start, settings)
     } else {
-        route(&coverage, &model, start, &settings.sequencer)
+        // From and back to the supply point, else an open path (decision 0018).
+        route(&coverage, &model, start_of(start), &settings.sequencer)
     };
     let sorties = split_into_sorties(scenario, &route, start, &settings.sorties)?;
     let runtime_s = crate::numbers::round(started.elapsed().as_secs_f64(), 1e-4);

@@ -16,6 +16,7 @@ use crate::error::Fault;
 use crate::scenario::Scenario;
 use crate::sequence::ant_colony::AntColonySettings;
 use crate::sequence::local_search::LocalSearchSettings;
+use crate::sequence::tour::Start;
 use crate::sequence::{route, Sequencer, TransferModel};
 
 /// Table 7's headings, the ones the seed ordered.
@@ -117,7 +118,11 @@ pub fn table8(scenario: &Scenario, aco_runs: usize) -> Result<Table, Fault> {
     let rows = starts
         .iter()
         .map(|(label, start, paper_aco, paper_greedy)| {
-            let start = start.map(|[x, y, z]| GroundPoint { x, y, ground_m: z });
+            // The seed counts a tour from a start point without the leg home (`From`), and a
+            // free start as a closed tour.
+            let start = start.map_or(Start::Closed, |[x, y, z]| {
+                Start::From(GroundPoint { x, y, ground_m: z })
+            });
             let cost = |sequencer: &Sequencer| route(&plan, &model, start, sequencer).tour_cost_m;
             let aco: Vec<f64> = (0..aco_runs.max(1))
                 .map(|run| {

@@ -82,7 +82,9 @@ pub struct PlanOptions {
         )
     )]
     pub obstacle_margin_m: f64,
-    /// `best` (ours: local search), `greedy` or `aco` (seed 001's ant colony).
+    /// `best` (ours: local search), `greedy` or `aco` (seed 001's ant colony). Each
+    /// optimises the flight as flown: from and back to the supply point when there is one,
+    /// else an open path (free first and last pass).
     #[cfg_attr(
         feature = "cli",
         arg(long, default_value = "best", value_parser = Sequencer::KEYS)
@@ -90,7 +92,7 @@ pub struct PlanOptions {
     pub sequencer: String,
     /// Launch point X,Y in the input's coordinates (lon,lat or local metres): the supply
     /// point, as `--supply X,Y`; default: the field file's `launch`/`supply` marker, else
-    /// `--supply auto` (with sorties) or a free start.
+    /// `--supply auto` (with sorties), else none: the flight is an open path.
     #[cfg_attr(
         feature = "cli",
         arg(long, value_delimiter = ',', allow_negative_numbers = true)

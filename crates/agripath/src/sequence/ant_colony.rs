@@ -13,9 +13,10 @@
 //! Q = 100, 50 ants, 100 or 200 batches.
 //!
 //! Deviations from the paper, all where it is silent: the initial pheromone is 1 on every
-//! pair; a fixed start point is node 0 of the pheromone matrix (so the first choice learns
-//! too); with a free start each ant starts at a random swath and end (the seed's option ②) and
-//! its tour is closed; d = 0 uses d = 1e-6 m; the best tour of all batches is returned (the
+//! pair; a start point is node 0 of the pheromone matrix (so the first choice learns too);
+//! with none each ant starts at a random swath and end (the seed's option ②), and its tour
+//! is closed (`Start::Closed`, as the seed's) or not (`Start::Open`); a start point the flight
+//! comes back to (`Start::Fixed`) has the pair home deposited too; d = 0 uses d = 1e-6 m; the best tour of all batches is returned (the
 //! Runner's best).
 
 use serde::Serialize;
@@ -211,7 +212,7 @@ impl<'a> Optimizer<OrderingProblem<'a>> for SwathAntColony {
         let (passes, nodes) = (self.passes, self.passes + 1);
         let mut batch: Vec<(f64, Vec<Step>)> = Vec::with_capacity(self.settings.ants);
         for _ in 0..self.settings.ants.max(1) {
-            let tour = self.walk(start == Start::Free, search);
+            let tour = self.walk(start.free_first(), search);
             let cost = search.evaluate(&tour);
             batch.push((cost, tour));
         }
@@ -221,13 +222,16 @@ impl<'a> Optimizer<OrderingProblem<'a>> for SwathAntColony {
         }
         for (cost, tour) in &batch {
             let deposit = self.settings.deposit / cost.max(TINY_DISTANCE_M);
-            if let (Start::Fixed(_), Some(first)) = (start, tour.first()) {
+            if let (Some(_), Some(first)) = (start.point(), tour.first()) {
                 self.pheromone[passes * nodes + first.pass] += deposit;
+            }
+            if let (true, Some(last)) = (start.returns_home(), tour.last()) {
+                self.pheromone[last.pass * nodes + passes] += deposit;
             }
             for pair in tour.windows(2) {
                 self.pheromone[pair[0].pass * nodes + pair[1].pass] += deposit;
             }
-            if start == Start::Free {
+            if start == Start::Closed {
                 self.pheromone[tour[tour.len() - 1].pass * nodes + tour[0].pass] += deposit;
             }
         }

@@ -1,7 +1,9 @@
 //! Greedy ordering, seed 001's baseline (§4.2.1, refs. 23-25): from the start, always fly to
 //! the nearest unvisited pass end (by eq. 8's cost), enter there and leave by the other end.
-//! With a free start, every pass end is tried as the first entry and the best closed tour
-//! kept, as the seed does to find its A71 and A73.
+//! With no start point (a closed tour or an open path), every pass end is tried as the first
+//! entry and the cheapest tour by the problem's objective kept, as the seed does to find its
+//! A71 and A73. With a start point that the flight comes back to, the leg home is counted in
+//! the objective but not in the choice of the next pass (the seed's rule is unchanged).
 
 use super::tour::{OrderingProblem, Start, Step};
 
@@ -41,12 +43,12 @@ pub fn greedy(problem: &OrderingProblem) -> Vec<Step> {
     greedy_with_starts(problem, usize::MAX)
 }
 
-/// Greedy; with a free start, from at most `first_entries` pass ends spread over the passes
-/// (all of them for the seed's baseline).
+/// Greedy; with no start point, from at most `first_entries` pass ends spread over the
+/// passes (all of them for the seed's baseline).
 pub fn greedy_with_starts(problem: &OrderingProblem, first_entries: usize) -> Vec<Step> {
     match problem.start {
-        Start::Fixed(_) => greedy_from(problem, None),
-        Start::Free => {
+        Start::Fixed(_) | Start::From(_) => greedy_from(problem, None),
+        Start::Closed | Start::Open => {
             let mut best: Option<(f64, Vec<Step>)> = None;
             let ends = 2 * problem.passes();
             let stride = ends.div_ceil(first_entries.min(ends).max(1));

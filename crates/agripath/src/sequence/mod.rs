@@ -61,8 +61,10 @@ pub struct Route {
     pub transfers: Vec<Transfer>,
     /// From the last pass back to the launch point, when there is one.
     pub home: Option<Transfer>,
-    /// The tour cost the sequencer minimised: from the start point (without the leg home), or
-    /// the closed tour for a free start (seed 001's Table 8 measure), metres.
+    /// The tour cost the sequencer minimised ([`OrderingProblem::tour_cost`]), metres: every
+    /// leg flown for a start point the flight comes back to (`Start::Fixed`) and for an open
+    /// path (`Start::Open`); without the leg home from a point (`Start::From`, seed 001's
+    /// Table 8 measure); with the closing leg, not flown, for a closed tour (`Start::Closed`).
     pub tour_cost_m: f64,
 }
 
@@ -250,17 +252,23 @@ pub fn passes_of(plan: &CoveragePlan) -> Vec<(Pass, &[GroundPoint])> {
     passes
 }
 
-/// Orders the plan's passes and builds the flight. `start` is a ground point (the launch or
-/// supply point) or `None` for a free start.
+/// Orders the plan's passes and builds the flight from and back to `start`'s point when it
+/// has one, optimised for what `start` counts ([`Start`]).
 pub fn route(
     plan: &CoveragePlan,
     model: &TransferModel,
-    start: Option<GroundPoint>,
+    start: Start,
     sequencer: &Sequencer,
 ) -> Route {
     let (problem, groups) = ordering_problem(plan, model, start);
     let tour: Vec<Step> = sequencer.sequencer().order(&problem, &groups);
-    route_of_tour(plan, model, start, &problem, &tour)
+    route_of_tour(plan, model, &problem, &tour)
+}
+
+/// The start of a flight from the launch or supply point when there is one (it starts and
+/// ends there), else an open path (decision 0018).
+pub fn start_of(point: Option<GroundPoint>) -> Start {
+    point.map_or(Start::Open, Start::Fixed)
 }
 
 /// The ordering problem of the plan's passes ([`passes_of`]'s numbering) from `start`, and
@@ -269,7 +277,7 @@ pub fn route(
 pub fn ordering_problem<'m>(
     plan: &CoveragePlan,
     model: &'m TransferModel<'m>,
-    start: Option<GroundPoint>,
+    start: Start,
 ) -> (OrderingProblem<'m>, Vec<Vec<usize>>) {
     let passes = passes_of(plan);
     let ends: Vec<[GroundPoint; 2]> = passes
@@ -282,8 +290,7 @@ pub fn ordering_problem<'m>(
             Pass::Swath { field, .. } | Pass::Edge { field, .. } => *field,
         })
         .collect();
-    let problem =
-        OrderingProblem::with_fields(ends, fields, start.map_or(Start::Free, Start::Fixed), model);
+    let problem = OrderingProblem::with_fields(ends, fields, start, model);
     let mut groups: Vec<Vec<usize>> = vec![Vec::new(); plan.fields.len()];
     for (index, (pass, _)) in passes.iter().enumerate() {
         let field = match pass {
@@ -300,15 +307,15 @@ pub fn ordering_problem<'m>(
     (problem, groups)
 }
 
-/// The flight that flies `problem`'s passes in the order of `tour`, from and back to `start`
-/// when there is one.
+/// The flight that flies `problem`'s passes in the order of `tour`, from and back to the
+/// problem's start point when there is one.
 pub fn route_of_tour(
     plan: &CoveragePlan,
     model: &TransferModel,
-    start: Option<GroundPoint>,
     problem: &OrderingProblem,
     tour: &[Step],
 ) -> Route {
+    let start = problem.start.point();
     let passes = passes_of(plan);
     debug_assert_eq!(tour::check_order(tour, passes.len()), Ok(()));
     let tour_cost_m = problem.tour_cost(tour);
@@ -388,22 +395,32 @@ mod tests {
         })
     }
 
+    /// The four kinds of start, from the origin where there is a point.
+    fn every_start() -> [Start; 4] {
+        let origin = GroundPoint {
+            x: 0.0,
+            y: 0.0,
+            ground_m: 0.0,
+        };
+        [
+            Start::Fixed(origin),
+            Start::From(origin),
+            Start::Closed,
+            Start::Open,
+        ]
+    }
+
     #[test]
     fn every_sequencer_flies_each_pass_once_and_legs_add_up() {
         let (scenario, plan) = demo_plan(1);
         let model = TransferModel::new(&scenario.farm, 18.0);
-        let start = Some(GroundPoint {
-            x: 0.0,
-            y: 0.0,
-            ground_m: 0.0,
-        });
         let total_passes: usize = plan
             .fields
             .iter()
             .map(|f| f.swaths.len() + f.edges.len())
             .sum();
         for sequencer in [Sequencer::Greedy, quick_colony(3), Sequencer::default()] {
-            for start in [start, None] {
+            for start in every_start() {
                 let flight = route(&plan, &model, start, &sequencer);
                 assert_eq!(flight.visits.len(), total_passes);
                 let mut seen: Vec<Pass> = flight.visits.iter().map(|visit| visit.pass).collect();
@@ -412,14 +429,21 @@ mod tests {
                 assert_eq!(seen.len(), total_passes, "{sequencer:?}: a pass twice");
                 let legs: f64 = flight.legs().map(|leg| leg.cost_m).sum();
                 assert!((legs - flight.transfer_length_m()).abs() < 1e-9);
-                // The tour cost is the legs without the one home (fixed start).
-                if start.is_some() {
-                    let home = flight.home.unwrap().cost_m;
-                    assert!(
-                        (flight.tour_cost_m - (legs - home)).abs() < 1e-6,
-                        "{sequencer:?}"
-                    );
-                }
+                assert_eq!(flight.launch.is_some(), start.point().is_some());
+                assert_eq!(flight.home.is_some(), start.point().is_some());
+                // What the tour cost counts, against the legs flown.
+                let first = flight.visits[0].points[0];
+                let last = *flight.visits[total_passes - 1].points.last().unwrap();
+                let expected = match start {
+                    Start::Fixed(_) | Start::Open => legs,
+                    Start::From(_) => legs - flight.home.unwrap().cost_m,
+                    Start::Closed => legs + model.cost(last, first),
+                };
+                assert!(
+                    (flight.tour_cost_m - expected).abs() < 1e-6,
+                    "{sequencer:?} {start:?}: {} against {expected}",
+                    flight.tour_cost_m
+                );
             }
         }
     }
@@ -428,7 +452,7 @@ mod tests {
     fn ant_colony_is_repeatable_with_a_seed_and_best_beats_greedy() {
         let (scenario, plan) = demo_plan(0);
         let model = TransferModel::new(&scenario.farm, 18.0);
-        let start = Some(GroundPoint {
+        let start = Start::From(GroundPoint {
             x: 0.0,
             y: 0.0,
             ground_m: 0.0,
@@ -442,7 +466,10 @@ mod tests {
     }
 
     /// Random points as passes: the ordering is a permutation whatever the instance.
-    fn random_problem_tours(points: Vec<(f64, f64, f64, f64)>, free: bool) -> Vec<Vec<tour::Step>> {
+    fn random_problem_tours(
+        points: Vec<(f64, f64, f64, f64)>,
+        start: Start,
+    ) -> Vec<Vec<tour::Step>> {
         let farm = crate::demo::scenario().unwrap().farm;
         let model = TransferModel::new(&farm, 10.0);
         let ends: Vec<[GroundPoint; 2]> = points
@@ -462,15 +489,6 @@ mod tests {
                 ]
             })
             .collect();
-        let start = if free {
-            Start::Free
-        } else {
-            Start::Fixed(GroundPoint {
-                x: 0.0,
-                y: 0.0,
-                ground_m: 0.0,
-            })
-        };
         let problem = OrderingProblem::new(ends, start, &model);
         let groups = vec![(0..points.len()).collect::<Vec<_>>()];
         vec![
@@ -494,10 +512,57 @@ mod tests {
 
     proptest! {
         #![proptest_config(ProptestConfig { cases: 24, ..ProptestConfig::default() })]
+        /// What each start counts, on random passes in a random order: an open path is its
+        /// transfers alone (no closing leg); a closed tour adds the leg from the last pass to
+        /// the first; `From` adds the leg out; `Fixed` the leg out and the leg home.
         #[test]
-        fn tours_are_permutations(points in proptest::collection::vec((-300.0f64..300.0, -300.0f64..300.0, -300.0f64..300.0, -300.0f64..300.0), 1..40), free in any::<bool>()) {
+        fn each_start_counts_its_own_legs(points in proptest::collection::vec((-300.0f64..300.0, -300.0f64..300.0, -300.0f64..300.0, -300.0f64..300.0), 2..30), seed in 0u64..1000) {
+            let farm = crate::demo::scenario().unwrap().farm;
+            let model = TransferModel::new(&farm, 10.0);
+            let ground = |x: f64, y: f64| GroundPoint { x, y, ground_m: 0.0 };
+            let ends: Vec<[GroundPoint; 2]> = points.iter().map(|&(a, b, c, d)| [ground(a, b), ground(c, d)]).collect();
+            let point = ground(7.0, -3.0);
+            let problem = |start| OrderingProblem::new(ends.clone(), start, &model);
+            let open = problem(Start::Open);
+            let tour = swarm::Problem::random_solution(&open, &mut swarm::run_stream(seed, 0));
+            let between: f64 = tour.windows(2).map(|pair| model.cost(open.point(pair[0].exit()), open.point(pair[1].entry()))).sum();
+            let (first, last) = (open.point(tour[0].entry()), open.point(tour[tour.len() - 1].exit()));
+            prop_assert!((open.tour_cost(&tour) - between).abs() < 1e-6);
+            prop_assert!((problem(Start::Closed).tour_cost(&tour) - between - model.cost(last, first)).abs() < 1e-6);
+            prop_assert!((problem(Start::From(point)).tour_cost(&tour) - between - model.cost(point, first)).abs() < 1e-6);
+            let fixed = problem(Start::Fixed(point));
+            prop_assert!((fixed.tour_cost(&tour) - between - model.cost(point, first) - model.cost(last, point)).abs() < 1e-6);
+            // Every sequencer's open path: its objective is the sum of the transfers it flies.
+            let groups = vec![(0..ends.len()).collect::<Vec<_>>()];
+            let best = best_tour(&open, &groups, &LocalSearchSettings { kicks: 20, seed });
+            let flown: f64 = best.windows(2).map(|pair| model.cost(open.point(pair[0].exit()), open.point(pair[1].entry()))).sum();
+            prop_assert!((open.tour_cost(&best) - flown).abs() < 1e-6);
+        }
+
+        /// On the demo plan, a route from a fixed point starts and ends there, and its cost is
+        /// the sum of its legs; an open route has no launch and no home leg.
+        #[test]
+        fn fixed_routes_start_and_end_at_their_point(x in -200.0f64..800.0, y in -200.0f64..300.0, open in any::<bool>()) {
+            let (scenario, plan) = demo_plan(0);
+            let model = TransferModel::new(&scenario.farm, 18.0);
+            let point = GroundPoint { x, y, ground_m: 0.0 };
+            let start = if open { Start::Open } else { Start::Fixed(point) };
+            let flight = route(&plan, &model, start, &Sequencer::Greedy);
+            let legs: f64 = flight.legs().map(|leg| leg.cost_m).sum();
+            prop_assert!((flight.tour_cost_m - legs).abs() < 1e-6);
+            if open {
+                prop_assert!(flight.launch.is_none() && flight.home.is_none());
+            } else {
+                prop_assert_eq!(flight.launch.unwrap().from, point);
+                prop_assert_eq!(flight.home.unwrap().to, point);
+                prop_assert_eq!(flight.launch.unwrap().to, flight.visits[0].points[0]);
+            }
+        }
+
+        #[test]
+        fn tours_are_permutations(points in proptest::collection::vec((-300.0f64..300.0, -300.0f64..300.0, -300.0f64..300.0, -300.0f64..300.0), 1..40), kind in 0usize..4) {
             let count = points.len();
-            for tour in random_problem_tours(points, free) {
+            for tour in random_problem_tours(points, every_start()[kind]) {
                 prop_assert!(is_permutation(&tour, count));
             }
         }

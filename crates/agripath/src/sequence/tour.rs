@@ -40,14 +40,45 @@ impl Step {
     }
 }
 
-/// Where the flight starts.
+/// Where the flight starts and ends, which fixes what the tour cost counts (decision 0018).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Start {
-    /// From a given point (launch or supply point); the tour is an open path from it.
+    /// Starts and ends at a given point (the launch or supply point): the objective counts
+    /// the leg out to the first pass and the leg home from the last.
     Fixed(GroundPoint),
-    /// Chosen by the sequencer; the tour is closed (it comes back to its first pass's entry),
-    /// as seed 001 §4.2.2 counts it.
-    Free,
+    /// From a given point to wherever the last pass ends: the leg home is not counted, as
+    /// seed 001 §4.2.2 counts its Table 8 tours from C1, A75 and B58.
+    From(GroundPoint),
+    /// No point; a closed tour that comes back to its first pass's entry (seed 001's free
+    /// start, and the stand-in for a flight that must come back to a point not yet chosen).
+    Closed,
+    /// No point; an open path: the first and the last pass are free and nothing closes it.
+    Open,
+}
+
+impl Start {
+    /// The start point, when there is one.
+    pub fn point(&self) -> Option<GroundPoint> {
+        match self {
+            Start::Fixed(point) | Start::From(point) => Some(*point),
+            Start::Closed | Start::Open => None,
+        }
+    }
+
+    /// Whether the tour wraps around: its last pass leads back to its first (no point).
+    pub fn is_closed(&self) -> bool {
+        matches!(self, Start::Closed)
+    }
+
+    /// Whether the objective counts a leg from the last pass back to the start point.
+    pub fn returns_home(&self) -> bool {
+        matches!(self, Start::Fixed(_))
+    }
+
+    /// Whether the first pass is free to be any pass (no start point before it).
+    pub fn free_first(&self) -> bool {
+        self.point().is_none()
+    }
 }
 
 /// Pass ends and the transfer cost between them.
@@ -56,11 +87,14 @@ pub struct OrderingProblem<'a> {
     pub ends: Vec<[GroundPoint; 2]>,
     /// The field each pass lies in, when known (it narrows eq. 8's geometric test).
     pub fields: Option<Vec<usize>>,
-    /// Where the flight starts.
+    /// Where the flight starts (fixed at construction: the start costs are precomputed).
     pub start: Start,
     model: &'a TransferModel<'a>,
     /// Every end-to-end cost, precomputed when there are few enough ends.
     matrix: Option<Vec<f64>>,
+    /// The cost between the start point and every end, precomputed (the local search asks
+    /// for it at every move at the ends of the tour).
+    start_costs: Vec<f64>,
 }
 
 /// Ends up to which all end-to-end costs are precomputed (2000² × 8 bytes = 32 MB).
@@ -96,7 +130,13 @@ impl<'a> OrderingProblem<'a> {
             start,
             model,
             matrix: None,
+            start_costs: Vec::new(),
         };
+        if let Some(point) = start.point() {
+            problem.start_costs = (0..count)
+                .map(|end| model.cost(point, problem.point(end)))
+                .collect();
+        }
         if count <= MATRIX_LIMIT_ENDS {
             let mut matrix = vec![0.0; count * count];
             for from in 0..count {
@@ -133,6 +173,12 @@ impl<'a> OrderingProblem<'a> {
         self.ends[end / 2][end % 2]
     }
 
+    /// Whether every end-to-end cost is precomputed (at most 2,000 ends): then a cost costs a
+    /// lookup, and a scan of all ends by cost is cheap.
+    pub fn has_cost_matrix(&self) -> bool {
+        self.matrix.is_some()
+    }
+
     /// Eq. (8) between two ends (symmetric).
     pub fn cost(&self, from: End, to: End) -> f64 {
         match &self.matrix {
@@ -150,29 +196,33 @@ impl<'a> OrderingProblem<'a> {
         self.cost(from, to) > straight + 1e-6
     }
 
-    /// From the start point to an end (0 when the start is free).
+    /// Between the start point and an end, either way (eq. 8 is symmetric); 0 when there is
+    /// no start point.
     pub fn cost_from_start(&self, to: End) -> f64 {
-        match self.start {
-            Start::Fixed(point) => self.model.cost(point, self.point(to)),
-            Start::Free => 0.0,
-        }
+        self.start_costs.get(to).copied().unwrap_or(0.0)
     }
 
-    /// Total transfer cost of a tour: from the start, between passes, and back to the first
-    /// pass when the start is free.
+    /// Total transfer cost of a tour, as [`Start`] says what counts: the transfers between
+    /// passes; plus the leg from the start point (`Fixed`, `From`); plus the leg home
+    /// (`Fixed`); plus the leg from the last pass back to the first (`Closed`). An `Open`
+    /// tour has nothing else: its objective has no closing leg.
     pub fn tour_cost(&self, tour: &[Step]) -> f64 {
-        let Some(first) = tour.first() else {
+        let (Some(first), Some(last)) = (tour.first(), tour.last()) else {
             return 0.0;
         };
         let between: f64 = tour
             .windows(2)
             .map(|pair| self.cost(pair[0].exit(), pair[1].entry()))
             .sum();
-        let closing = match self.start {
-            Start::Fixed(_) => self.cost_from_start(first.entry()),
-            Start::Free => self.cost(tour[tour.len() - 1].exit(), first.entry()),
+        let ends = match self.start {
+            Start::Fixed(_) => {
+                self.cost_from_start(first.entry()) + self.cost_from_start(last.exit())
+            }
+            Start::From(_) => self.cost_from_start(first.entry()),
+            Start::Closed => self.cost(last.exit(), first.entry()),
+            Start::Open => 0.0,
         };
-        between + closing
+        between + ends
     }
 }
 

@@ -333,6 +333,10 @@ mod tests {
         };
         let coverage = plan_coverage(farm, &Flat::new(0.0), &vehicle, &settings).unwrap();
         let transfers = TransferModel::new(farm, vehicle.safe_height_m);
+        let start = start.map_or(
+            crate::sequence::tour::Start::Closed,
+            crate::sequence::tour::Start::Fixed,
+        );
         let flight = route(&coverage, &transfers, start, &Sequencer::Greedy);
         let speeds = Speeds::of(&vehicle);
         WorkRoute::from_route(&flight, speeds)

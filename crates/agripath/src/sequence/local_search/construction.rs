@@ -2,7 +2,7 @@
 //! boustrophedon (by nearest fields on large farms), the exact order of whole field blocks
 //! up to ten fields, and block relocation above (see the parent module).
 
-use super::super::tour::{End, OrderingProblem, Start, Step};
+use super::super::tour::{End, OrderingProblem, Step};
 use super::double_bridge;
 
 /// Field-by-field boustrophedon: `groups` lists each field's passes in scan-line order.
@@ -262,7 +262,7 @@ pub fn exact_field_order(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Op
     let entry = |field: usize, variant: usize| blocks.entry((field, variant));
     let exit = |field: usize, variant: usize| blocks.exit((field, variant));
     let states = count * 4;
-    let closed = problem.start == Start::Free;
+    let (closed, home) = (problem.start.is_closed(), problem.start.returns_home());
     let mut best: Option<(f64, Vec<(usize, usize)>)> = None;
     // A closed tour can start anywhere: fix field 0 first, in each of its variants.
     let first_choices: Vec<Option<usize>> = if closed {
@@ -316,6 +316,8 @@ pub fn exact_field_order(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Op
             let mut total = cost[full * states + state];
             if let Some(first_variant) = first {
                 total += problem.cost(exit(state / 4, state % 4), entry(0, first_variant));
+            } else if home {
+                total += problem.cost_from_start(exit(state / 4, state % 4));
             }
             if best
                 .as_ref()
@@ -357,15 +359,18 @@ pub fn block_local_search(
     let blocks = FieldBlocks::new(problem, &fields);
     let entry = |placed: Placed| blocks.entry(placed);
     let exit = |placed: Placed| blocks.exit(placed);
-    let closed = problem.start == Start::Free;
+    let (closed, home) = (problem.start.is_closed(), problem.start.returns_home());
     let total = |order: &[(usize, usize)]| -> f64 {
         let inside: f64 = order.iter().map(|&placed| blocks.inside(placed)).sum();
         let between: f64 = order
             .windows(2)
             .map(|pair| problem.cost(exit(pair[0]), entry(pair[1])))
             .sum();
+        let last = order[order.len() - 1];
         let ends = if closed {
-            problem.cost(exit(order[order.len() - 1]), entry(order[0]))
+            problem.cost(exit(last), entry(order[0]))
+        } else if home {
+            problem.cost_from_start(entry(order[0])) + problem.cost_from_start(exit(last))
         } else {
             problem.cost_from_start(entry(order[0]))
         };
@@ -395,6 +400,7 @@ pub fn block_local_search(
         match (from, to) {
             (Some(a), Some(b)) => problem.cost(exit(a), entry(b)),
             (None, Some(b)) if !closed => problem.cost_from_start(entry(b)),
+            (Some(a), None) if home => problem.cost_from_start(exit(a)),
             _ => 0.0,
         }
     };

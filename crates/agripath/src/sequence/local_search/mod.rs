@@ -12,7 +12,15 @@
 //!    - Or-opt: a chain of 1-3 consecutive passes, a field's whole block, or a longer chain
 //!      whose removal joins two near ends (or-3opt), moved next to a neighbouring end, either
 //!      way round.
-//!    - The neighbour lists hold the 10 nearest ends and the 6 nearest ends in other fields.
+//!    - The neighbour lists hold the 10 cheapest ends by eq. (8) and the 6 cheapest in other
+//!      fields (by planar distance above 2,000 ends, where the costs are not precomputed).
+//!    - On a path with a free end (`Start::Open`, and the last pass of `Start::From`), the
+//!      free end is the dummy node of an open path at zero cost from every end: the head or
+//!      the tail flown backwards, and a chain moved to the very start or end, are tried from
+//!      every position.
+//!    - Then the run search (`runs.rs`): the tour cut into runs (a field's passes joined by
+//!      transfers that stay in it), the runs reordered and re-cornered as whole blocks, and
+//!      the pass-level search again where they now meet.
 //! 3. Iterated local search: a seeded double-bridge kick, then 1-2 again; a kick is kept only
 //!    when the tour gets cheaper. The number of kicks is the budget: the iterations of
 //!    `swarm`'s Runner, which drives [`IteratedLocalSearch`] like every other search.
@@ -21,15 +29,16 @@ use swarm::{Optimizer, Runner, Termination};
 
 mod construction;
 mod moves;
+mod runs;
 
 pub use construction::{block_local_search, boustrophedon, exact_field_order, LARGE_FARM_FIELDS};
 
 use super::greedy::greedy_with_starts;
-use super::tour::{End, OrderingProblem, Start, Step};
+use super::tour::{End, OrderingProblem, Step};
 #[cfg(test)]
 use construction::{block_steps, boustrophedon_by_grid};
-pub use moves::nearest_ends;
 use moves::Search;
+pub use moves::{cheapest_ends, nearest_ends};
 
 /// Positions examined after a kick before giving up on it.
 const KICK_MOVES: usize = 400;
@@ -176,7 +185,9 @@ impl<'g> IteratedLocalSearch<'g> {
             tour,
             neighbours: &self.neighbours,
             groups: &self.group_of,
-            closed: problem.start == Start::Free,
+            closed: problem.start.is_closed(),
+            from_start: !problem.start.free_first(),
+            home: problem.start.returns_home(),
         };
         search.reindex();
         search.descend(active, budget);
@@ -207,13 +218,13 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
                 self.group_of[pass] = group;
             }
         }
-        // Near ends of any other pass, and near ends in other fields: without the latter, a
+        // Cheap ends of any other pass, and cheap ends in other fields: without the latter, a
         // field's own swath ends (a swath width apart) fill the list and moves between fields
         // are never tried.
         let group_of = &self.group_of;
-        let mut neighbours = nearest_ends(problem, NEIGHBOURS, |end, other| other / 2 != end / 2);
+        let mut neighbours = cheapest_ends(problem, NEIGHBOURS, |end, other| other / 2 != end / 2);
         if groups.len() > 1 {
-            let across = nearest_ends(problem, OTHER_FIELD_NEIGHBOURS, |end, other| {
+            let across = cheapest_ends(problem, OTHER_FIELD_NEIGHBOURS, |end, other| {
                 group_of[other / 2] != group_of[end / 2]
             });
             for (list, extra) in neighbours.iter_mut().zip(across) {
@@ -227,6 +238,15 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
         self.neighbours = neighbours;
         for start in starts {
             let tour = self.descend(problem, start, 0..n, 50 * n + 10_000);
+            // Then the order and corners of its runs, and the pass-level moves again where
+            // the runs now meet (runs.rs), its kicks drawn from this run's stream.
+            let seed = swarm::below(run.stream(), 1 << 30) as u64;
+            let reordered = runs::run_search(problem, &tour, &self.group_of, seed);
+            let tour = if reordered == tour {
+                tour
+            } else {
+                self.descend(problem, reordered, 0..n, 50 * n + 10_000)
+            };
             run.evaluate(&tour);
         }
         if n < 8 {
@@ -261,7 +281,7 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
 mod tests {
     use super::*;
     use crate::coverage::drape::GroundPoint;
-    use crate::sequence::tour::is_permutation;
+    use crate::sequence::tour::{is_permutation, Start};
     use crate::sequence::TransferModel;
 
     /// Three "fields" of three parallel passes each, far apart on a line.
@@ -289,13 +309,16 @@ mod tests {
                 ]);
             }
         }
+        let west = GroundPoint {
+            x: -50.0,
+            y: 2000.0,
+            ground_m: 0.0,
+        };
         for start in [
-            Start::Free,
-            Start::Fixed(GroundPoint {
-                x: -50.0,
-                y: 2000.0,
-                ground_m: 0.0,
-            }),
+            Start::Closed,
+            Start::Open,
+            Start::From(west),
+            Start::Fixed(west),
         ] {
             let problem = OrderingProblem::new(ends.clone(), start, &model);
             let exact = exact_field_order(&problem, &groups).unwrap();
@@ -303,7 +326,7 @@ mod tests {
             let chained = boustrophedon(&problem, &groups);
             assert!(problem.tour_cost(&exact) <= problem.tour_cost(&chained) + 1e-9);
             // From the west the best order visits the fields west to east: 0, 2, 1.
-            if let Start::Fixed(_) = start {
+            if let Start::From(_) = start {
                 let order: Vec<usize> = exact.iter().map(|step| step.pass / 3).collect();
                 assert_eq!(order, [0, 0, 0, 2, 2, 2, 1, 1, 1]);
             }
@@ -343,7 +366,7 @@ mod tests {
             }
         }
         assert!(groups.len() > LARGE_FARM_FIELDS);
-        let problem = OrderingProblem::new(ends, Start::Free, &model);
+        let problem = OrderingProblem::new(ends, Start::Closed, &model);
         let grid = boustrophedon_by_grid(&problem, &groups);
         assert!(is_permutation(&grid, 2 * side * side));
         for pair in grid.chunks(2) {

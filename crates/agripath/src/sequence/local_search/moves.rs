@@ -13,13 +13,24 @@ pub(super) struct Search<'a, 'b> {
     pub(super) neighbours: &'a [Vec<End>],
     /// The group (field) of each pass.
     pub(super) groups: &'a [usize],
+    /// The tour wraps around (`Start::Closed`).
     pub(super) closed: bool,
+    /// The tour begins at the start point (`Start::Fixed`, `Start::From`).
+    pub(super) from_start: bool,
+    /// The tour ends at the start point (`Start::Fixed`).
+    pub(super) home: bool,
 }
 
 impl Search<'_, '_> {
+    /// The cost of a transfer between two ends, either of which may be the start point;
+    /// `None` (an open end of the path) costs nothing: that is the open path's dummy node,
+    /// at zero cost from every end.
     fn edge(&self, from: Option<End>, to: Option<End>) -> f64 {
         match (from, to) {
-            (Some(START), Some(to)) => self.problem.cost_from_start(to),
+            (Some(START), Some(START)) => 0.0,
+            (Some(START), Some(end)) | (Some(end), Some(START)) => {
+                self.problem.cost_from_start(end)
+            }
             (Some(from), Some(to)) => self.problem.cost(from, to),
             _ => 0.0,
         }
@@ -31,8 +42,10 @@ impl Search<'_, '_> {
             Some(self.tour[p - 1].exit())
         } else if self.closed {
             Some(self.tour[self.tour.len() - 1].exit())
-        } else {
+        } else if self.from_start {
             Some(START)
+        } else {
+            None
         }
     }
 
@@ -42,6 +55,8 @@ impl Search<'_, '_> {
             Some(self.tour[q + 1].entry())
         } else if self.closed {
             Some(self.tour[0].entry())
+        } else if self.home {
+            Some(START)
         } else {
             None
         }
@@ -93,6 +108,14 @@ impl Search<'_, '_> {
                 candidates.push((q, p - 1));
             }
         }
+        // A free end of the path (the open path's dummy node, at zero cost from every end):
+        // flying the whole head or the whole tail backwards changes one transfer only.
+        if self.previous(0).is_none() && p > 0 {
+            candidates.push((0, p - 1));
+        }
+        if self.next(self.tour.len() - 1).is_none() {
+            candidates.push((p, self.tour.len() - 1));
+        }
         let (gain, from, to) = candidates
             .into_iter()
             .map(|(from, to)| (self.reversal_gain(from, to), from, to))
@@ -133,7 +156,7 @@ impl Search<'_, '_> {
         }
         for length in lengths {
             let j = i + length - 1;
-            if j >= n || (self.closed && length >= n) {
+            if j >= n || length >= n {
                 continue;
             }
             if let Some((gain, insert_at, reversed)) = self.best_insertion(i, j) {
@@ -166,8 +189,8 @@ impl Search<'_, '_> {
     /// Best place to move chain i..=j to: (gain, insertion index before removal, reversed).
     fn best_insertion(&self, i: usize, j: usize) -> Option<(f64, usize, bool)> {
         let n = self.tour.len();
-        if self.closed && i == 0 && j == n - 1 {
-            return None;
+        if i == 0 && j == n - 1 {
+            return None; // the whole tour: only a reversal, which 2-opt makes
         }
         let (before, after) = (self.previous(i), self.next(j));
         let entry = self.tour[i].entry();
@@ -206,6 +229,13 @@ impl Search<'_, '_> {
             let q = self.position[end / 2];
             consider(q, self);
             consider(q + 1, self);
+        }
+        // Free ends of the path: the chain may become its new first or last stretch.
+        if self.previous(0).is_none() {
+            consider(0, self);
+        }
+        if self.next(n - 1).is_none() {
+            consider(n, self);
         }
         best
     }
@@ -248,6 +278,39 @@ impl Search<'_, '_> {
             }
         }
     }
+}
+
+/// For every end, its `count` cheapest ends by eq. (8) that `accept(end, other)` lets
+/// through, when the problem holds every end-to-end cost (up to 2,000 ends); else the nearest
+/// by planar distance ([`nearest_ends`]). Eq. (8) adds 2h to a transfer that climbs out of a
+/// field and goes round holes and obstacles, so the planar nearest ends across a hole or a
+/// field edge are often not the cheap ones: on the open paths of the irregular farms of
+/// `benches/ordering_vs_lkh.py`, lists by cost took the mean ratio to LKH from 1.0185 to 1.0122
+/// (decision 0018).
+pub fn cheapest_ends(
+    problem: &OrderingProblem,
+    count: usize,
+    accept: impl Fn(End, End) -> bool,
+) -> Vec<Vec<End>> {
+    if !problem.has_cost_matrix() {
+        return nearest_ends(problem, count, accept);
+    }
+    let ends = 2 * problem.passes();
+    let by_cost = |a: &(f64, End), b: &(f64, End)| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1));
+    (0..ends)
+        .map(|end| {
+            let mut found: Vec<(f64, End)> = (0..ends)
+                .filter(|&other| other != end && accept(end, other))
+                .map(|other| (problem.cost(end, other), other))
+                .collect();
+            if found.len() > count {
+                found.select_nth_unstable_by(count - 1, by_cost);
+                found.truncate(count);
+            }
+            found.sort_by(by_cost);
+            found.into_iter().map(|(_, other)| other).collect()
+        })
+        .collect()
 }
 
 /// For every end, its `count` nearest ends that `accept(end, other)` lets through, by planar
@@ -334,4 +397,47 @@ pub fn nearest_ends(
             found.into_iter().map(|(_, other)| other).collect()
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coverage::drape::GroundPoint;
+    use crate::sequence::tour::Start;
+    use crate::sequence::TransferModel;
+
+    /// Passes scattered over the demo farm: the lists by cost hold, for every end, exactly
+    /// the `count` cheapest accepted ends by eq. (8), cheapest first.
+    #[test]
+    fn cheapest_ends_are_the_cheapest_accepted_ends_by_eq_8() {
+        let scenario = crate::demo::scenario().unwrap();
+        let model = TransferModel::new(&scenario.farm, 18.0);
+        let ground = |x: f64, y: f64| GroundPoint {
+            x,
+            y,
+            ground_m: 0.0,
+        };
+        let ends: Vec<[GroundPoint; 2]> = (0..24)
+            .map(|k| {
+                let x = 37.0 * k as f64 - 120.0;
+                let y = 19.0 * (k % 7) as f64;
+                [ground(x, y), ground(x + 13.0, y + 90.0)]
+            })
+            .collect();
+        let problem = OrderingProblem::new(ends, Start::Open, &model);
+        assert!(problem.has_cost_matrix());
+        let accept = |end: End, other: End| other / 2 != end / 2;
+        let lists = cheapest_ends(&problem, 5, accept);
+        for (end, list) in lists.iter().enumerate() {
+            assert_eq!(list.len(), 5);
+            let mut expected: Vec<End> = (0..48).filter(|&other| accept(end, other)).collect();
+            expected.sort_by(|&a, &b| {
+                problem
+                    .cost(end, a)
+                    .total_cmp(&problem.cost(end, b))
+                    .then(a.cmp(&b))
+            });
+            assert_eq!(list[..], expected[..5], "end {end}");
+        }
+    }
 }

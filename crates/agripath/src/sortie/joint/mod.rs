@@ -169,6 +169,7 @@ pub fn improve(problem: &JointProblem, start: Vec<Step>, settings: &JointSetting
 mod tests {
     use super::*;
     use crate::coverage::{plan_coverage, CoverageSettings};
+    use crate::sequence::tour::Start;
     use crate::sequence::{ordering_problem, passes_of, route_of_tour, Sequencer, TransferModel};
     use crate::sortie::route::{RoutePoint, WorkRoute};
     use crate::sortie::{plan_sorties, SortiePlanner};
@@ -191,7 +192,7 @@ mod tests {
             y: 0.0,
             ground_m: scenario.terrain.height_m(0.0, 0.0).unwrap(),
         };
-        let (problem, groups) = ordering_problem(&coverage, &model, Some(supply));
+        let (problem, groups) = ordering_problem(&coverage, &model, Start::Fixed(supply));
         let speeds = Speeds::of(vehicle);
         let sortie_model = SortieModel::new(
             vehicle,
@@ -212,7 +213,7 @@ mod tests {
         tours.extend((0..3).map(|_| joint.random_solution(&mut stream)));
         for tour in tours {
             let linear = joint.evaluate(&tour);
-            let flight = route_of_tour(&coverage, &model, Some(supply), &problem, &tour);
+            let flight = route_of_tour(&coverage, &model, &problem, &tour);
             let work = WorkRoute::from_route(&flight, speeds);
             let plan = plan_sorties(&work, &sortie_model, SortiePlanner::Exact, 1).unwrap();
             let ends = sortie_model.leg_m(&work.points()[0])
