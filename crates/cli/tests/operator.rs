@@ -122,8 +122,10 @@ fn every_example_scenario_has_a_map_layer_and_a_sheet_row_per_sortie() {
             let litres: f64 = row_litres.iter().sum();
             // And each row is what its mission file sprays: the rate of the vehicle file
             // (the only one with a rate) over the spray distance the preflight flew from
-            // `sortie_NN.plan` (horizontal, so within 3 % of the draped length on these
-            // slopes).
+            // `sortie_NN.plan`. The preflight's distance is horizontal, the sheet's draped
+            // over the terrain: a sortie over ground sloping up to 20° on average sprays
+            // up to 1/cos 20° − 1 = 6.4 % more than its horizontal length (the island's
+            // steepest sortie: 3.6 %).
             assert_eq!(report["vehicle"], "DJI T16-class sprayer", "{scenario:?}");
             let rate = application_rate(&data("vehicles/dji_t16.toml"));
             let swath = report["swath_width_m"].as_f64().unwrap();
@@ -133,7 +135,7 @@ fn every_example_scenario_has_a_map_layer_and_a_sheet_row_per_sortie() {
                 let spray_m = sortie["spray_m"].as_f64().unwrap();
                 let as_flown = rate / 10_000.0 * swath * spray_m;
                 assert!(
-                    (row - as_flown).abs() <= 0.03 * as_flown + 0.05,
+                    *row >= as_flown - 0.05 && *row <= as_flown / 20f64.to_radians().cos() + 0.05,
                     "{scenario:?}: sheet {row} L, flown from the file {as_flown:.2} L"
                 );
             }
