@@ -19,6 +19,7 @@ fn main() {
         particles: number(0, 40),
         iterations: number(1, 1_000),
         seed: number(2, 1) as u64,
+        ..Default::default()
     };
     let started = std::time::Instant::now();
     match agripath::repro::printed::seed004(&settings) {

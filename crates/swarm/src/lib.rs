@@ -20,8 +20,8 @@
 //!   [`algorithms`], equations in its doc comment), for box problems or for any problem
 //!   ([`algorithms::RandomSearch`]);
 //! - [`Runner`]: the one loop: termination by iterations, evaluations, target or time;
-//!   evaluation counting; convergence history; one seeded stream per run (MISSION.md
-//!   decision 10); parallel runs equal to serial ones;
+//!   evaluation counting; convergence history; one seeded stream per run (contract
+//!   decision 10, docs/contract.md); parallel runs equal to serial ones;
 //! - [`functions`]: seed 000 Table 1, with the official CEC 2005 data;
 //! - [`conformance`]: the checks every optimizer passes;
 //! - [`readings`]: the open choices of seed 000's algorithms, as named settings;

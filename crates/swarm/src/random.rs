@@ -1,8 +1,8 @@
 //! Seeded, independent random streams: one per run.
 //!
 //! Every stochastic result must be reproducible from one seed, and runs must be independent
-//! streams so that running them in parallel gives the same numbers as in series (MISSION.md
-//! decision 10). Run `k` of seed `s` is xoshiro256++ seeded from `s` and advanced by `k`
+//! streams so that running them in parallel gives the same numbers as in series (contract
+//! decision 10, docs/contract.md). Run `k` of seed `s` is xoshiro256++ seeded from `s` and advanced by `k`
 //! jumps of 2^128 steps: the streams never overlap in any realistic use, and run `k` does
 //! not depend on whether runs `0..k` were ever drawn.
 

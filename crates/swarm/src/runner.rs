@@ -405,8 +405,8 @@ impl Runner {
         &self.termination
     }
 
-    /// Run number `run` of a continuous optimizer (its own random stream, MISSION.md
-    /// decision 10).
+    /// Run number `run` of a continuous optimizer (its own random stream, contract
+    /// decision 10, docs/contract.md).
     pub fn run(
         &self,
         optimizer: &mut ContinuousOptimizer,

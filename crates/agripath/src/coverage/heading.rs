@@ -3,7 +3,7 @@
 //! E(θ) = ω_N · (N − N_min)/(N_max − N_min) + ω_L · (L − L_min)/(L_max − L_min)   (1)
 //!
 //! N is the number of swaths and L = Σ L_i their total draped (3D) length at heading θ; the
-//! minima and maxima are over the headings tried, 0..179° in 1° steps. MISSION.md decision 2:
+//! minima and maxima are over the headings tried, 0..179° in 1° steps. Contract decision 2 (docs/contract.md):
 //! a term whose max equals its min is 0; ties go to the smaller heading. Then, our addition,
 //! a local refinement tries θ* ± 0.1..0.9° and keeps a heading only if it lowers E (with the
 //! same normalisation); both the integer and the refined heading are reported.

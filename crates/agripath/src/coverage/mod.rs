@@ -554,7 +554,7 @@ mod tests {
         }
     }
 
-    /// Seed 001 Table 7 on the flat fields, seed layout (MISSION.md: 98°/16/1781,
+    /// Seed 001 Table 7 on the flat fields, seed layout (docs/contract.md, data: 98°/16/1781,
     /// 3°/32/7164, 92°/22/4220, 90°/13/928 with this convention).
     #[test]
     fn table_7_flat_fields() {

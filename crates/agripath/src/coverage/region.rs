@@ -70,7 +70,7 @@ const ARC_SEGMENT_PER_RADIUS: f64 = 0.1;
 /// The part of `sprayable` a spray footprint `width_m` across can reach without spraying
 /// outside it: the morphological opening of the region by a disc of diameter `width_m`
 /// (erode by w/2, then grow by w/2, round joins), the ground a circular footprint can cover
-/// in the configuration-space view of coverage (Choset 2001). What it leaves out is where
+/// in the configuration-space view of coverage (Choset 2001, docs/references.md). What it leaves out is where
 /// the region is narrower than one swath: the tip of a corner sharper than 90° (area
 /// (w/2)²·(cot(θ/2) − (π − θ)/2) for a corner of angle θ), a neck between two holes or
 /// between a hole and the boundary, a sliver. Ground there can only be sprayed by spraying

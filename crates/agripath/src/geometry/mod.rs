@@ -22,8 +22,8 @@ pub use projection::{from_utm, mean_longitude, to_utm, wrap_longitude, UtmZone};
 
 use geo::{Coord, Polygon};
 
-/// Changes of direction at the vertices of `polyline` sharper than `tolerance_rad` (MISSION.md
-/// decision 5: every angle counts, so a tolerance only absorbs float noise or draping
+/// Changes of direction at the vertices of `polyline` sharper than `tolerance_rad` (contract
+/// decision 5, docs/contract.md: every angle counts, so a tolerance only absorbs float noise or draping
 /// wiggles). The one turn counter of the coverage routes and the grid routes.
 pub fn turn_count(polyline: &[Coord<f64>], tolerance_rad: f64) -> usize {
     polyline

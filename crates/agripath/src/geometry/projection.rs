@@ -1,7 +1,7 @@
 //! WGS84 longitude/latitude ⇄ UTM metres (transverse Mercator, Krüger series to n⁶).
 //!
 //! Formulas: C. F. F. Karney, "Transverse Mercator with an accuracy of a few nanometres",
-//! J. Geodesy 85 (2011), eqs. (7)-(11) and (35)-(36) with the 6th-order coefficients of its
+//! J. Geodesy 85 (2011) (Karney 2011, docs/references.md), eqs. (7)-(11) and (35)-(36) with the 6th-order coefficients of its
 //! appendix. Within a UTM zone the series is accurate to far below a millimetre, which the tests
 //! check against PROJ (pyproj) figures. Pure Rust, no tables: see `docs/decisions/0002-projection.md`.
 

@@ -1,114 +1,26 @@
 //! `ours`: a constructive route aimed at the fewest turns.
 //!
-//! 1. Straight runs: maximal sequences of 4-adjacent valid points along y (columns) or along
-//!    x (rows).
+//! 1. Straight runs ([`super::runs`]): maximal sequences of 4-adjacent valid points along y
+//!    (columns) or along x (rows).
 //! 2. Cells (boustrophedon decomposition): column runs of neighbouring columns that meet one
 //!    to one form a cell; likewise for row runs. Each cell may be swept along y or along x.
-//! 3. For every assignment of sweep directions to the cells (and the two single-direction
-//!    sweeps), runs are chained greedily from the field's corners; the best few assignments are
-//!    improved by local search over the run order and directions (relocation, reversal of a
-//!    stretch, flips), counting turns exactly as decision 5 does: a junction costs 2 turns as a
-//!    U-turn, 1 as an L where the next run starts along the move, more when it must go round an
-//!    obstacle. Ties go to the shorter non-spray distance.
+//! 3. Rings ([`super::rings`]): a direction per point, parallel to the nearer boundary, so that
+//!    the runs nest round the field's edge and round each obstacle and can be flown as a spiral
+//!    of L-turns (both ways of sweeping a ring's corners).
+//! 4. For every assignment of sweep directions to the cells (and the two single-direction
+//!    sweeps, and the rings), runs are chained greedily from the field's corners; the best few
+//!    are improved by local search over the run order and directions (relocation, reversal of a
+//!    stretch, flips), counting turns exactly as the repro does (contract decision 5,
+//!    docs/contract.md): a junction costs 2 turns as a U-turn, 1 as an L where the next run
+//!    starts along the move, 2 for a reversal in place, more when it must go round an obstacle.
+//!    Ties go to the shorter non-spray distance.
 
 use std::collections::HashMap;
 
 use geo::Coord;
 
+pub use super::runs::{cells, runs, Sweep};
 use super::{GridRoute, PointGrid};
-
-/// Which way runs go.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Sweep {
-    /// Runs go along y, within a column.
-    AlongY,
-    /// Runs go along x, within a row.
-    AlongX,
-}
-
-/// The maximal straight runs of `points` (a subset of the grid's valid points) along `sweep`,
-/// each ordered by increasing coordinate; no run crosses an obstacle between two of its
-/// neighbouring points.
-pub fn runs(grid: &PointGrid, points: &[usize], sweep: Sweep) -> Vec<Vec<usize>> {
-    let mut inside = vec![false; grid.valid.len()];
-    for &p in points {
-        inside[p] = true;
-    }
-    let (outer, inner) = match sweep {
-        Sweep::AlongY => (grid.columns, grid.rows),
-        Sweep::AlongX => (grid.rows, grid.columns),
-    };
-    let index = |o: usize, i: usize| match sweep {
-        Sweep::AlongY => i * grid.columns + o,
-        Sweep::AlongX => o * grid.columns + i,
-    };
-    let mut result = Vec::new();
-    for o in 0..outer {
-        let mut current: Vec<usize> = Vec::new();
-        for i in 0..inner {
-            let p = index(o, i);
-            // A run also ends where an obstacle cuts between two neighbouring points.
-            let blocked = current
-                .last()
-                .is_some_and(|&q| !grid.clear(grid.centre(q), grid.centre(p)));
-            if (!inside[p] || blocked) && !current.is_empty() {
-                result.push(std::mem::take(&mut current));
-            }
-            if inside[p] {
-                current.push(p);
-            }
-        }
-        if !current.is_empty() {
-            result.push(current);
-        }
-    }
-    result
-}
-
-/// Boustrophedon cells: groups of runs along `sweep` in neighbouring lines that overlap one
-/// to one. Returns the points of each cell.
-pub fn cells(grid: &PointGrid, sweep: Sweep) -> Vec<Vec<usize>> {
-    let lines = runs(grid, &grid.points, sweep);
-    let line_of = |run: &Vec<usize>| match sweep {
-        Sweep::AlongY => grid.cell(run[0]).0,
-        Sweep::AlongX => grid.cell(run[0]).1,
-    };
-    let span = |run: &Vec<usize>| {
-        let along = |p: usize| match sweep {
-            Sweep::AlongY => grid.cell(p).1,
-            Sweep::AlongX => grid.cell(p).0,
-        };
-        (
-            along(run[0]),
-            along(*run.last().expect("runs are not empty")),
-        )
-    };
-    let overlaps = |a: &Vec<usize>, b: &Vec<usize>| {
-        let ((a0, a1), (b0, b1)) = (span(a), span(b));
-        line_of(b) == line_of(a) + 1 && a0 <= b1 && b0 <= a1
-    };
-    let mut cell_of = vec![usize::MAX; lines.len()];
-    let mut cells: Vec<Vec<usize>> = Vec::new();
-    for (k, run) in lines.iter().enumerate() {
-        let before: Vec<usize> = (0..k).filter(|&j| overlaps(&lines[j], run)).collect();
-        let continues = match before.as_slice() {
-            [single] => {
-                let successors = (0..lines.len())
-                    .filter(|&j| overlaps(&lines[*single], &lines[j]))
-                    .count();
-                (successors == 1).then_some(cell_of[*single])
-            }
-            _ => None,
-        };
-        let cell = continues.unwrap_or_else(|| {
-            cells.push(Vec::new());
-            cells.len() - 1
-        });
-        cell_of[k] = cell;
-        cells[cell].extend(run.iter().copied());
-    }
-    cells
-}
 
 /// A run as the search sees it: its points in order and whether it is flown reversed.
 type Step = (usize, bool);
@@ -152,6 +64,17 @@ fn unit(a: Coord<f64>, b: Coord<f64>) -> (f64, f64) {
 
 fn same_direction(u: (f64, f64), v: (f64, f64)) -> bool {
     (u.0 * v.1 - u.1 * v.0).abs() < 1e-9 && u.0 * v.0 + u.1 * v.1 > 0.0
+}
+
+/// Turns between flying `heading` and then `next`, as [`GridRoute::measure`] counts them:
+/// none straight on, two for a reversal in place, one for any other change.
+fn turn_between(heading: Heading, next: (f64, f64)) -> usize {
+    match heading {
+        Some(h) if same_direction(h, next) => 0,
+        Some(h) if h.0 * next.0 + h.1 * next.1 < -0.999_999 => 2,
+        Some(_) => 1,
+        None => 0,
+    }
 }
 
 impl Search<'_> {
@@ -224,16 +147,12 @@ impl Search<'_> {
             let (first, last) = self.ends(step);
             if first != last {
                 let along = unit(self.grid.centre(first), self.grid.centre(last));
-                if heading.is_some_and(|h| !same_direction(h, along)) {
-                    turns += 1;
-                }
+                turns += turn_between(heading, along);
                 heading = Some(along);
             }
             if let Some(&next) = order.get(k + 1) {
                 let junction = self.junction(step, next)?;
-                if heading.is_some_and(|h| !same_direction(h, junction.first)) {
-                    turns += 1;
-                }
+                turns += turn_between(heading, junction.first);
                 turns += junction.inner;
                 distance += junction.distance;
                 heading = Some(junction.last);
@@ -297,14 +216,11 @@ impl Search<'_> {
                         let Some(junction) = self.junction(last, next) else {
                             continue;
                         };
-                        let mut turns = junction.inner;
-                        if heading.is_some_and(|h| !same_direction(h, junction.first)) {
-                            turns += 1;
-                        }
+                        let mut turns = junction.inner + turn_between(heading, junction.first);
                         let along = self.along(next);
                         let after = along.or(Some(junction.last));
-                        if along.is_some_and(|a| !same_direction(junction.last, a)) {
-                            turns += 1;
+                        if let Some(along) = along {
+                            turns += turn_between(Some(junction.last), along);
                         }
                         let cost = (turns, junction.distance);
                         if choice
@@ -486,7 +402,12 @@ pub fn plan(grid: &PointGrid) -> GridRoute {
     }
     let mut screened: Vec<Screened> = Vec::new();
     let mut transits = HashMap::new();
-    let all = decompositions(grid);
+    let mut all = decompositions(grid);
+    // Rings have more runs than a boustrophedon but join them with L-turns (one turn, not
+    // two), so they are screened by their chained turns, not by their run count.
+    for corner in [Sweep::AlongX, Sweep::AlongY] {
+        all.push(super::rings::ring_runs(grid, corner));
+    }
     for decomposition in all {
         let mut search = Search {
             grid,

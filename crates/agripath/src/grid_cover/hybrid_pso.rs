@@ -17,6 +17,16 @@
 //! drawn uniformly for every crossover, sub-paths of 2 to n/4 points. The swarm runs on
 //! `swarm`'s Runner over [`TurnProblem`] (a permutation of the points): one iteration per step,
 //! run 0 of the settings' seed; the route returned is the Runner's best.
+//!
+//! The seed leaves four choices open (its steps 3-5 are missing from the text); the settings
+//! name them so that the ablation of issue 20 can try each reading (`examples/
+//! seed004_hpso_ablation.rs`, decision 0010), the defaults being the reading above:
+//! - the initial population ([`Initial`]): random permutations (step 1 as printed), or seeded
+//!   with a boustrophedon, particle k being it after k of the seed's mutations (k = 0 … P − 1);
+//! - the mutation rate: the probability that a particle gets the ω·v mutation in an iteration
+//!   (1: every time, as eq. 2 has the term in every update);
+//! - the crossover placement ([`Placement`]): one of the seed's three, or drawn per crossover;
+//! - the iterations.
 
 use swarm::{below, Optimizer, RunStream, Runner, Search, Termination};
 
@@ -31,6 +41,12 @@ pub struct HpsoSettings {
     pub iterations: usize,
     /// The Runner's seed; the swarm is its run 0.
     pub seed: u64,
+    /// Where the routes start.
+    pub initial: Initial,
+    /// Probability in [0, 1] that a particle gets the mutation in an iteration.
+    pub mutation_rate: f64,
+    /// Where a crossover puts the sub-path it takes from the guide.
+    pub placement: Placement,
 }
 
 impl Default for HpsoSettings {
@@ -39,8 +55,36 @@ impl Default for HpsoSettings {
             particles: 40,
             iterations: 1_000,
             seed: 1,
+            initial: Initial::Random,
+            mutation_rate: 1.0,
+            placement: Placement::Drawn,
         }
     }
+}
+
+/// HPSO's initial population (an open choice of the seed).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Initial {
+    /// Uniform random permutations: the seed's step 1 as printed.
+    Random,
+    /// The baseline's route ([`super::boustrophedon`]): cells swept along y.
+    Baseline,
+    /// The best single-direction boustrophedon (rows or columns, whichever has fewer runs).
+    SingleDirection,
+}
+
+/// Where the crossover puts the sub-path C0 it takes from the guide (the seed lists three).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Placement {
+    /// One of the three below, drawn uniformly for every crossover.
+    #[default]
+    Drawn,
+    /// (1) At the end of the route.
+    End,
+    /// (2) Where it was in the guide.
+    InPlace,
+    /// (3) At a random place.
+    Anywhere,
 }
 
 const CROSSING_PENALTY: usize = 1_000;
@@ -161,7 +205,12 @@ fn mutate(order: &mut [usize], fitness: &TurnProblem, stream: &mut RunStream) {
     order.swap(i, j);
 }
 
-fn crossover(order: &[usize], guide: &[usize], stream: &mut RunStream) -> Vec<usize> {
+fn crossover(
+    order: &[usize],
+    guide: &[usize],
+    placement: Placement,
+    stream: &mut RunStream,
+) -> Vec<usize> {
     let n = guide.len();
     let length = 2 + below(stream, (n / 4).max(1));
     let start = below(stream, n.saturating_sub(length) + 1);
@@ -171,7 +220,13 @@ fn crossover(order: &[usize], guide: &[usize], stream: &mut RunStream) -> Vec<us
         taken[p] = true;
     }
     let mut rest: Vec<usize> = order.iter().copied().filter(|&p| !taken[p]).collect();
-    let at = match below(stream, 3) {
+    let variant = match placement {
+        Placement::Drawn => below(stream, 3),
+        Placement::End => 0,
+        Placement::InPlace => 1,
+        Placement::Anywhere => 2,
+    };
+    let at = match variant {
         0 => rest.len(),
         1 => start.min(rest.len()),
         _ => below(stream, rest.len() + 1),
@@ -184,6 +239,10 @@ fn crossover(order: &[usize], guide: &[usize], stream: &mut RunStream) -> Vec<us
 #[derive(Debug, Clone, Default)]
 pub struct HybridPso {
     particles: usize,
+    /// A route every particle starts from (mutated k times for particle k); random when empty.
+    seed_route: Vec<usize>,
+    mutation_rate: f64,
+    placement: Placement,
     routes: Vec<Vec<usize>>,
     costs: Vec<f64>,
     personal: Vec<Vec<usize>>,
@@ -196,11 +255,25 @@ pub struct HybridPso {
 }
 
 impl HybridPso {
-    /// A swarm of `particles` routes (at least one).
+    /// A swarm of `particles` routes (at least one), from random routes, the seed's
+    /// mutation every iteration and the crossover placement drawn.
     pub fn new(particles: usize) -> Self {
         Self {
             particles: particles.max(1),
+            mutation_rate: 1.0,
+            placement: Placement::Drawn,
             ..Self::default()
+        }
+    }
+
+    /// The swarm with the open choices of `settings`; `seed_route` (positions in the
+    /// problem's points) is where every particle starts, or empty for random routes.
+    pub fn with_settings(settings: &HpsoSettings, seed_route: Vec<usize>) -> Self {
+        Self {
+            seed_route,
+            mutation_rate: settings.mutation_rate.clamp(0.0, 1.0),
+            placement: settings.placement,
+            ..Self::new(settings.particles)
         }
     }
 
@@ -219,9 +292,20 @@ impl Optimizer<TurnProblem> for HybridPso {
     }
 
     fn start(&mut self, search: &mut Search<TurnProblem>) {
-        self.routes = (0..self.particles)
-            .map(|_| search.random_solution())
-            .collect();
+        self.routes = if self.seed_route.is_empty() {
+            (0..self.particles)
+                .map(|_| search.random_solution())
+                .collect()
+        } else {
+            let problem = search.problem();
+            let mut route = self.seed_route.clone();
+            let mut routes = Vec::with_capacity(self.particles);
+            for _ in 0..self.particles {
+                routes.push(route.clone());
+                mutate(&mut route, problem, search.stream());
+            }
+            routes
+        };
         self.costs = self.routes.iter().map(|p| search.evaluate(p)).collect();
         self.personal = self.routes.clone();
         self.personal_costs = self.costs.clone();
@@ -235,13 +319,16 @@ impl Optimizer<TurnProblem> for HybridPso {
     fn step(&mut self, search: &mut Search<TurnProblem>) {
         let problem = search.problem();
         for k in 0..self.routes.len() {
-            // ω·v: the seed's mutation, kept if better.
-            let mut candidate = self.routes[k].clone();
-            mutate(&mut candidate, problem, search.stream());
-            self.offer(k, candidate, search);
+            // ω·v: the seed's mutation, kept if better. At rate 1 no draw decides it, so the
+            // default reading's random stream is the one it always was.
+            if self.mutation_rate >= 1.0 || swarm::uniform(search.stream()) < self.mutation_rate {
+                let mut candidate = self.routes[k].clone();
+                mutate(&mut candidate, problem, search.stream());
+                self.offer(k, candidate, search);
+            }
             // c1·r1·(pbest − x) and c2·r2·(gbest − x): crossovers, kept if better.
             for guide in [self.personal[k].clone(), self.global.clone()] {
-                let candidate = crossover(&self.routes[k], &guide, search.stream());
+                let candidate = crossover(&self.routes[k], &guide, self.placement, search.stream());
                 self.offer(k, candidate, search);
             }
             if self.costs[k] < self.personal_costs[k] {
@@ -267,8 +354,13 @@ pub fn plan(grid: &PointGrid, settings: &HpsoSettings) -> (GridRoute, usize) {
         settings.seed,
     )
     .expect("a budget of at least one iteration");
+    let seed_route = match settings.initial {
+        Initial::Random => Vec::new(),
+        Initial::Baseline => positions(grid, &super::boustrophedon::plan(grid)),
+        Initial::SingleDirection => positions(grid, &super::boustrophedon::single_direction(grid)),
+    };
     let outcome = runner.run_problem(
-        &mut HybridPso::new(settings.particles),
+        &mut HybridPso::with_settings(settings, seed_route),
         &problem,
         0,
         &mut (),
@@ -282,4 +374,13 @@ pub fn plan(grid: &PointGrid, settings: &HpsoSettings) -> (GridRoute, usize) {
         GridRoute::direct(visits).around_obstacles(grid),
         outcome.best_cost as usize,
     )
+}
+
+/// The route's visits as positions in `grid.points` (the problem's numbering).
+fn positions(grid: &PointGrid, route: &GridRoute) -> Vec<usize> {
+    let mut position = vec![usize::MAX; grid.valid.len()];
+    for (k, &p) in grid.points.iter().enumerate() {
+        position[p] = k;
+    }
+    route.visits.iter().map(|&p| position[p]).collect()
 }

@@ -1,4 +1,4 @@
-//! `plan.geojson`: the plan as a FeatureCollection (contract in MISSION.md and `docs/cli.md`).
+//! `plan.geojson`: the plan as a FeatureCollection (contract in `docs/contract.md` and `docs/cli.md`).
 //!
 //! Features carry `properties.kind`: `field`, `unreachable` (ground of a field narrower than
 //! a swath, with `field` and `area_m2`), `missed` (reachable ground the flight left

@@ -3,7 +3,7 @@
 //!
 //! The papers do not give their cost weights (seed 000) or units (seed 002), so absolute
 //! costs are not comparable: the claims are ratios, and the tables print ours and the
-//! paper's ratio side by side (MISSION.md decision 7). SPSO's cost is its code's, so there
+//! paper's ratio side by side (contract decision 7, docs/contract.md). SPSO's cost is its code's, so there
 //! the absolute figures compare.
 
 use std::fmt::Write;

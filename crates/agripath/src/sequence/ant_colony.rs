@@ -7,7 +7,7 @@
 //!   p_iAj = τ_ij^α η_iAj^β / Σ_k∈V τ_ik^α (η_iAk^β + η_iBk^β),   p_iBj likewise,
 //!
 //! where η is 1/d of the end actually reached from the end i is left by (eqs. 11-12; their
-//! indices are swapped in print, MISSION.md decision 3), and d is eq. (8)'s transfer cost
+//! indices are swapped in print, contract decision 3, docs/contract.md), and d is eq. (8)'s transfer cost
 //! (eqs. 6-10). After each batch the pheromone evaporates and every ant deposits Q/l_m on the
 //! pairs it flew (ant-cycle model, eq. 13). Parameters as the seed: α = 1, β = 5, ρ = 0.1,
 //! Q = 100, 50 ants, 100 or 200 batches.

@@ -83,7 +83,7 @@ impl Route {
     }
 
     /// Changes of direction at path points along the flown polyline (every angle counts, as
-    /// in MISSION.md decision 5), and the U-turns among the pass-to-pass junctions.
+    /// in contract decision 5, docs/contract.md), and the U-turns among the pass-to-pass junctions.
     pub fn turns(&self) -> (usize, usize) {
         let mut polyline: Vec<Coord<f64>> = Vec::new();
         let mut push = |point: &GroundPoint| {

@@ -1,4 +1,4 @@
-//! The transfer model of seed 001 eq. (8) (MISSION.md decision 3), shared by every sequencer,
+//! The transfer model of seed 001 eq. (8) (contract decision 3, docs/contract.md), shared by every sequencer,
 //! the route and the report.
 //!
 //! d = dist(P, Q) + H,  H = 0 if the segment PQ lies in the work area S, else 2h.

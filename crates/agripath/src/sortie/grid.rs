@@ -13,7 +13,7 @@
 //!
 //! then it moves to the heaviest of the cells ahead, left and right (ties in that order). The
 //! rule flies a boustrophedon along the rows, turning at the headland; it stops when no
-//! neighbour can be entered. U1 and U2 are not given (MISSION.md decision 4): U1 = 1, U2 = 2.
+//! neighbour can be entered. U1 and U2 are not given (contract decision 4, docs/contract.md): U1 = 1, U2 = 2.
 //!
 //! Rows run along y (seed 003's crop rows). Moves along a row spray; moves across rows are
 //! headland turns (spray off). As the seed's rule does, a column entered sideways below its

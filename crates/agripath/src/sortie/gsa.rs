@@ -4,7 +4,7 @@
 //! fitness is E (eq. 2). The dimension N cannot change during a search, so there is one search
 //! per number of returns (seed 003: "还须对不同维数分别进行寻优计算").
 //!
-//! The search is the gravitational search algorithm of `swarm` (Rashedi 2009; the seed's
+//! The search is the gravitational search algorithm of `swarm` (Rashedi 2009, docs/references.md; the seed's
 //! eqs. 3-4 are its velocity and position updates) with G0 = 100, α = 20 and Kbest shrinking
 //! linearly to 2 %. The seed does not give the population or the iterations: 50 agents (the
 //! population of Rashedi's own code) and 500 iterations per number of returns (`GsaSettings`;

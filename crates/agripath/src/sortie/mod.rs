@@ -1,5 +1,5 @@
 //! Sorties: where the drone breaks off a route to refill the tank and swap the battery at the
-//! supply point (seed 003, MISSION.md decision 4).
+//! supply point (seed 003, contract decision 4, docs/contract.md).
 //!
 //! A route ([`route::WorkRoute`]) is split at break points; sortie k flies from the supply
 //! point P0 to its first point, along the route to its last, and back. Seed 003's objective

@@ -4,7 +4,7 @@
 //! z2(x, y) = Σᵢ hᵢ · exp(−((x − xᵢ)/x_sᵢ)² − ((y − yᵢ)/y_sᵢ)²)
 //! z(x, y)  = max(z1, z2)
 //!
-//! Deviations from the paper (MISSION.md decision 6): z1 follows seed 002's eq. (1), since
+//! Deviations from the paper (contract decision 6, docs/contract.md): z1 follows seed 002's eq. (1), since
 //! seed 000's eq. (16) misprints the f and g terms; the seventh y_s, missing in print, is 200.
 //! Seed 002 gives no coefficients: its 1000 × 1000 × 60 m space uses seed 000's terrain with
 //! heights scaled by 0.5 (documented in `docs/decisions/0003-terrain.md`).

@@ -79,7 +79,7 @@ pub struct CostBreakdown {
 }
 
 /// Seed 000 eqs. (17)-(26). The paper gives none of the weights: these are ours, fixed for
-/// every algorithm (MISSION.md decision 7, `docs/decisions/0011-tracks.md`).
+/// every algorithm (contract decision 7, `docs/contract.md`; `docs/decisions/0011-tracks.md`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Seed000Cost {
     /// b_1..b_4 of eq. (26).
@@ -109,7 +109,7 @@ impl Default for Seed000Cost {
     }
 }
 
-/// SPSO's `MyCost.m` (Phung & Ha 2021): weights 5, 1, 10, 1; drone size S = 1, danger
+/// SPSO's `MyCost.m` (Phung & Ha 2021, docs/references.md): weights 5, 1, 10, 1; drone size S = 1, danger
 /// distance D = 10·S; angle penalties only above 45°.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpsoCost {
@@ -136,7 +136,7 @@ impl Default for SpsoCost {
 /// a straight leg cut through a hill between two clear waypoints (a 2-waypoint track through
 /// the survey space's highest hills scores as the best): here T_c counts M for each leg that
 /// dips under the terrain anywhere (a waypoint under the terrain included), the check
-/// MISSION.md decision 7 asks of every model.
+/// contract decision 7 (docs/contract.md) asks of every model.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Seed002Cost;
 

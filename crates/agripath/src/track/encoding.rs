@@ -4,7 +4,7 @@
 //! - **Cylindrical** (seed 000 eqs. 27-30): (ρ, θ, z') per waypoint, an increment from the
 //!   previous point: x_j = x_{j−1} + ρ cos θ, y_j = y_{j−1} + ρ sin θ, z_j = z_{j−1} + z'.
 //!   ρ ∈ [0, L_path], θ ∈ [−π, π], z' ∈ [−Z, Z]. The paper gives neither L_path nor Z
-//!   (MISSION.md decision 8): L_path = 2·|SG| / (n + 1), so that n + 1 legs at half their
+//!   (contract decision 8, docs/contract.md): L_path = 2·|SG| / (n + 1), so that n + 1 legs at half their
 //!   longest span reach the goal in a straight line, and Z = (h_max − h_min) / 4.
 //! - **Spherical** (SPSO): (r, ψ, φ) per waypoint: x_j = x_{j−1} + r cos ψ cos φ,
 //!   y_j = y_{j−1} + r cos ψ sin φ, z_j = z_{j−1} + r sin ψ; r ∈ [0, 2·|SG|/n],

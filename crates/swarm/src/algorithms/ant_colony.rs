@@ -1,5 +1,6 @@
 //! Continuous ant colony optimisation (ACO_R): Socha and Dorigo, "Ant colony optimization for
 //! continuous domains", European Journal of Operational Research 185 (2008) 1155-1173
+//! (Socha & Dorigo 2008, docs/references.md)
 //! (equation numbers of the paper). Seed 002 compares its GA against an ACO; this is the
 //! continuous member of the family for the same encodings.
 //!

@@ -1,5 +1,5 @@
 //! Bat algorithm (BA): Yang, "A New Metaheuristic Bat-Inspired Algorithm", NICSO 2010
-//! (Studies in Computational Intelligence 284:65-74), in the form seed 000 §1 writes it.
+//! (Studies in Computational Intelligence 284:65-74; Yang 2010, docs/references.md), in the form seed 000 §1 writes it.
 //!
 //! For bat i at iteration t (seed 000 numbering):
 //! - (3) frequency   f_i = f_min + (f_max − f_min)·β,  β ~ U[0, 1]

@@ -1,5 +1,5 @@
 //! Gravitational search algorithm (GSA): Rashedi, Nezamabadi-pour and Saryazdi, "GSA: a
-//! gravitational search algorithm", Information Sciences 179 (2009) 2232-2248, as the
+//! gravitational search algorithm", Information Sciences 179 (2009) 2232-2248 (Rashedi 2009, docs/references.md), as the
 //! authors' MATLAB code computes it (equation numbers of the paper).
 //!
 //! At iteration t of T (k = t / T, the Runner's progress), for minimisation:

@@ -1,6 +1,6 @@
 //! ILSSIWBA: bat algorithm with iterated local search and a stochastic inertia weight
-//! (Gan, Cao, Wu, Chen 2018, Expert Systems with Applications 104:202-212), as MISSION.md
-//! decision 9 fixes it: only its parameters are in seed 000, so it is built from its idea.
+//! (Gan, Cao, Wu, Chen 2018, Expert Systems with Applications 104:202-212; docs/references.md), as contract
+//! decision 9 (docs/contract.md) fixes it: only its parameters are in seed 000, so it is built from its idea.
 //!
 //! For bat i at iteration t:
 //! - frequency       f_i = f_min + (f_max − f_min)·β, β ~ U[0, 1], f ∈ [−2, 2]

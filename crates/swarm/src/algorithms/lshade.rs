@@ -1,6 +1,6 @@
 //! L-SHADE: success-history adaptive differential evolution with linear population size
 //! reduction (Tanabe and Fukunaga, "Improving the search performance of SHADE using linear
-//! population size reduction", IEEE CEC 2014, pp. 1658-1665). The strong modern baseline
+//! population size reduction", IEEE CEC 2014, pp. 1658-1665; Tanabe & Fukunaga 2014, docs/references.md). The strong modern baseline
 //! that users of such tools compare against (CEC 2014 winner); not in the seeds.
 //!
 //! Per generation, for each target x_i (algorithm 1 of the paper):

@@ -1,5 +1,5 @@
 //! Particle swarm optimisation (PSO): Kennedy and Eberhart 1995, with the inertia weight of
-//! Shi and Eberhart 1998, in seed 000's setting (c1 = c2 = 2, w = 0.729).
+//! Shi and Eberhart 1998 (docs/references.md), in seed 000's setting (c1 = c2 = 2, w = 0.729).
 //!
 //! - v_i = w·v_i + c1·r1·(p_i − x_i) + c2·r2·(g − x_i),  r1, r2 ~ U[0, 1] per coordinate
 //! - x_i = x_i + v_i

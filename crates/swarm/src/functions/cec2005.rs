@@ -1,6 +1,6 @@
 //! CEC 2005 functions F1, F2, F3, F6 from the official data (Suganthan et al., "Problem
 //! definitions and evaluation criteria for the CEC 2005 special session on real-parameter
-//! optimization", KanGAL report 2005005), z = x − o with o the published shift vector:
+//! optimization", KanGAL report 2005005; Suganthan et al. 2005, docs/references.md), z = x − o with o the published shift vector:
 //!
 //! - F1 shifted sphere:                      Σ z_i² − 450
 //! - F2 shifted Schwefel 1.2:                Σ_i (Σ_{j≤i} z_j)² − 450 (the full sum, unlike opfunu)

@@ -4,7 +4,7 @@
 //! Order first, then split (`exact` after `best`) minimises the transfers and then places the
 //! returns where that order lets them fall; the order that is cheapest to fly in one piece
 //! is rarely the one whose sorties end near the supply point. Route first, cluster second
-//! (Beasley 1983; Prins 2004) searches over giant tours with the optimal split as the
+//! (Beasley 1983; Prins 2004; docs/references.md) searches over giant tours with the optimal split as the
 //! evaluation: here a giant tour of oriented passes, scored by its optimal split in linear
 //! time ([`split::TourSplit`]: every sortie's legs out and home, the transfers it flies, the
 //! service before it; a return at a pass's end skips the transfer to the next pass, a return

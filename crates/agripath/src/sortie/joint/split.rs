@@ -1,6 +1,6 @@
 //! The optimal split of a giant tour into sorties in O(points), fast enough to score every
 //! move of the joint search (Prins 2004: a giant tour is evaluated by its optimal split;
-//! Vidal 2016's linear split for the same reason).
+//! Vidal 2016's linear split for the same reason; docs/references.md).
 //!
 //! The tour's points p_0 … p_N (every draped point of every pass, in flying order) carry
 //! S_i, the spray metres from p_0, and T_i, the non-spray seconds from p_0 (the transfers
