@@ -467,7 +467,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         mission.sorties.as_ref(),
         vehicle.spray_height_m,
         vehicle.safe_height_m,
-        &verdict.missed_ground,
+        &verdict.ground,
     );
     let title = format!(
         "{}{} — {} fields, swath {} m, {:.0} m sprayed, {:.2}% covered as flown",
@@ -498,7 +498,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         mission.sorties.as_ref(),
         vehicle.spray_height_m,
         vehicle.safe_height_m,
-        &verdict.missed_ground,
+        &verdict.ground,
     );
     let supply = mission
         .route
@@ -537,7 +537,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         mission.sorties.as_ref(),
         Some(&underlay),
         &title,
-        &verdict.missed_ground,
+        &verdict.ground,
     );
     let rows = crate::sheet::sortie_rows(
         &scenario.farm,

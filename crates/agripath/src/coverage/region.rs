@@ -95,36 +95,34 @@ pub fn reachable_region(sprayable: &MultiPolygon<f64>, width_m: f64) -> MultiPol
     round(&eroded, width_m / 2.0).intersection(sprayable)
 }
 
-/// Smallest piece of [`unreachable_ground`] kept, m²: below it a piece is the rounding of
-/// the offsets along a straight edge, not ground.
+/// Smallest piece of [`unreachable_part`] kept, m²: below it a piece is the rounding of the
+/// offsets along a straight edge, not ground.
 const LEAST_UNREACHABLE_M2: f64 = 0.01;
 
-/// Per field of `farm`, the ground of its sprayable region (with `settings`' margins) that a
-/// swath `width_m` wide cannot reach ([`reachable_region`]): what the map and `plan.geojson`
-/// draw as unreachable.
-pub fn unreachable_ground(
-    farm: &crate::model::Farm,
-    settings: &super::CoverageSettings,
-    width_m: f64,
-) -> Vec<MultiPolygon<f64>> {
-    farm.fields
-        .iter()
-        .map(|field| {
-            let sprayable = sprayable_region(
-                field,
-                &farm.obstacles,
-                settings.boundary_margin_m,
-                settings.obstacle_margin_m,
-            );
-            let left = sprayable.difference(&reachable_region(&sprayable, width_m));
-            MultiPolygon::new(
-                left.0
-                    .into_iter()
-                    .filter(|piece| piece.unsigned_area() >= LEAST_UNREACHABLE_M2)
-                    .collect(),
-            )
-        })
-        .collect()
+/// The ground of `sprayable` outside its `reachable` part ([`reachable_region`]), without
+/// the slivers the offsets' rounding leaves along straight edges.
+pub fn unreachable_part(
+    sprayable: &MultiPolygon<f64>,
+    reachable: &MultiPolygon<f64>,
+) -> MultiPolygon<f64> {
+    MultiPolygon::new(
+        sprayable
+            .difference(reachable)
+            .0
+            .into_iter()
+            .filter(|piece| piece.unsigned_area() >= LEAST_UNREACHABLE_M2)
+            .collect(),
+    )
+}
+
+/// Per field, the patches of ground the map and `plan.geojson` draw apart from what was
+/// sprayed, as the preflight found them flying the mission files (decision 0023).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct GroundPatches {
+    /// Ground no swath reaches without spraying outside (sharp tips, corners, necks).
+    pub unreachable: Vec<MultiPolygon<f64>>,
+    /// Reachable ground the flight left unsprayed.
+    pub missed: Vec<MultiPolygon<f64>>,
 }
 
 /// The closed rings of a region (outer boundaries and holes), first point repeated last.

@@ -69,7 +69,7 @@ pub fn plan_geojson(
     sorties: Option<&PlannedSorties>,
     spray_height_m: f64,
     safe_height_m: f64,
-    missed: &[geo::MultiPolygon<f64>],
+    ground: &crate::coverage::region::GroundPatches,
 ) -> Value {
     let system = farm.coordinate_system;
     let mut features = Vec::new();
@@ -89,17 +89,17 @@ pub fn plan_geojson(
             json!({"type": "Polygon", "coordinates": polygon_coordinates(system, &field.polygon)}),
         ));
     }
-    // Ground narrower than a swath (sharp tips, necks between holes): no pass reaches it
-    // without spraying outside too (decision 0023).
-    let unreachable =
-        crate::coverage::region::unreachable_ground(farm, &plan.settings, plan.swath_width_m);
-    // And reachable ground the flight missed, as the preflight measured it (issue 22).
-    let patches = unreachable
+    // Ground narrower than a swath (sharp tips, necks between holes), which no pass reaches
+    // without spraying outside too, and reachable ground the flight missed, as the preflight
+    // found them (decision 0023, issue 22).
+    let patches = ground
+        .unreachable
         .iter()
         .enumerate()
         .map(|(index, ground)| ("unreachable", index, ground))
         .chain(
-            missed
+            ground
+                .missed
                 .iter()
                 .enumerate()
                 .map(|(index, ground)| ("missed", index, ground)),

@@ -6,7 +6,7 @@
 
 use std::fmt::Write;
 
-use geo::{Centroid, MultiPolygon, Polygon};
+use geo::{Centroid, Polygon};
 
 use super::line_chart::escape;
 use crate::coverage::drape::GroundPoint;
@@ -124,7 +124,7 @@ pub fn plan_svg(
     sorties: Option<&PlannedSorties>,
     underlay: Option<&Underlay>,
     title: &str,
-    missed: &[MultiPolygon<f64>],
+    ground: &crate::coverage::region::GroundPatches,
 ) -> String {
     // The farm, and the supply point where it stands off the fields (it may be 200 m out).
     let mut bounds = farm.bounds();
@@ -199,10 +199,8 @@ pub fn plan_svg(
         );
     }
     // Ground narrower than a swath, which no pass reaches without spraying outside.
-    let unreachable =
-        crate::coverage::region::unreachable_ground(farm, &plan.settings, plan.swath_width_m);
-    let any_unreachable = unreachable.iter().any(|ground| !ground.0.is_empty());
-    for piece in unreachable.iter().flat_map(|ground| &ground.0) {
+    let any_unreachable = ground.unreachable.iter().any(|field| !field.0.is_empty());
+    for piece in ground.unreachable.iter().flat_map(|field| &field.0) {
         let _ = writeln!(
             svg,
             r##"<path class="unreachable" d="{}" fill="{UNREACHABLE_COLOUR}" fill-opacity="0.8" fill-rule="evenodd" stroke="none"/>"##,
@@ -210,8 +208,8 @@ pub fn plan_svg(
         );
     }
     // Reachable ground the flight missed, as the preflight measured it.
-    let any_missed = missed.iter().any(|ground| !ground.0.is_empty());
-    for piece in missed.iter().flat_map(|ground| &ground.0) {
+    let any_missed = ground.missed.iter().any(|field| !field.0.is_empty());
+    for piece in ground.missed.iter().flat_map(|field| &field.0) {
         let _ = writeln!(
             svg,
             r##"<path class="missed" d="{}" fill="{MISSED_COLOUR}" fill-opacity="0.9" stroke="{MISSED_COLOUR}" stroke-width="0.6"/>"##,

@@ -12,8 +12,6 @@
 //! field pixels. Everything is drawn into the raster (no resvg), so `terrain.png` is the same
 //! with or without the `png` feature.
 
-use std::io::BufWriter;
-
 use geo::{Coord, LineString};
 
 use super::pixel_font::{glyph, text_width, ADVANCE, CAP_HEIGHT, GLYPH_HEIGHT, GLYPH_WIDTH};
@@ -170,23 +168,12 @@ impl Canvas {
     }
 
     fn to_png(&self) -> Vec<u8> {
-        let mut bytes = Vec::new();
-        {
-            let mut encoder = png::Encoder::new(
-                BufWriter::new(&mut bytes),
-                self.width as u32,
-                self.height as u32,
-            );
-            encoder.set_color(png::ColorType::Rgba);
-            encoder.set_depth(png::BitDepth::Eight);
-            let mut writer = encoder
-                .write_header()
-                .expect("writing a PNG header to memory cannot fail");
-            writer
-                .write_image_data(&self.pixels)
-                .expect("the pixel buffer matches the declared size");
-        }
-        bytes
+        crate::terrain::hillshade::encode_png(
+            self.width,
+            self.height,
+            png::ColorType::Rgba,
+            &self.pixels,
+        )
     }
 }
 

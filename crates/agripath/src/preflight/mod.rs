@@ -37,7 +37,7 @@ mod zones;
 
 use geo::Coord;
 
-use crate::coverage::region::sprayable_region;
+use crate::coverage::region::GroundPatches;
 use crate::geometry::rings;
 use crate::mission::flight::GeoFrame;
 use crate::mission::mavlink::Command;
@@ -454,22 +454,12 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
     }
 
     // Coverage and spray outside, as flown.
-    let regions: Vec<sprayed::FieldGround> = world
-        .farm
-        .fields
-        .iter()
-        .map(|field| {
-            sprayed::FieldGround::of(
-                &sprayable_region(
-                    field,
-                    &world.farm.obstacles,
-                    settings.boundary_margin_m,
-                    settings.obstacle_margin_m,
-                ),
-                world.vehicle.swath_width_m,
-            )
-        })
-        .collect();
+    let regions = sprayed::FieldGround::of_farm(
+        world.farm,
+        settings.boundary_margin_m,
+        settings.obstacle_margin_m,
+        world.vehicle.swath_width_m,
+    );
     // Each field's own ground: with --allow-overlap a shared part belongs to the earlier
     // field only (the rings are read even-odd, so a part in two fields would count as off).
     let own_grounds: Vec<geo::MultiPolygon<f64>> = world
@@ -594,7 +584,13 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         } else {
             0.0
         }),
-        missed_ground: std::mem::take(&mut measured.missed),
+        ground: GroundPatches {
+            unreachable: regions
+                .into_iter()
+                .map(|region| region.unreachable)
+                .collect(),
+            missed: std::mem::take(&mut measured.missed),
+        },
     }
 }
 

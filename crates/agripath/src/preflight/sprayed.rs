@@ -322,15 +322,39 @@ pub struct FieldGround {
     pub sprayable: Rings,
     /// The part of it a swath can reach.
     pub reachable: Rings,
+    /// The rest, as polygons for the map.
+    pub unreachable: geo::MultiPolygon<f64>,
 }
 
 impl FieldGround {
+    /// The ground of each field of `farm`, its sprayable region within these margins.
+    pub fn of_farm(
+        farm: &crate::model::Farm,
+        boundary_margin_m: f64,
+        obstacle_margin_m: f64,
+        width_m: f64,
+    ) -> Vec<Self> {
+        farm.fields
+            .iter()
+            .map(|field| {
+                let sprayable = crate::coverage::region::sprayable_region(
+                    field,
+                    &farm.obstacles,
+                    boundary_margin_m,
+                    obstacle_margin_m,
+                );
+                Self::of(&sprayable, width_m)
+            })
+            .collect()
+    }
+
     /// The ground of a field's `sprayable` region for a swath `width_m` wide.
     pub fn of(sprayable: &geo::MultiPolygon<f64>, width_m: f64) -> Self {
         let reachable = crate::coverage::region::reachable_region(sprayable, width_m);
         Self {
             sprayable: Rings::of_multi_polygon(sprayable),
             reachable: Rings::of_multi_polygon(&reachable),
+            unreachable: crate::coverage::region::unreachable_part(sprayable, &reachable),
         }
     }
 }
@@ -532,6 +556,7 @@ mod tests {
         let ground = FieldGround {
             sprayable: field.clone(),
             reachable: field.clone(),
+            unreachable: geo::MultiPolygon::new(vec![]),
         };
         let measured = measure(&strips, std::slice::from_ref(&ground), &field, &[], 0.05);
         let figures = measured.regions[0];
@@ -566,6 +591,7 @@ mod tests {
         let ground = FieldGround {
             sprayable,
             reachable,
+            unreachable: geo::MultiPolygon::new(vec![]),
         };
         let figures =
             measure(&[strip], std::slice::from_ref(&ground), &field, &[], 0.05).regions[0];
@@ -584,6 +610,7 @@ mod tests {
         let ground = FieldGround {
             sprayable: everywhere.clone(),
             reachable: everywhere.clone(),
+            unreachable: geo::MultiPolygon::new(vec![]),
         };
         let measured = measure(
             &[strip],

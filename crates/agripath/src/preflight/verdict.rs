@@ -96,10 +96,11 @@ pub struct Verdict {
     pub sorties: Vec<SortieFlown>,
     /// Least height above the ground of any airborne sample (takeoff and landing aside), m.
     pub lowest_clearance_m: f64,
-    /// Per field, the reachable ground missed as flown, for the map and `plan.geojson` (not
-    /// in `report.json`: `missed_m2` gives its area).
+    /// Per field, the ground no swath reaches and the reachable ground missed as flown, for
+    /// the map and `plan.geojson` (not in `report.json`: `unreachable_m2` and `missed_m2`
+    /// give their areas).
     #[serde(skip)]
-    pub missed_ground: Vec<geo::MultiPolygon<f64>>,
+    pub ground: crate::coverage::region::GroundPatches,
 }
 
 impl Verdict {

@@ -90,26 +90,34 @@ pub fn hillshade(
     }
 }
 
+/// Encodes `pixels` (8 bits a channel, rows top down, `colour`'s channels) as a PNG in memory:
+/// the one encoder of every raster the crate writes.
+pub fn encode_png(width: usize, height: usize, colour: png::ColorType, pixels: &[u8]) -> Vec<u8> {
+    let mut bytes = Vec::new();
+    {
+        let mut encoder =
+            png::Encoder::new(BufWriter::new(&mut bytes), width as u32, height as u32);
+        encoder.set_color(colour);
+        encoder.set_depth(png::BitDepth::Eight);
+        let mut writer = encoder
+            .write_header()
+            .expect("writing a PNG header to memory cannot fail");
+        writer
+            .write_image_data(pixels)
+            .expect("the pixel buffer matches the declared size");
+    }
+    bytes
+}
+
 impl Shaded {
     /// Encodes the picture as an 8-bit grey-and-alpha PNG.
     pub fn to_png(&self) -> Vec<u8> {
-        let mut bytes = Vec::new();
-        {
-            let mut encoder = png::Encoder::new(
-                BufWriter::new(&mut bytes),
-                self.width as u32,
-                self.height as u32,
-            );
-            encoder.set_color(png::ColorType::GrayscaleAlpha);
-            encoder.set_depth(png::BitDepth::Eight);
-            let mut writer = encoder
-                .write_header()
-                .expect("writing a PNG header to memory cannot fail");
-            writer
-                .write_image_data(&self.pixels)
-                .expect("the pixel buffer matches the declared size");
-        }
-        bytes
+        encode_png(
+            self.width,
+            self.height,
+            png::ColorType::GrayscaleAlpha,
+            &self.pixels,
+        )
     }
 
     /// Writes the picture as a PNG file, atomically.

@@ -9,7 +9,6 @@
 //!   wherever the track comes closer to the terrain than the minimum.
 
 use std::fmt::Write;
-use std::io::BufWriter;
 
 use super::scenario::TrackScenario;
 use crate::plot::line_chart::{escape, tick_label, ticks};
@@ -29,20 +28,7 @@ pub struct DrawnTrack<'a> {
 }
 
 fn rgb_png(width: usize, height: usize, pixels: &[u8]) -> Vec<u8> {
-    let mut bytes = Vec::new();
-    {
-        let mut encoder =
-            png::Encoder::new(BufWriter::new(&mut bytes), width as u32, height as u32);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        let mut writer = encoder
-            .write_header()
-            .expect("writing a PNG header to memory cannot fail");
-        writer
-            .write_image_data(pixels)
-            .expect("the pixel buffer matches the declared size");
-    }
-    bytes
+    crate::terrain::hillshade::encode_png(width, height, png::ColorType::Rgb, pixels)
 }
 
 /// The terrain over `extent`, tinted by height and hill-shaded, as a PNG; with the lowest and
