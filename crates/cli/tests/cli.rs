@@ -1,18 +1,10 @@
 //! End-to-end tests of the `agripath` program as users run it.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
 mod common;
-use common::{data, stdout};
-
-fn agripath(arguments: &[&str], directory: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_agripath"))
-        .args(arguments)
-        .current_dir(directory)
-        .output()
-        .unwrap()
-}
+use common::{agripath, data, stdout};
 
 fn scratch(name: &str) -> PathBuf {
     common::scratch("cli", name)

@@ -2,21 +2,12 @@
 //! the flight is an open path, optimised as one; with a launch point it starts and ends there.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
-fn agripath(arguments: &[&str], directory: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_agripath"))
-        .args(arguments)
-        .current_dir(directory)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::agripath;
 
 fn scratch(name: &str) -> PathBuf {
-    let folder = std::env::temp_dir().join(format!("agripath-open-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&folder);
-    std::fs::create_dir_all(&folder).unwrap();
-    folder
+    common::scratch("open", name)
 }
 
 fn planned(folder: &Path, arguments: &[&str], out: &str) -> serde_json::Value {

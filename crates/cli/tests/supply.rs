@@ -3,18 +3,9 @@
 //! marker keeps today's rule, access features hold the point, bad values exit 2.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 mod common;
-use common::stdout;
-
-fn agripath(arguments: &[&str], directory: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_agripath"))
-        .args(arguments)
-        .current_dir(directory)
-        .output()
-        .unwrap()
-}
+use common::{agripath, stdout};
 
 fn scratch(name: &str) -> PathBuf {
     common::scratch("supply", name)

@@ -2,7 +2,7 @@
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
-use std::process::Output;
+use std::process::{Command, Output};
 
 /// A file of the repository's `data/` folder.
 pub fn data(relative: &str) -> PathBuf {
@@ -29,4 +29,13 @@ pub fn stdout(output: &Output) -> String {
         String::from_utf8_lossy(&output.stderr)
     );
     String::from_utf8(output.stdout.clone()).unwrap()
+}
+
+/// Runs the program with `arguments` in `directory`.
+pub fn agripath(arguments: &[&str], directory: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_agripath"))
+        .args(arguments)
+        .current_dir(directory)
+        .output()
+        .unwrap()
 }
