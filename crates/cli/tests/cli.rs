@@ -479,51 +479,70 @@ fn headland_0_is_the_seed_layout_and_repro_prints_table_7() {
 #[test]
 fn bench_functions_prints_the_table_and_writes_its_folder_repeatably() {
     let folder = scratch("bench");
+    // Issue 20's command: every function, the five algorithms of seed 000.
     let arguments = [
         "bench",
         "functions",
         "--dim",
         "10",
         "--pop",
-        "20",
+        "40",
         "--iters",
-        "20",
+        "40",
         "--runs",
         "3",
-        "--algorithms",
-        "iba-fcs,lshade",
-        "--functions",
-        "f1,f7",
         "--seed",
-        "4",
+        "7",
         "--out",
         "out",
     ];
     let text = stdout(&agripath(&arguments, &folder));
-    assert!(text.contains("| f1 | best |") && text.contains("IBA-FCS") && text.contains("L-SHADE"));
-    for name in [
-        "table.md",
-        "table.csv",
-        "convergence_f1.svg",
-        "convergence_f7.svg",
-    ] {
-        assert!(folder.join("out").join(name).is_file(), "{name}");
+    for function in 1..=9 {
+        assert!(
+            text.contains(&format!("| f{function} | best |")),
+            "f{function}"
+        );
     }
-    let first = std::fs::read_to_string(folder.join("out/table.csv")).unwrap();
-    assert_eq!(first.lines().count(), 5);
-    stdout(&agripath(&arguments, &folder));
-    let again = std::fs::read_to_string(folder.join("out/table.csv")).unwrap();
-    let numbers = |csv: &str| -> Vec<String> {
-        // Everything but the timing column is reproducible from the seed.
-        csv.lines()
-            .map(|line| {
-                let mut fields: Vec<&str> = line.split(',').collect();
-                fields.remove(9);
-                fields.join(",")
-            })
+    assert!(text.contains("IBA-FCS") && text.contains("ILSSIWBA") && !text.contains("time (s)"));
+    let mut names = vec!["table.md".to_string(), "table.csv".to_string()];
+    names.extend((1..=9).map(|function| format!("convergence_f{function}.svg")));
+    let read_all = || -> Vec<Vec<u8>> {
+        names
+            .iter()
+            .map(|name| std::fs::read(folder.join("out").join(name)).expect(name))
             .collect()
     };
-    assert_eq!(numbers(&first), numbers(&again));
+    let first = read_all();
+    assert_eq!(String::from_utf8_lossy(&first[1]).lines().count(), 46);
+    // Without --times the table and every file depend on the seed alone: byte for byte.
+    assert_eq!(stdout(&agripath(&arguments, &folder)), text);
+    assert!(
+        first == read_all(),
+        "a file of the folder changed between two runs"
+    );
+
+    let timed = stdout(&agripath(
+        &[
+            "bench",
+            "functions",
+            "--dim",
+            "5",
+            "--pop",
+            "4",
+            "--iters",
+            "2",
+            "--runs",
+            "1",
+            "--functions",
+            "f1",
+            "--times",
+        ],
+        &folder,
+    ));
+    assert!(
+        timed.contains("| time (s) |") && timed.contains("wall time"),
+        "{timed}"
+    );
 }
 
 #[test]

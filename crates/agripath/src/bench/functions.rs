@@ -41,6 +41,10 @@ pub struct FunctionBench {
     /// The readings of the algorithms' open choices (issue 20); `bench functions` keeps
     /// decision 0007's, `repro seed000-table2` takes `--variant`.
     pub readings: swarm::Readings,
+    /// Whether the table carries each cell's mean wall-clock time per run (Table 2 has a time
+    /// row). Off, the table and its files depend on the settings alone and repeat byte for
+    /// byte; on, the time rows change from one run to the next.
+    pub with_times: bool,
 }
 
 impl FunctionBench {
@@ -56,6 +60,7 @@ impl FunctionBench {
             functions: swarm::functions::TABLE_1.iter().collect(),
             seed: 1,
             readings: swarm::Readings::ENGINE,
+            with_times: true,
         }
     }
 
@@ -331,7 +336,8 @@ impl FunctionTable {
                 ("std", |s| scientific(s.standard_deviation)),
                 ("time (s)", |s| format!("{:.3}", s.mean_seconds)),
             ];
-            for (index, (label, show)) in rows.iter().enumerate() {
+            let shown = if settings.with_times { 5 } else { 4 };
+            for (index, (label, show)) in rows[..shown].iter().enumerate() {
                 let name = if index == 0 { function.key } else { "" };
                 let _ = write!(text, "| {name} | {label} |");
                 for &algorithm in &settings.algorithms {
@@ -347,16 +353,26 @@ impl FunctionTable {
         text
     }
 
-    /// One line per function × algorithm.
+    /// One line per function × algorithm; the mean time column only `with_times`.
     pub fn csv(&self) -> String {
-        let mut text = String::from(
-            "function,algorithm,dimension,runs,evaluation_budget,best,worst,mean,std,mean_time_s,mean_evaluations\n",
+        let time_column = if self.settings.with_times {
+            "mean_time_s,"
+        } else {
+            ""
+        };
+        let mut text = format!(
+            "function,algorithm,dimension,runs,evaluation_budget,best,worst,mean,std,{time_column}mean_evaluations\n",
         );
         for cell in &self.cells {
             let s = &cell.statistics;
+            let time = if self.settings.with_times {
+                format!("{:.6},", s.mean_seconds)
+            } else {
+                String::new()
+            };
             let _ = writeln!(
                 text,
-                "{},{},{},{},{},{:e},{:e},{:e},{:e},{:.6},{:.1}",
+                "{},{},{},{},{},{:e},{:e},{:e},{:e},{time}{:.1}",
                 cell.function.key,
                 cell.algorithm.label(),
                 self.settings.dimension,
@@ -366,7 +382,6 @@ impl FunctionTable {
                 s.worst,
                 s.mean,
                 s.standard_deviation,
-                s.mean_seconds,
                 s.mean_evaluations
             );
         }
@@ -442,6 +457,7 @@ mod tests {
             ],
             seed: 5,
             readings: swarm::Readings::ENGINE,
+            with_times: false,
         }
     }
 

@@ -41,12 +41,17 @@ pub struct FunctionBenchOptions {
     /// Seed of the random streams.
     #[cfg_attr(feature = "cli", arg(long, default_value_t = 1))]
     pub seed: u64,
+    /// Also print and write the mean wall-clock time of a run per cell and the bench's wall
+    /// time (Table 2's time row); these change from run to run, the rest repeats byte for byte.
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub times: bool,
 }
 
 impl FunctionBenchOptions {
     /// The bench to run, its algorithms and functions found by name and its settings checked.
     pub fn settings(&self) -> Result<FunctionBench, InputError> {
         let mut settings = FunctionBench::table_2();
+        settings.with_times = self.times;
         (
             settings.dimension,
             settings.population,
@@ -104,14 +109,13 @@ pub fn run(
         .map_err(|fault| InputError::new("arguments", fault))
 }
 
-/// The outcome of `agripath bench functions`: the table and its wall time, and the folder of
+/// The outcome of `agripath bench functions`: the table (with `--times`, its wall time), and the folder of
 /// table.md, table.csv and the convergence plots.
 pub fn outcome(table: &FunctionTable) -> Outcome {
-    let text = format!(
-        "{}wall time {:.1} s\n",
-        table.markdown(),
-        table.wall_seconds
-    );
+    let mut text = table.markdown();
+    if table.settings.with_times {
+        text.push_str(&format!("wall time {:.1} s\n", table.wall_seconds));
+    }
     Outcome::with_folder(
         text,
         table.files(),
