@@ -470,12 +470,17 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         &verdict.ground,
     );
     let title = format!(
-        "{}{} — {} fields, swath {} m, {:.0} m sprayed, {:.2}% covered as flown",
+        "{}{} — {} fields, swath {} m, {:.0} m {}, {:.2}% covered as flown",
         if verdict.safe { "" } else { "UNSAFE: " },
         scenario.name,
         scenario.farm.fields.len(),
         vehicle.swath_width_m,
         mission.report.spray_length_m + mission.report.edge_length_m,
+        if vehicle.is_survey() {
+            "surveyed"
+        } else {
+            "sprayed"
+        },
         100.0 * verdict.covered_fraction()
     );
     let json = |value: &serde_json::Value| {

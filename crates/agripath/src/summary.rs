@@ -51,8 +51,11 @@ pub struct ScenarioSummary {
     pub vehicle: String,
     /// Swath width, metres.
     pub swath_width_m: f64,
-    /// Height above the terrain while spraying, metres.
+    /// Height above the terrain while spraying (a survey: while photographing), metres.
     pub spray_height_m: f64,
+    /// Whether the vehicle surveys with a camera (`[camera]`) rather than sprays.
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub surveys: bool,
     /// Seed 001's h: the climb above spray height for a transfer that leaves the work area, metres.
     pub safe_height_m: f64,
 }
@@ -119,6 +122,7 @@ impl ScenarioSummary {
             vehicle: scenario.vehicle.name.clone(),
             swath_width_m: scenario.vehicle.swath_width_m,
             spray_height_m: scenario.vehicle.spray_height_m,
+            surveys: scenario.vehicle.is_survey(),
             safe_height_m: scenario.vehicle.safe_height_m,
         }
     }
@@ -182,8 +186,12 @@ impl ScenarioSummary {
             range(self.terrain_range_m)
         ));
         text.push_str(&format!(
-            "vehicle   {}: swath {} m, spray height {} m, safe height h {} m\n",
-            self.vehicle, self.swath_width_m, self.spray_height_m, self.safe_height_m
+            "vehicle   {}: swath {} m, {} height {} m, safe height h {} m\n",
+            self.vehicle,
+            self.swath_width_m,
+            if self.surveys { "survey" } else { "spray" },
+            self.spray_height_m,
+            self.safe_height_m
         ));
         text
     }

@@ -451,6 +451,17 @@ fn a_survey_vehicle_triggers_its_camera_on_each_swath_and_has_no_tank() {
         out.to_str().unwrap(),
     ]));
     assert!(printed.contains("survey: camera every 12 m"), "{printed}");
+    // The summary speaks of surveying, not spraying.
+    assert!(
+        printed.contains("survey m") && printed.contains("total: survey "),
+        "{printed}"
+    );
+    assert!(!printed.contains("spray m"), "{printed}");
+    let validated = stdout(&agripath_without_browser(&[
+        "validate",
+        scenario.to_str().unwrap(),
+    ]));
+    assert!(validated.contains(", survey height 60 m"), "{validated}");
     let report = report(&out);
     assert_eq!(report["preflight"]["safe"], true);
     // 90 m footprint at 70 % side overlap; 60 m along the track at 80 % front overlap.

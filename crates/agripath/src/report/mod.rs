@@ -403,6 +403,12 @@ impl Report {
 
     /// The short table the CLI prints.
     pub fn to_text(&self) -> String {
+        // A survey flies its swaths with the camera on: the same columns, its own words.
+        let (work, working) = if self.survey.is_some() {
+            ("survey", "surveying")
+        } else {
+            ("spray", "spraying")
+        };
         let mut text = format!(
             "{}: {} field(s), swath {} m, heading by {}, {} edge pass(es), order by {}\n",
             self.scenario,
@@ -419,7 +425,7 @@ impl Report {
             "heading°",
             "(1° )",
             "swaths",
-            "spray m",
+            format!("{work} m"),
             "edge m",
             "covered",
             "overlap m²"
@@ -456,7 +462,7 @@ impl Report {
             ));
         }
         text.push_str(&format!(
-            "total: spray {:.1} m + edges {:.1} m, transfers {:.1} m ({} climbing), {} turns ({} U-turns), covered {:.2}%, {:.1} min ({:.1} min not spraying), planned in {:.3} s\n",
+            "total: {work} {:.1} m + edges {:.1} m, transfers {:.1} m ({} climbing), {} turns ({} U-turns), covered {:.2}%, {:.1} min ({:.1} min not {working}), planned in {:.3} s\n",
             self.spray_length_m,
             self.edge_length_m,
             self.transfer_length_m,
