@@ -476,11 +476,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         scenario.farm.fields.len(),
         vehicle.swath_width_m,
         mission.report.spray_length_m + mission.report.edge_length_m,
-        if vehicle.is_survey() {
-            "surveyed"
-        } else {
-            "sprayed"
-        },
+        crate::model::Vehicle::work_words(vehicle.is_survey())[2],
         100.0 * verdict.covered_fraction()
     );
     let json = |value: &serde_json::Value| {

@@ -189,7 +189,7 @@ impl ScenarioSummary {
             "vehicle   {}: swath {} m, {} height {} m, safe height h {} m\n",
             self.vehicle,
             self.swath_width_m,
-            if self.surveys { "survey" } else { "spray" },
+            crate::model::Vehicle::work_words(self.surveys)[0],
             self.spray_height_m,
             self.safe_height_m
         ));

@@ -476,6 +476,22 @@ fn headland_0_is_the_seed_layout_and_repro_prints_table_7() {
     std::fs::remove_dir_all(&folder).unwrap();
 }
 
+/// A function bench that runs in moments: one function, one algorithm, one short run.
+const TINY_BENCH: [&str; 12] = [
+    "bench",
+    "functions",
+    "--pop",
+    "4",
+    "--iters",
+    "2",
+    "--runs",
+    "1",
+    "--functions",
+    "f1",
+    "--algorithms",
+    "pso",
+];
+
 #[test]
 fn bench_functions_prints_the_table_and_writes_its_folder_repeatably() {
     let folder = scratch("bench");
@@ -522,21 +538,7 @@ fn bench_functions_prints_the_table_and_writes_its_folder_repeatably() {
     );
 
     let timed = stdout(&agripath(
-        &[
-            "bench",
-            "functions",
-            "--dim",
-            "5",
-            "--pop",
-            "4",
-            "--iters",
-            "2",
-            "--runs",
-            "1",
-            "--functions",
-            "f1",
-            "--times",
-        ],
+        &[&TINY_BENCH[..], &["--times"]].concat(),
         &folder,
     ));
     assert!(
@@ -1222,22 +1224,8 @@ fn a_kill_at_any_point_of_the_commit_leaves_the_old_or_the_new_folder_whole() {
         return;
     }
     // Every point of a small folder's commit (three files: staged, swapped, old removed).
-    let bench = [
-        "bench",
-        "functions",
-        "--pop",
-        "4",
-        "--iters",
-        "2",
-        "--runs",
-        "1",
-        "--functions",
-        "f1",
-        "--algorithms",
-        "pso",
-    ];
     let points: Vec<u64> = (1..=40).collect();
-    let kills = killed_at_every_commit_point("kill-bench", &bench, &points);
+    let kills = killed_at_every_commit_point("kill-bench", &TINY_BENCH, &points);
     println!("the bench folder's commit was killed at each of its {kills} fault points");
     assert!(kills >= 6, "only {kills} fault points reached");
     // The demo's 26 files, at points while staging, at the swap and while removing the old.

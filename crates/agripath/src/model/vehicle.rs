@@ -201,6 +201,17 @@ impl Vehicle {
         self.camera.is_some()
     }
 
+    /// The words the summaries, the report and the map use for a vehicle's work on its
+    /// swaths: the noun, the participle and the past ("spray", "spraying", "sprayed"), or a
+    /// survey's.
+    pub fn work_words(surveys: bool) -> [&'static str; 3] {
+        if surveys {
+            ["survey", "surveying", "surveyed"]
+        } else {
+            ["spray", "spraying", "sprayed"]
+        }
+    }
+
     /// The survey camera's trigger distance, metres (`None` for a sprayer).
     pub fn trigger_distance_m(&self) -> Option<f64> {
         self.camera.as_ref().and_then(Camera::trigger_distance_m)

@@ -404,11 +404,7 @@ impl Report {
     /// The short table the CLI prints.
     pub fn to_text(&self) -> String {
         // A survey flies its swaths with the camera on: the same columns, its own words.
-        let (work, working) = if self.survey.is_some() {
-            ("survey", "surveying")
-        } else {
-            ("spray", "spraying")
-        };
+        let [work, working, _] = crate::model::Vehicle::work_words(self.survey.is_some());
         let mut text = format!(
             "{}: {} field(s), swath {} m, heading by {}, {} edge pass(es), order by {}\n",
             self.scenario,

@@ -109,8 +109,8 @@ pub fn run(
         .map_err(|fault| InputError::new("arguments", fault))
 }
 
-/// The outcome of `agripath bench functions`: the table (with `--times`, its wall time), and the folder of
-/// table.md, table.csv and the convergence plots.
+/// The outcome of `agripath bench functions`: the table (with `--times`, its wall time) and
+/// the folder of table.md, table.csv and the convergence plots.
 pub fn outcome(table: &FunctionTable) -> Outcome {
     let mut text = table.markdown();
     if table.settings.with_times {
