@@ -2,7 +2,7 @@
 //! measured as flown by the preflight read-back in `report.json` (issue 22, decision 0019),
 //! and the ground no swath reaches in `plan.geojson` (decision 0023).
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-mod common;
+use crate::common;
 use common::{agripath, data, stdout};
 
 fn scratch(name: &str) -> PathBuf {
