@@ -107,6 +107,15 @@ struct ScenarioFile {
     allow_overlap: bool,
 }
 
+/// The scenario file's `[vehicle]` table read as a vehicle straight from the text, so that a
+/// wrong type or an unknown key in it is reported at its line and column (the table merged
+/// later has no places). The other keys are [`ScenarioFile`]'s to check.
+#[derive(Deserialize)]
+struct InlineVehicle {
+    #[serde(rename = "vehicle")]
+    _vehicle: Vehicle,
+}
+
 impl Scenario {
     /// Reads a scenario TOML file; paths in it are relative to its folder. `allow_overlap`
     /// (`--allow-overlap`) adds to the file's own `allow_overlap`.
@@ -118,6 +127,10 @@ impl Scenario {
         let text = read_text(path)?;
         let file: ScenarioFile =
             toml::from_str(&text).map_err(|error| InputError::toml(path, &error, &text))?;
+        if file.vehicle.is_some() {
+            toml::from_str::<InlineVehicle>(&text)
+                .map_err(|error| InputError::toml(path, &error, &text))?;
+        }
         let base = path.parent().unwrap_or(Path::new("")).to_path_buf();
         let coordinates = match file.crs.as_deref() {
             None => CoordinateChoice::FromFile,
@@ -333,6 +346,31 @@ mod tests {
         Path::new(env!("CARGO_MANIFEST_DIR"))
             .join("../../data")
             .join(relative)
+    }
+
+    #[test]
+    fn a_bad_inline_vehicle_is_placed_at_its_line_and_column() {
+        let folder =
+            std::env::temp_dir().join(format!("agripath-inline-vehicle-{}", std::process::id()));
+        std::fs::create_dir_all(&folder).unwrap();
+        let scenario = folder.join("scenario.toml");
+        std::fs::write(
+            &scenario,
+            "fields = \"fields.geojson\"\n\n[vehicle]\nname = \"x\"\nswath_width_m = \"wide\"\n",
+        )
+        .unwrap();
+        let Err(error) = Scenario::from_file(&scenario, VehicleOverrides::default(), false) else {
+            panic!("a string swath width was accepted");
+        };
+        let error = error.to_string();
+        let place = format!("{}:5:17:", scenario.display());
+        assert!(error.starts_with(&place), "{error}");
+        assert!(
+            error.contains("swath_width_m") || error.contains("wide"),
+            "{error}"
+        );
+        assert!(!error.contains('\n'), "{error}");
+        std::fs::remove_dir_all(&folder).unwrap();
     }
 
     /// Lon/lat fields planned in UTM 32N over a DEM in EPSG:4326: each query goes back to

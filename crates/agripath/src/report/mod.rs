@@ -441,7 +441,7 @@ impl Report {
             ));
         }
         if let Some(supply) = &self.supply {
-            text.push_str(&supply.to_text());
+            text.push_str(&supply.to_text(working));
         }
         if let Some(planner) = self.sortie_planner {
             text.push_str(&format!(

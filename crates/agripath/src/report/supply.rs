@@ -142,15 +142,15 @@ impl SupplyReport {
         }
     }
 
-    /// The summary's line.
-    pub fn to_text(&self) -> String {
+    /// The summary's line; `working` is "spraying" or "surveying" ([`crate::model::Vehicle::work_words`]).
+    pub fn to_text(&self, working: &str) -> String {
         let place = match self.at.lon_lat {
             Some([lon, lat]) => format!("{lon:.6}, {lat:.6}"),
             None => format!("{:.1}, {:.1} m", self.at.point_m[0], self.at.point_m[1]),
         };
         match &self.auto {
             Some(auto) => format!(
-                "supply point (auto{}): {place}; {:.0} s not spraying by the split of the route planned without a start, against {:.0} s from the route's first point (the old rule{}): {}; {:.0} s as planned from it{}\n",
+                "supply point (auto{}): {place}; {:.0} s not {working} by the split of the route planned without a start, against {:.0} s from the route's first point (the old rule{}): {}; {:.0} s as planned from it{}\n",
                 if auto.on_access { ", on access features" } else { "" },
                 self.cost_s.unwrap_or(f64::NAN),
                 auto.first_point.cost_s,
@@ -180,7 +180,7 @@ impl SupplyReport {
                 }
             ),
             None => format!(
-                "supply point ({}): {place}; {:.0} s not spraying as planned from it\n",
+                "supply point ({}): {place}; {:.0} s not {working} as planned from it\n",
                 self.rule, self.planned_cost_s
             ),
         }

@@ -457,6 +457,10 @@ fn a_survey_vehicle_triggers_its_camera_on_each_swath_and_has_no_tank() {
         "{printed}"
     );
     assert!(!printed.contains("spray m"), "{printed}");
+    assert!(
+        !printed.contains("spraying") && printed.contains("s not surveying"),
+        "{printed}"
+    );
     let validated = stdout(&agripath_without_browser(&[
         "validate",
         scenario.to_str().unwrap(),

@@ -376,14 +376,16 @@ impl<'a> Painter<'a> {
         let placement = transform
             .pre_translate(x, y)
             .pre_scale(width / picture_width, height / picture_height);
-        let mut paint = Paint::default();
-        paint.shader = Pattern::new(
-            picture.as_ref(),
-            SpreadMode::Pad,
-            FilterQuality::Bicubic,
-            opacity,
-            Transform::identity(),
-        );
+        let paint = Paint {
+            shader: Pattern::new(
+                picture.as_ref(),
+                SpreadMode::Pad,
+                FilterQuality::Bicubic,
+                opacity,
+                Transform::identity(),
+            ),
+            ..Paint::default()
+        };
         let area = Rect::from_xywh(0.0, 0.0, picture_width, picture_height).ok_or("empty image")?;
         self.pixmap.fill_rect(area, &paint, placement, mask);
         Ok(())
@@ -514,10 +516,8 @@ fn inherit(parent: &Style, element: &Element) -> Result<Style, String> {
             // Every family is the embedded DejaVu Sans (see text.rs).
             "font-family" => {}
             // Drawn regular: no bold face is shipped (see text.rs).
-            "font-weight" => {
-                if !matches!(trimmed, "normal" | "bold" | "400" | "700") {
-                    return Err(fault("not normal or bold"));
-                }
+            "font-weight" if !matches!(trimmed, "normal" | "bold" | "400" | "700") => {
+                return Err(fault("not normal or bold"));
             }
             _ => {}
         }
