@@ -19,6 +19,10 @@ pub(super) struct Search<'a, 'b> {
     pub(super) from_start: bool,
     /// The tour ends at the start point (`Start::Fixed`).
     pub(super) home: bool,
+    /// The descent's queue of passes to look at, and which passes are in it (kept between
+    /// descents so that a kick allocates nothing).
+    pub(super) queue: Vec<usize>,
+    pub(super) queued: Vec<bool>,
 }
 
 impl Search<'_, '_> {
@@ -63,9 +67,31 @@ impl Search<'_, '_> {
     }
 
     pub(super) fn reindex(&mut self) {
-        for (index, step) in self.tour.iter().enumerate() {
-            self.position[step.pass] = index;
+        self.reindex_range(0, self.tour.len());
+    }
+
+    /// Positions of the passes at `from..to` (a move changes only the stretch it touched).
+    fn reindex_range(&mut self, from: usize, to: usize) {
+        for (index, step) in self.tour[from..to].iter().enumerate() {
+            self.position[step.pass] = from + index;
         }
+    }
+
+    /// The cost of the transfer into position `p` (from the start point, the last pass of a
+    /// closed tour, or nothing).
+    fn transfer_into(&self, p: usize) -> f64 {
+        self.edge(self.previous(p), Some(self.tour[p].entry()))
+    }
+
+    /// A double bridge in place: the stretches `a..b` and `b..c` (0 < a < b < c < n) swap
+    /// places, each flown as it was. Returns the change in tour cost: three transfers change,
+    /// the first and the last pass stay where they are.
+    pub(super) fn double_bridge(&mut self, a: usize, b: usize, c: usize) -> f64 {
+        let old = self.transfer_into(a) + self.transfer_into(b) + self.transfer_into(c);
+        self.tour[a..c].rotate_left(b - a);
+        self.reindex_range(a, c);
+        let new = self.transfer_into(a) + self.transfer_into(a + c - b) + self.transfer_into(c);
+        new - old
     }
 
     /// Gain of reversing positions p..=q (positive = cheaper).
@@ -87,48 +113,52 @@ impl Search<'_, '_> {
         for step in &mut self.tour[p..=q] {
             *step = step.flipped();
         }
-        self.reindex();
+        self.reindex_range(p, q + 1);
     }
 
     /// The best 2-opt move at the transfer into position `p`, applied if it improves the
-    /// tour. Returns the range reversed.
-    fn two_opt_at(&mut self, p: usize) -> Option<(usize, usize)> {
-        let mut candidates: Vec<(usize, usize)> = vec![(p, p)];
+    /// tour. Returns the range reversed and the gain.
+    fn two_opt_at(&mut self, p: usize) -> Option<(usize, usize, f64)> {
+        // The last of equal gains wins, in the order the candidates are listed.
+        let mut best = (self.reversal_gain(p, p), p, p);
+        let mut consider = |from: usize, to: usize, this: &Self| {
+            let gain = this.reversal_gain(from, to);
+            if gain >= best.0 {
+                best = (gain, from, to);
+            }
+        };
         if let Some(before) = self.previous(p).filter(|end| *end != START) {
             for &end in &self.neighbours[before] {
                 let q = self.position[end / 2];
                 if q > p && self.tour[q].exit() == end {
-                    candidates.push((p, q));
+                    consider(p, q, self);
                 }
             }
         }
         for &end in &self.neighbours[self.tour[p].entry()] {
             let q = self.position[end / 2];
             if q < p && self.tour[q].entry() == end {
-                candidates.push((q, p - 1));
+                consider(q, p - 1, self);
             }
         }
         // A free end of the path (the open path's dummy node, at zero cost from every end):
         // flying the whole head or the whole tail backwards changes one transfer only.
         if self.previous(0).is_none() && p > 0 {
-            candidates.push((0, p - 1));
+            consider(0, p - 1, self);
         }
         if self.next(self.tour.len() - 1).is_none() {
-            candidates.push((p, self.tour.len() - 1));
+            consider(p, self.tour.len() - 1, self);
         }
-        let (gain, from, to) = candidates
-            .into_iter()
-            .map(|(from, to)| (self.reversal_gain(from, to), from, to))
-            .max_by(|a, b| a.0.total_cmp(&b.0))?;
+        let (gain, from, to) = best;
         (gain > 1e-9).then(|| {
             self.reverse(from, to);
-            (from, to)
+            (from, to, gain)
         })
     }
 
     /// The best Or-opt move of a chain of 1-3 passes starting at position `i`, applied if it
-    /// improves the tour. Returns the positions the chain now occupies.
-    fn or_opt_at(&mut self, i: usize) -> Option<(usize, usize)> {
+    /// improves the tour. Returns the positions the chain now occupies and the gain.
+    fn or_opt_at(&mut self, i: usize) -> Option<(usize, usize, f64)> {
         let n = self.tour.len();
         if n < 3 {
             return None;
@@ -143,25 +173,25 @@ impl Search<'_, '_> {
             .unwrap_or(i);
         // And chains [i, q) whose removal joins the flight before i to a near end at q: the
         // or-3opt segment moves that short chains cannot make.
-        let mut lengths: Vec<usize> = (1..=3usize)
-            .chain(std::iter::once(block_end + 1 - i))
-            .collect();
+        let mut consider = |length: usize, this: &Self| {
+            let j = i + length - 1;
+            if j >= n || length >= n {
+                return;
+            }
+            if let Some((gain, insert_at, reversed)) = this.best_insertion(i, j) {
+                if best.is_none_or(|(best_gain, ..)| gain > best_gain) {
+                    best = Some((gain, j, insert_at, reversed));
+                }
+            }
+        };
+        for length in [1, 2, 3, block_end + 1 - i] {
+            consider(length, self);
+        }
         if let Some(before) = self.previous(i).filter(|end| *end != START) {
             for &end in &self.neighbours[before] {
                 let q = self.position[end / 2];
                 if q > i + 3 && self.tour[q].entry() == end && q - i <= n / 2 {
-                    lengths.push(q - i);
-                }
-            }
-        }
-        for length in lengths {
-            let j = i + length - 1;
-            if j >= n || length >= n {
-                continue;
-            }
-            if let Some((gain, insert_at, reversed)) = self.best_insertion(i, j) {
-                if best.is_none_or(|(best_gain, ..)| gain > best_gain) {
-                    best = Some((gain, j, insert_at, reversed));
+                    consider(q - i, self);
                 }
             }
         }
@@ -170,20 +200,20 @@ impl Search<'_, '_> {
             return None;
         }
         let length = j - i + 1;
-        let mut chain: Vec<Step> = self.tour.drain(i..=j).collect();
-        if reversed {
-            chain.reverse();
-            chain.iter_mut().for_each(|step| *step = step.flipped());
-        }
-        // `insert_at` indexes the tour before removal.
+        // Moving the chain is a rotation of the stretch between its place and its new one.
         let at = if insert_at > j {
+            self.tour[i..insert_at].rotate_left(length);
+            self.reindex_range(i, insert_at);
             insert_at - length
         } else {
+            self.tour[insert_at..=j].rotate_right(length);
+            self.reindex_range(insert_at, j + 1);
             insert_at
         };
-        self.tour.splice(at..at, chain);
-        self.reindex();
-        Some((at, at + length - 1))
+        if reversed {
+            self.reverse(at, at + length - 1);
+        }
+        Some((at, at + length - 1, gain))
     }
 
     /// Best place to move chain i..=j to: (gain, insertion index before removal, reversed).
@@ -225,10 +255,22 @@ impl Search<'_, '_> {
                 }
             }
         };
-        for &end in self.neighbours[entry].iter().chain(&self.neighbours[exit]) {
-            let q = self.position[end / 2];
-            consider(q, self);
-            consider(q + 1, self);
+        // The gain criterion of Lin and Kernighan: a move that joins the chain to a near end
+        // by a transfer that costs as much as removing the chain saves cannot gain unless
+        // eq. (8) breaks the triangle inequality by more; such near ends are skipped (most of
+        // them, after a descent), which is what makes a kick cheap.
+        for (own, list) in [
+            (entry, &self.neighbours[entry]),
+            (exit, &self.neighbours[exit]),
+        ] {
+            for &end in list {
+                if self.problem.cost(own, end) >= removed {
+                    continue;
+                }
+                let q = self.position[end / 2];
+                consider(q, self);
+                consider(q + 1, self);
+            }
         }
         // Free ends of the path: the chain may become its new first or last stretch.
         if self.previous(0).is_none() {
@@ -242,10 +284,20 @@ impl Search<'_, '_> {
 
     /// Local search to a local optimum, looking only around `active` passes and around
     /// every move made (don't-look bits): a kick costs work near its cuts, not a whole sweep.
-    pub(super) fn descend(&mut self, active: impl IntoIterator<Item = usize>, mut budget: usize) {
+    /// Returns the sum of the gains of the moves made.
+    pub(super) fn descend(
+        &mut self,
+        active: impl IntoIterator<Item = usize>,
+        mut budget: usize,
+    ) -> f64 {
         let n = self.tour.len();
-        let mut queued = vec![false; n];
-        let mut queue: Vec<usize> = Vec::new();
+        let (mut queue, mut queued) = (
+            std::mem::take(&mut self.queue),
+            std::mem::take(&mut self.queued),
+        );
+        queue.clear();
+        queued.clear();
+        queued.resize(n, false);
         let wake = |pass: usize, queue: &mut Vec<usize>, queued: &mut Vec<bool>| {
             if !queued[pass] {
                 queued[pass] = true;
@@ -255,6 +307,7 @@ impl Search<'_, '_> {
         for pass in active {
             wake(pass, &mut queue, &mut queued);
         }
+        let mut gained = 0.0;
         while let Some(pass) = queue.pop() {
             queued[pass] = false;
             if budget == 0 {
@@ -269,7 +322,8 @@ impl Search<'_, '_> {
             if changed.is_none() {
                 changed = self.or_opt_at(p);
             }
-            if let Some((from, to)) = changed {
+            if let Some((from, to, gain)) = changed {
+                gained += gain;
                 for position in [from.saturating_sub(1), from, to, (to + 1).min(n - 1)] {
                     let touched = self.tour[position].pass;
                     wake(touched, &mut queue, &mut queued);
@@ -277,6 +331,8 @@ impl Search<'_, '_> {
                 wake(pass, &mut queue, &mut queued);
             }
         }
+        (self.queue, self.queued) = (queue, queued);
+        gained
     }
 }
 
