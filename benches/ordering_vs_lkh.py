@@ -13,9 +13,13 @@ constant 20 × the longest edge) and in decimetres (2 ×), RUNS = 10 each by def
 cheaper tour that keeps every pair, re-costed on the float matrix, is the reference.
 
 Run (one command: builds and runs the Rust side into a temporary folder, then LKH):
-    .peers/bench/bin/python benches/ordering_vs_lkh.py [DIR] [RUNS]
-With DIR given and holding instances, the Rust side is not run again.
+    .peers/bench/bin/python benches/ordering_vs_lkh.py [DIR] [RUNS] [-- BENCH_SEQUENCE_ARGS...]
+With DIR given and holding instances, the Rust side is not run again; arguments after `--`
+go to bench_sequence (e.g. `-- --kicks 800`). With LKH_CACHE=FILE, LKH's results are kept
+in FILE by instance, kind, runs and a hash of the matrix, and reused when all four match
+(LKH's side does not change with ours; a changed matrix is run again).
 """
+import hashlib
 import json
 import os
 import subprocess
@@ -93,19 +97,38 @@ def recost(matrix, ends, closed):
     return total
 
 
-def export(folder):
+def export(folder, extra):
     subprocess.run(
         ["cargo", "run", "--release", "-q", "-p", "agripath", "--example", "bench_sequence",
-         "--", "--export", folder, "--lkh-only"],
+         "--", "--export", folder, "--lkh-only", *extra],
         check=True,
     )
 
 
+def cached_lkh(cache, matrix, open_path, runs, key):
+    """`lkh`, through the cache dictionary `cache` (None: no cache)."""
+    if cache is None:
+        return lkh(matrix, open_path, runs)
+    digest = hashlib.sha256(json.dumps(matrix).encode()).hexdigest()[:16]
+    entry = f"{key}/{'open' if open_path else 'closed'}/{runs}/{digest}"
+    if entry not in cache:
+        cache[entry] = list(lkh(matrix, open_path, runs))
+    return tuple(cache[entry])
+
+
 def main():
-    folder = sys.argv[1] if len(sys.argv) > 1 else tempfile.mkdtemp(prefix="ordering_vs_lkh_")
-    runs = int(sys.argv[2]) if len(sys.argv) > 2 else 10
+    arguments = sys.argv[1:]
+    extra = arguments[arguments.index("--") + 1:] if "--" in arguments else []
+    arguments = arguments[:arguments.index("--")] if "--" in arguments else arguments
+    folder = arguments[0] if arguments else tempfile.mkdtemp(prefix="ordering_vs_lkh_")
+    runs = int(arguments[1]) if len(arguments) > 1 else 10
+    os.makedirs(folder, exist_ok=True)
     if not any(name.endswith(".json") for name in os.listdir(folder)):
-        export(folder)
+        export(folder, extra)
+    cache_file = os.environ.get("LKH_CACHE")
+    cache = None
+    if cache_file:
+        cache = json.load(open(cache_file)) if os.path.exists(cache_file) else {}
     print(f"{'instance':<14} {'passes':>6} | {'open m':>9} {'LKH m':>9} {'ours/LKH':>8} {'ms':>6} |"
           f" {'closed m':>9} {'LKH m':>9} {'ours/LKH':>8} {'ms':>6} | {'LKH s':>5}")
     ratios = {"open": [], "closed": []}
@@ -116,7 +139,8 @@ def main():
         cells = []
         lkh_seconds = 0.0
         for kind in ("open", "closed"):
-            theirs, seconds, kept = lkh(instance["matrix"], kind == "open", runs)
+            theirs, seconds, kept = cached_lkh(cache, instance["matrix"], kind == "open", runs,
+                                               instance["name"])
             lkh_seconds += seconds
             ours = recost(instance["matrix"], instance[f"{kind}_ends"], kind == "closed")
             if abs(ours - instance[f"{kind}_m"]) > 0.01 * len(instance["matrix"]):
@@ -126,6 +150,8 @@ def main():
             flag = "" if kept else "!"
             cells.append(f"{ours:>9.1f} {theirs:>9.1f}{flag:1}{ratio:>7.4f} {instance[f'{kind}_ms']:>6.1f}")
         print(f"{instance['name']:<14} {instance['passes']:>6} | {cells[0]} | {cells[1]} | {lkh_seconds:>5.1f}")
+        if cache_file:
+            json.dump(cache, open(cache_file, "w"))
     for kind, values in ratios.items():
         within = sum(1 for ratio, _ in values if ratio <= 1.01)
         fast = sum(1 for ratio, ms in values if ratio <= 1.01 and ms <= 100.0)

@@ -7,8 +7,11 @@
 //! which runs this and prints ours / LKH. `--lkh-only` skips the first and last parts. Run:
 //!
 //! ```sh
-//! cargo run --release -p agripath --example bench_sequence [-- --export DIR] [--lkh-only]
+//! cargo run --release -p agripath --example bench_sequence [-- --export DIR] [--lkh-only] [--kicks N] [--seed N]
 //! ```
+//!
+//! `--kicks N` and `--seed N` run `best` with N kicks or seed N instead of the defaults (to
+//! measure quality against time, and its spread over seeds, without a rebuild).
 
 use std::time::Instant;
 
@@ -147,10 +150,30 @@ fn export(folder: &str, instance: &Instance) {
     .unwrap();
 }
 
+/// `best`'s settings: the default, or `--kicks N` kicks and `--seed N`.
+fn best_settings() -> LocalSearchSettings {
+    let arguments: Vec<String> = std::env::args().collect();
+    let kicks = arguments
+        .iter()
+        .skip_while(|arg| *arg != "--kicks")
+        .nth(1)
+        .map(|value| value.parse().expect("--kicks takes a whole number"));
+    let seed = arguments
+        .iter()
+        .skip_while(|arg| *arg != "--seed")
+        .nth(1)
+        .map(|value| value.parse().expect("--seed takes a whole number"));
+    let default = LocalSearchSettings::default();
+    LocalSearchSettings {
+        kicks: kicks.unwrap_or(default.kicks),
+        seed: seed.unwrap_or(default.seed),
+    }
+}
+
 /// `best` on `plan` from `start`: the problem built (its cost matrix) and ordered, median of
 /// 3 runs.
 fn measure(plan: &CoveragePlan, model: &TransferModel, start: Start) -> Measured {
-    let best = Sequencer::Best(LocalSearchSettings::default());
+    let best = Sequencer::Best(best_settings());
     let mut tour = Vec::new();
     let (ms, cost) = median_ms(3, || {
         let (problem, groups) = ordering_problem(plan, model, start);
@@ -224,7 +247,7 @@ fn main() {
                 "aco (200 × 50)",
                 Sequencer::AntColony(AntColonySettings::default()),
             ),
-            ("best", Sequencer::Best(LocalSearchSettings::default())),
+            ("best", Sequencer::Best(best_settings())),
         ] {
             let (ms, cost) = median_ms(5, || route(&plan, &model, start, &sequencer).tour_cost_m);
             println!("  {label:<16} {ms:>9.1} ms   tour {cost:.1} m");
@@ -271,7 +294,7 @@ fn main() {
         let plan = layout(&farm);
         let count: usize = plan.fields.iter().map(|f| f.swaths.len()).sum();
         let model = TransferModel::new(&farm, 18.0);
-        let best = Sequencer::Best(LocalSearchSettings::default());
+        let best = Sequencer::Best(best_settings());
         let (ms, cost) = median_ms(3, || route(&plan, &model, Start::Open, &best).tour_cost_m);
         println!("  {fields:>3} fields, {count:>5} swaths: {ms:>9.1} ms   open path {cost:.1} m");
     }

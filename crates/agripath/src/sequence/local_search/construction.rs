@@ -3,7 +3,7 @@
 //! up to ten fields, and block relocation above (see the parent module).
 
 use super::super::tour::{End, OrderingProblem, Step};
-use super::double_bridge;
+use super::blocks::{BlockSearch, Blocks, Placed};
 
 /// Field-by-field boustrophedon: `groups` lists each field's passes in scan-line order.
 pub fn boustrophedon(problem: &OrderingProblem, groups: &[Vec<usize>]) -> Vec<Step> {
@@ -207,9 +207,6 @@ pub(super) fn block_steps(passes: &[usize], variant: usize) -> Vec<Step> {
 /// Every field's block in each of its four variants, with the cost inside it.
 struct FieldBlocks(Vec<Vec<(Vec<Step>, f64)>>);
 
-/// A field and one of its four block variants.
-type Placed = (usize, usize);
-
 impl FieldBlocks {
     fn new(problem: &OrderingProblem, fields: &[&Vec<usize>]) -> Self {
         Self(
@@ -224,6 +221,16 @@ impl FieldBlocks {
         )
     }
 
+    /// The passes of blocks flown in `order`.
+    fn steps(&self, order: &[Placed]) -> Vec<Step> {
+        order
+            .iter()
+            .flat_map(|&(field, variant)| self.0[field][variant].0.iter().copied())
+            .collect()
+    }
+}
+
+impl Blocks for FieldBlocks {
     fn entry(&self, (field, variant): Placed) -> End {
         self.0[field][variant].0[0].entry()
     }
@@ -241,12 +248,12 @@ impl FieldBlocks {
         self.0[field][variant].1
     }
 
-    /// The passes of blocks flown in `order`.
-    fn steps(&self, order: &[Placed]) -> Vec<Step> {
-        order
-            .iter()
-            .flat_map(|&(field, variant)| self.0[field][variant].0.iter().copied())
-            .collect()
+    /// Backwards, the lines run the other way (bit 0) and the first pass flown is the old
+    /// last one, flown the other way (bit 1 from the old last pass's direction).
+    fn backwards(&self, (field, variant): Placed) -> Placed {
+        let passes = self.0[field][variant].0.len();
+        let last_reversed = (variant & 2 == 2) ^ passes.is_multiple_of(2);
+        (field, (variant ^ 1) | (usize::from(!last_reversed) << 1))
     }
 }
 
@@ -357,27 +364,9 @@ pub fn block_local_search(
         return None;
     }
     let blocks = FieldBlocks::new(problem, &fields);
-    let entry = |placed: Placed| blocks.entry(placed);
-    let exit = |placed: Placed| blocks.exit(placed);
-    let (closed, home) = (problem.start.is_closed(), problem.start.returns_home());
-    let total = |order: &[(usize, usize)]| -> f64 {
-        let inside: f64 = order.iter().map(|&placed| blocks.inside(placed)).sum();
-        let between: f64 = order
-            .windows(2)
-            .map(|pair| problem.cost(exit(pair[0]), entry(pair[1])))
-            .sum();
-        let last = order[order.len() - 1];
-        let ends = if closed {
-            problem.cost(exit(last), entry(order[0]))
-        } else if home {
-            problem.cost_from_start(entry(order[0])) + problem.cost_from_start(exit(last))
-        } else {
-            problem.cost_from_start(entry(order[0]))
-        };
-        inside + between + ends
-    };
+    let (entry, exit) = (|p: Placed| blocks.entry(p), |p: Placed| blocks.exit(p));
     // Nearest-first chain as the start.
-    let mut order: Vec<(usize, usize)> = Vec::with_capacity(count);
+    let mut order: Vec<Placed> = Vec::with_capacity(count);
     let mut left: Vec<usize> = (0..count).collect();
     while !left.is_empty() {
         let (slot, choice) = left
@@ -385,7 +374,7 @@ pub fn block_local_search(
             .enumerate()
             .flat_map(|(slot, &field)| (0..4).map(move |variant| (slot, (field, variant))))
             .min_by(|a, b| {
-                let cost = |choice: (usize, usize)| match order.last() {
+                let cost = |choice: Placed| match order.last() {
                     Some(&last) => problem.cost(exit(last), entry(choice)),
                     None => problem.cost_from_start(entry(choice)),
                 };
@@ -395,118 +384,12 @@ pub fn block_local_search(
         left.remove(slot);
         order.push(choice);
     }
-    // Cost of the link from block a to block b (None: the start, or nothing after the end).
-    let link = |from: Option<(usize, usize)>, to: Option<(usize, usize)>| -> f64 {
-        match (from, to) {
-            (Some(a), Some(b)) => problem.cost(exit(a), entry(b)),
-            (None, Some(b)) if !closed => problem.cost_from_start(entry(b)),
-            (Some(a), None) if home => problem.cost_from_start(exit(a)),
-            _ => 0.0,
-        }
-    };
-    // The blocks on either side of a gap in a sequence (closed tours wrap around).
-    type Block = Option<(usize, usize)>;
-    let around = |sequence: &[(usize, usize)], gap: usize| -> (Block, Block) {
-        let n = sequence.len();
-        let before = if gap > 0 {
-            Some(sequence[gap - 1])
-        } else if closed && n > 0 {
-            Some(sequence[n - 1])
-        } else {
-            None
-        };
-        let after = if gap < n {
-            Some(sequence[gap])
-        } else if closed && n > 0 {
-            Some(sequence[0])
-        } else {
-            None
-        };
-        (before, after)
-    };
-    let start_cost = total(&order);
-    // Move one block (any variant) to the best other gap while that gains; O(F² · 4) a round.
-    let improve = |order: &mut Vec<(usize, usize)>| {
-        for _ in 0..50 {
-            let mut improved = false;
-            for from in 0..count {
-                let moving = order[from];
-                let (before, _) = around(order, from);
-                let (_, after) = around(order, from + 1);
-                let removal =
-                    link(before, Some(moving)) + link(Some(moving), after) - link(before, after);
-                let mut without = order.clone();
-                without.remove(from);
-                let mut choice: Option<(f64, usize, (usize, usize))> = None;
-                for to in 0..=without.len() {
-                    let (left, right) = around(&without, to);
-                    let base = link(left, right);
-                    for (variant, (_, internal)) in blocks.0[moving.0].iter().enumerate() {
-                        let candidate = (moving.0, variant);
-                        let added = link(left, Some(candidate)) + link(Some(candidate), right)
-                            - base
-                            + internal
-                            - blocks.inside(moving);
-                        let gain = removal - added;
-                        if gain > 1e-9 && choice.is_none_or(|(best_gain, ..)| gain > best_gain) {
-                            choice = Some((gain, to, candidate));
-                        }
-                    }
-                }
-                if let Some((_, to, candidate)) = choice {
-                    without.insert(to, candidate);
-                    *order = without;
-                    improved = true;
-                }
-            }
-            // 2-opt over blocks: fly a run of blocks in reverse order, each one backwards (its
-            // entry and exit swap; its inside cost is unchanged, eq. 8 being symmetric).
-            let backwards = |(field, variant): (usize, usize)| {
-                let passes = blocks.0[field][variant].0.len();
-                let last_reversed = (variant & 2 == 2) ^ passes.is_multiple_of(2);
-                (field, (variant ^ 1) | (usize::from(!last_reversed) << 1))
-            };
-            for i in 0..if reversals { count } else { 0 } {
-                for j in i + 1..count {
-                    if closed && i == 0 && j == count - 1 {
-                        continue;
-                    }
-                    let (before, _) = around(order, i);
-                    let (_, after) = around(order, j + 1);
-                    let old = link(before, Some(order[i])) + link(Some(order[j]), after);
-                    let new = link(before, Some(backwards(order[j])))
-                        + link(Some(backwards(order[i])), after);
-                    if new < old - 1e-9 {
-                        order[i..=j].reverse();
-                        for item in &mut order[i..=j] {
-                            *item = backwards(*item);
-                        }
-                        improved = true;
-                    }
-                }
-            }
-            if !improved {
-                break;
-            }
-        }
-    };
-    improve(&mut order);
-    // Iterated: double-bridge kicks on the block order, kept when the tour gets shorter.
-    let mut best_cost = total(&order);
+    let search = BlockSearch::new(problem, &blocks);
+    let start_cost = search.total(&order);
     let mut stream = swarm::run_stream(seed, 1);
     // A block-level descent costs O(F²) per round: fewer kicks on farms of many fields.
     let kicks = BLOCK_KICKS.min(500_000 / (count * count));
-    for _ in 0..kicks {
-        let Some((mut kicked, _)) = double_bridge(&order, &mut stream) else {
-            continue;
-        };
-        improve(&mut kicked);
-        let cost = total(&kicked);
-        if cost < best_cost - 1e-9 {
-            best_cost = cost;
-            order = kicked;
-        }
-    }
-    debug_assert!(total(&order) <= start_cost + 1e-6);
+    let (order, best) = search.iterate(order, reversals, kicks, &mut stream);
+    debug_assert!(best <= start_cost + 1e-6);
     Some(blocks.steps(&order))
 }

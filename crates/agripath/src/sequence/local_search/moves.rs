@@ -19,6 +19,10 @@ pub(super) struct Search<'a, 'b> {
     pub(super) from_start: bool,
     /// The tour ends at the start point (`Start::Fixed`).
     pub(super) home: bool,
+    /// The descent's queue of passes to look at, and which passes are in it (kept between
+    /// descents so that a kick allocates nothing).
+    pub(super) queue: Vec<usize>,
+    pub(super) queued: Vec<bool>,
 }
 
 impl Search<'_, '_> {
@@ -63,9 +67,31 @@ impl Search<'_, '_> {
     }
 
     pub(super) fn reindex(&mut self) {
-        for (index, step) in self.tour.iter().enumerate() {
-            self.position[step.pass] = index;
+        self.reindex_range(0, self.tour.len());
+    }
+
+    /// Positions of the passes at `from..to` (a move changes only the stretch it touched).
+    fn reindex_range(&mut self, from: usize, to: usize) {
+        for (index, step) in self.tour[from..to].iter().enumerate() {
+            self.position[step.pass] = from + index;
         }
+    }
+
+    /// The cost of the transfer into position `p` (from the start point, the last pass of a
+    /// closed tour, or nothing).
+    fn transfer_into(&self, p: usize) -> f64 {
+        self.edge(self.previous(p), Some(self.tour[p].entry()))
+    }
+
+    /// A double bridge in place: the stretches `a..b` and `b..c` (0 < a < b < c < n) swap
+    /// places, each flown as it was. Returns the change in tour cost: three transfers change,
+    /// the first and the last pass stay where they are.
+    pub(super) fn double_bridge(&mut self, a: usize, b: usize, c: usize) -> f64 {
+        let old = self.transfer_into(a) + self.transfer_into(b) + self.transfer_into(c);
+        self.tour[a..c].rotate_left(b - a);
+        self.reindex_range(a, c);
+        let new = self.transfer_into(a) + self.transfer_into(a + c - b) + self.transfer_into(c);
+        new - old
     }
 
     /// Gain of reversing positions p..=q (positive = cheaper).
@@ -87,48 +113,52 @@ impl Search<'_, '_> {
         for step in &mut self.tour[p..=q] {
             *step = step.flipped();
         }
-        self.reindex();
+        self.reindex_range(p, q + 1);
     }
 
     /// The best 2-opt move at the transfer into position `p`, applied if it improves the
-    /// tour. Returns the range reversed.
-    fn two_opt_at(&mut self, p: usize) -> Option<(usize, usize)> {
-        let mut candidates: Vec<(usize, usize)> = vec![(p, p)];
+    /// tour. Returns the range reversed and the gain.
+    fn two_opt_at(&mut self, p: usize) -> Option<(usize, usize, f64)> {
+        // The last of equal gains wins, in the order the candidates are listed.
+        let mut best = (self.reversal_gain(p, p), p, p);
+        let mut consider = |from: usize, to: usize, this: &Self| {
+            let gain = this.reversal_gain(from, to);
+            if gain >= best.0 {
+                best = (gain, from, to);
+            }
+        };
         if let Some(before) = self.previous(p).filter(|end| *end != START) {
             for &end in &self.neighbours[before] {
                 let q = self.position[end / 2];
                 if q > p && self.tour[q].exit() == end {
-                    candidates.push((p, q));
+                    consider(p, q, self);
                 }
             }
         }
         for &end in &self.neighbours[self.tour[p].entry()] {
             let q = self.position[end / 2];
             if q < p && self.tour[q].entry() == end {
-                candidates.push((q, p - 1));
+                consider(q, p - 1, self);
             }
         }
         // A free end of the path (the open path's dummy node, at zero cost from every end):
         // flying the whole head or the whole tail backwards changes one transfer only.
         if self.previous(0).is_none() && p > 0 {
-            candidates.push((0, p - 1));
+            consider(0, p - 1, self);
         }
         if self.next(self.tour.len() - 1).is_none() {
-            candidates.push((p, self.tour.len() - 1));
+            consider(p, self.tour.len() - 1, self);
         }
-        let (gain, from, to) = candidates
-            .into_iter()
-            .map(|(from, to)| (self.reversal_gain(from, to), from, to))
-            .max_by(|a, b| a.0.total_cmp(&b.0))?;
+        let (gain, from, to) = best;
         (gain > 1e-9).then(|| {
             self.reverse(from, to);
-            (from, to)
+            (from, to, gain)
         })
     }
 
     /// The best Or-opt move of a chain of 1-3 passes starting at position `i`, applied if it
-    /// improves the tour. Returns the positions the chain now occupies.
-    fn or_opt_at(&mut self, i: usize) -> Option<(usize, usize)> {
+    /// improves the tour. Returns the positions the chain now occupies and the gain.
+    fn or_opt_at(&mut self, i: usize) -> Option<(usize, usize, f64)> {
         let n = self.tour.len();
         if n < 3 {
             return None;
@@ -143,25 +173,25 @@ impl Search<'_, '_> {
             .unwrap_or(i);
         // And chains [i, q) whose removal joins the flight before i to a near end at q: the
         // or-3opt segment moves that short chains cannot make.
-        let mut lengths: Vec<usize> = (1..=3usize)
-            .chain(std::iter::once(block_end + 1 - i))
-            .collect();
+        let mut consider = |length: usize, this: &Self| {
+            let j = i + length - 1;
+            if j >= n || length >= n {
+                return;
+            }
+            if let Some((gain, insert_at, reversed)) = this.best_insertion(i, j) {
+                if best.is_none_or(|(best_gain, ..)| gain > best_gain) {
+                    best = Some((gain, j, insert_at, reversed));
+                }
+            }
+        };
+        for length in [1, 2, 3, block_end + 1 - i] {
+            consider(length, self);
+        }
         if let Some(before) = self.previous(i).filter(|end| *end != START) {
             for &end in &self.neighbours[before] {
                 let q = self.position[end / 2];
                 if q > i + 3 && self.tour[q].entry() == end && q - i <= n / 2 {
-                    lengths.push(q - i);
-                }
-            }
-        }
-        for length in lengths {
-            let j = i + length - 1;
-            if j >= n || length >= n {
-                continue;
-            }
-            if let Some((gain, insert_at, reversed)) = self.best_insertion(i, j) {
-                if best.is_none_or(|(best_gain, ..)| gain > best_gain) {
-                    best = Some((gain, j, insert_at, reversed));
+                    consider(q - i, self);
                 }
             }
         }
@@ -170,20 +200,20 @@ impl Search<'_, '_> {
             return None;
         }
         let length = j - i + 1;
-        let mut chain: Vec<Step> = self.tour.drain(i..=j).collect();
-        if reversed {
-            chain.reverse();
-            chain.iter_mut().for_each(|step| *step = step.flipped());
-        }
-        // `insert_at` indexes the tour before removal.
+        // Moving the chain is a rotation of the stretch between its place and its new one.
         let at = if insert_at > j {
+            self.tour[i..insert_at].rotate_left(length);
+            self.reindex_range(i, insert_at);
             insert_at - length
         } else {
+            self.tour[insert_at..=j].rotate_right(length);
+            self.reindex_range(insert_at, j + 1);
             insert_at
         };
-        self.tour.splice(at..at, chain);
-        self.reindex();
-        Some((at, at + length - 1))
+        if reversed {
+            self.reverse(at, at + length - 1);
+        }
+        Some((at, at + length - 1, gain))
     }
 
     /// Best place to move chain i..=j to: (gain, insertion index before removal, reversed).
@@ -213,8 +243,11 @@ impl Search<'_, '_> {
             } else {
                 this.next(n - 1)
             };
-            if this.closed && k == 0 {
-                return; // the same gap as k == n
+            if this.closed && (k == 0 || (i == 0 && k == n)) {
+                // k == 0 is the same gap as k == n; and with the chain first, the gap at n
+                // (after the last pass, before the first) is the chain's own place: costed
+                // as a gap, it reported gains no move makes (found by the test below).
+                return;
             }
             let base = this.edge(left, right);
             for (reversed, first, last) in [(false, entry, exit), (true, exit, entry)] {
@@ -242,10 +275,20 @@ impl Search<'_, '_> {
 
     /// Local search to a local optimum, looking only around `active` passes and around
     /// every move made (don't-look bits): a kick costs work near its cuts, not a whole sweep.
-    pub(super) fn descend(&mut self, active: impl IntoIterator<Item = usize>, mut budget: usize) {
+    /// Returns the sum of the gains of the moves made.
+    pub(super) fn descend(
+        &mut self,
+        active: impl IntoIterator<Item = usize>,
+        mut budget: usize,
+    ) -> f64 {
         let n = self.tour.len();
-        let mut queued = vec![false; n];
-        let mut queue: Vec<usize> = Vec::new();
+        let (mut queue, mut queued) = (
+            std::mem::take(&mut self.queue),
+            std::mem::take(&mut self.queued),
+        );
+        queue.clear();
+        queued.clear();
+        queued.resize(n, false);
         let wake = |pass: usize, queue: &mut Vec<usize>, queued: &mut Vec<bool>| {
             if !queued[pass] {
                 queued[pass] = true;
@@ -255,6 +298,7 @@ impl Search<'_, '_> {
         for pass in active {
             wake(pass, &mut queue, &mut queued);
         }
+        let mut gained = 0.0;
         while let Some(pass) = queue.pop() {
             queued[pass] = false;
             if budget == 0 {
@@ -269,7 +313,8 @@ impl Search<'_, '_> {
             if changed.is_none() {
                 changed = self.or_opt_at(p);
             }
-            if let Some((from, to)) = changed {
+            if let Some((from, to, gain)) = changed {
+                gained += gain;
                 for position in [from.saturating_sub(1), from, to, (to + 1).min(n - 1)] {
                     let touched = self.tour[position].pass;
                     wake(touched, &mut queue, &mut queued);
@@ -277,6 +322,8 @@ impl Search<'_, '_> {
                 wake(pass, &mut queue, &mut queued);
             }
         }
+        (self.queue, self.queued) = (queue, queued);
+        gained
     }
 }
 
@@ -405,6 +452,71 @@ mod tests {
     use crate::coverage::drape::GroundPoint;
     use crate::sequence::tour::Start;
     use crate::sequence::TransferModel;
+
+    /// The kick loop keeps or undoes a kick by the figures the search reports, without
+    /// re-costing the tour: the in-place double bridge must report the change in tour cost,
+    /// and a descent the sum of its gains, for every start; positions stay the tour's.
+    #[test]
+    fn double_bridge_and_descent_report_their_cost_changes() {
+        let scenario = crate::demo::scenario().unwrap();
+        let model = TransferModel::new(&scenario.farm, 18.0);
+        let ground = |x: f64, y: f64| GroundPoint {
+            x,
+            y,
+            ground_m: 0.0,
+        };
+        let ends: Vec<[GroundPoint; 2]> = (0..40)
+            .map(|k| {
+                let x = 23.0 * (k % 9) as f64 - 80.0 + 3.0 * (k / 9) as f64;
+                let y = 41.0 * (k % 5) as f64 - 60.0;
+                [ground(x, y), ground(x + 7.0, y + 35.0 + (k % 4) as f64)]
+            })
+            .collect();
+        let point = ground(-150.0, 20.0);
+        for start in [
+            Start::Open,
+            Start::Closed,
+            Start::From(point),
+            Start::Fixed(point),
+        ] {
+            let problem = OrderingProblem::new(ends.clone(), start, &model);
+            let neighbours = cheapest_ends(&problem, 6, |end, other| other / 2 != end / 2);
+            let groups = vec![0; 40];
+            let tour: Vec<Step> = (0..40)
+                .map(|pass| Step {
+                    pass: (pass * 7) % 40,
+                    reversed: pass % 3 == 0,
+                })
+                .collect();
+            let mut search = Search {
+                problem: &problem,
+                position: vec![0; 40],
+                tour,
+                neighbours: &neighbours,
+                groups: &groups,
+                closed: start.is_closed(),
+                from_start: !start.free_first(),
+                home: start.returns_home(),
+                queue: Vec::new(),
+                queued: Vec::new(),
+            };
+            search.reindex();
+            let consistent = |search: &Search| {
+                crate::sequence::tour::is_permutation(&search.tour, 40)
+                    && (0..40).all(|p| search.position[search.tour[p].pass] == p)
+            };
+            let before = problem.tour_cost(&search.tour);
+            let change = search.double_bridge(5, 17, 31);
+            let kicked = problem.tour_cost(&search.tour);
+            assert!((kicked - before - change).abs() < 1e-6, "{start:?}");
+            assert!(consistent(&search), "{start:?}");
+            let gained = search.descend(0..40, 100_000);
+            let after = problem.tour_cost(&search.tour);
+            assert!(gained > 1.0, "{start:?}: the scrambled tour improves");
+            assert!((kicked - after - gained).abs() < 1e-6, "{start:?}");
+            assert!(consistent(&search), "{start:?}");
+        }
+    }
 
     /// Passes scattered over the demo farm: the lists by cost hold, for every end, exactly
     /// the `count` cheapest accepted ends by eq. (8), cheapest first.

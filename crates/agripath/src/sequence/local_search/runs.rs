@@ -14,18 +14,15 @@
 //!
 //! Moves, while they gain: a run to any other gap in any variant (Or-opt), a stretch of runs
 //! flown backwards (2-opt on runs); then double-bridge kicks on the run order, kept when the
-//! tour gets cheaper. Costs are eq. (8)'s between the runs' end passes, plus each variant's
+//! tour gets cheaper (the block search of `blocks.rs`, shared with the constructions). Costs are eq. (8)'s between the runs' end passes, plus each variant's
 //! own transfers inside the run (variant 2 and 3 may cost more inside: the ends of a
 //! boustrophedon's turns swap sides).
 
-use super::super::tour::{OrderingProblem, Step};
-use super::double_bridge;
+use super::super::tour::{End, OrderingProblem, Step};
+use super::blocks::{BlockSearch, Blocks, Placed};
 
 /// Kicks of the run-order search; fewer on tours of many runs (a round is O(R²)).
 const RUN_KICKS: usize = 150;
-
-/// A run and one of its four variants.
-type Placed = (usize, usize);
 
 /// The runs of a tour, each in its four variants with the cost inside it.
 struct Runs(Vec<[(Vec<Step>, f64); 4]>);
@@ -34,17 +31,24 @@ impl Runs {
     fn steps(&self, (run, variant): Placed) -> &[Step] {
         &self.0[run][variant].0
     }
+}
 
-    fn entry(&self, placed: Placed) -> usize {
+impl Blocks for Runs {
+    fn entry(&self, placed: Placed) -> End {
         self.steps(placed)[0].entry()
     }
 
-    fn exit(&self, placed: Placed) -> usize {
+    fn exit(&self, placed: Placed) -> End {
         self.steps(placed)[self.steps(placed).len() - 1].exit()
     }
 
     fn inside(&self, (run, variant): Placed) -> f64 {
         self.0[run][variant].1
+    }
+
+    /// Variant 1 is variant 0 backwards, 3 is 2 backwards.
+    fn backwards(&self, (run, variant): Placed) -> Placed {
+        (run, variant ^ 1)
     }
 }
 
@@ -106,124 +110,12 @@ pub(super) fn run_search(
     if count < 3 {
         return tour.to_vec();
     }
-    let start = problem.start;
-    let (closed, from_start, home) = (start.is_closed(), !start.free_first(), start.returns_home());
-    // The link from one run to the next; `None` is the start point or a free end of the path.
-    let link = |from: Option<Placed>, to: Option<Placed>| -> f64 {
-        match (from, to) {
-            (Some(a), Some(b)) => problem.cost(runs.exit(a), runs.entry(b)),
-            (None, Some(b)) if from_start => problem.cost_from_start(runs.entry(b)),
-            (Some(a), None) if home => problem.cost_from_start(runs.exit(a)),
-            _ => 0.0,
-        }
-    };
-    let around = |order: &[Placed], gap: usize| -> (Option<Placed>, Option<Placed>) {
-        let n = order.len();
-        let before = match gap {
-            0 if closed && n > 0 => Some(order[n - 1]),
-            0 => None,
-            _ => Some(order[gap - 1]),
-        };
-        let after = if gap < n {
-            Some(order[gap])
-        } else if closed && n > 0 {
-            Some(order[0])
-        } else {
-            None
-        };
-        (before, after)
-    };
-    let total = |order: &[Placed]| -> f64 {
-        let inside: f64 = order.iter().map(|&placed| runs.inside(placed)).sum();
-        let between: f64 = (0..=order.len())
-            .filter(|&gap| !(closed && gap == order.len()))
-            .map(|gap| {
-                let (before, after) = around(order, gap);
-                link(before, after)
-            })
-            .sum();
-        inside + between
-    };
-    let improve = |order: &mut Vec<Placed>| {
-        for _ in 0..50 {
-            let mut improved = false;
-            // Or-opt: one run to the best other gap, in any variant.
-            for from in 0..count {
-                let moving = order[from];
-                let (before, _) = around(order, from);
-                let (_, after) = around(order, from + 1);
-                let removal =
-                    link(before, Some(moving)) + link(Some(moving), after) - link(before, after);
-                let mut without = order.clone();
-                without.remove(from);
-                let mut choice: Option<(f64, usize, Placed)> = None;
-                for to in 0..=without.len() {
-                    if closed && to == 0 {
-                        continue; // the same gap as the last
-                    }
-                    let (left, right) = around(&without, to);
-                    let base = link(left, right);
-                    for variant in 0..4 {
-                        let candidate = (moving.0, variant);
-                        let added = link(left, Some(candidate)) + link(Some(candidate), right)
-                            - base
-                            + runs.inside(candidate)
-                            - runs.inside(moving);
-                        let gain = removal - added;
-                        if gain > 1e-9 && choice.is_none_or(|(best, ..)| gain > best) {
-                            choice = Some((gain, to, candidate));
-                        }
-                    }
-                }
-                if let Some((_, to, candidate)) = choice {
-                    without.insert(to, candidate);
-                    *order = without;
-                    improved = true;
-                }
-            }
-            // 2-opt on runs: a stretch flown backwards, each run in its backwards variant
-            // (eq. 8 is symmetric: the inside costs do not change).
-            for i in 0..count {
-                for j in i + 1..count {
-                    if closed && i == 0 && j == count - 1 {
-                        continue;
-                    }
-                    let (before, _) = around(order, i);
-                    let (_, after) = around(order, j + 1);
-                    let backwards = |(run, variant): Placed| (run, variant ^ 1);
-                    let old = link(before, Some(order[i])) + link(Some(order[j]), after);
-                    let new = link(before, Some(backwards(order[j])))
-                        + link(Some(backwards(order[i])), after);
-                    if new < old - 1e-9 {
-                        order[i..=j].reverse();
-                        for placed in &mut order[i..=j] {
-                            *placed = backwards(*placed);
-                        }
-                        improved = true;
-                    }
-                }
-            }
-            if !improved {
-                break;
-            }
-        }
-    };
-    let mut order: Vec<Placed> = (0..count).map(|run| (run, 0)).collect();
-    let flown = total(&order);
-    improve(&mut order);
-    let mut best = total(&order);
+    let search = BlockSearch::new(problem, &runs);
+    let order: Vec<Placed> = (0..count).map(|run| (run, 0)).collect();
+    let flown = search.total(&order);
     let mut stream = swarm::run_stream(seed, 2);
-    for _ in 0..RUN_KICKS.min(400_000 / (count * count)) {
-        let Some((mut kicked, _)) = double_bridge(&order, &mut stream) else {
-            continue;
-        };
-        improve(&mut kicked);
-        let cost = total(&kicked);
-        if cost < best - 1e-9 {
-            best = cost;
-            order = kicked;
-        }
-    }
+    let kicks = RUN_KICKS.min(400_000 / (count * count));
+    let (order, best) = search.iterate(order, true, kicks, &mut stream);
     if best >= flown - 1e-9 {
         return tour.to_vec();
     }
