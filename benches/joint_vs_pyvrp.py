@@ -3,7 +3,7 @@
 Usage:
     cargo run --release -p agripath --example bench_joint -- --export DIR [--planner KEY]
     .peers/bench/bin/python benches/joint_vs_pyvrp.py DIR [SECONDS] [--seed N]
-        [--objective time|duration|distance] [--iterations N] [--results FILE]
+        [--objective time|duration|distance] [--iterations N] [--results FILE] [--peer FILE]
     .peers/bench/bin/python benches/joint_vs_pyvrp.py --validate
 
 For each instance of DIR (written by `bench_joint`), PyVRP solves the same problem as our
@@ -268,12 +268,23 @@ def ours_consistent(instance):
     return None
 
 
-def run(folder, seconds, seed, objective, results_path, iterations=None):
+def run(folder, seconds, seed, objective, results_path, iterations=None, peer_path=None):
     paths = sorted(glob.glob(os.path.join(folder, "*.json")))
     if not paths:
         sys.exit(f"no instances in {folder}: run bench_joint --export {folder} first")
-    budget = f"{iterations} iterations" if iterations else f"{seconds:g} s"
-    print(f"PyVRP, {budget} per farm, seed {seed}, objective {objective}")
+    # PyVRP's solutions depend only on the instance (passes, matrix, limits), not on our
+    # planner: --peer reuses those of an earlier --results file, so that two of our variants
+    # are compared against the very same PyVRP run.
+    kept = None
+    if peer_path:
+        with open(peer_path) as handle:
+            earlier = json.load(handle)
+        kept = {row["name"]: row["pyvrp"] for row in earlier["farms"]}
+        print(f"PyVRP's solutions from {peer_path} ({earlier['seconds']:g} s, seed {earlier['seed']}, "
+              f"objective {earlier['objective']})")
+    else:
+        budget = f"{iterations} iterations" if iterations else f"{seconds:g} s"
+        print(f"PyVRP, {budget} per farm, seed {seed}, objective {objective}")
     header = (
         f"{'farm':<18} {'passes':>6} | {'ours m (transfers + legs)':>27} | {'PyVRP m (transfers + legs)':>27} |"
         f" {'ratio':>6} | {'sorties':>7} | {'non-spray s ours / PyVRP':>24}"
@@ -285,13 +296,20 @@ def run(folder, seconds, seed, objective, results_path, iterations=None):
         with open(path) as handle:
             instance = json.load(handle)
         ours = instance["ours"]
-        sorties, result = solve(instance, seconds, seed, objective, iterations)
-        peer = cost_sorties(instance, sorties)
+        if kept is not None:
+            if instance["name"] not in kept:
+                sys.exit(f"{instance['name']} is not in {peer_path}")
+            peer = kept[instance["name"]]
+            feasible = peer["feasible_by_pyvrp"]
+        else:
+            sorties, result = solve(instance, seconds, seed, objective, iterations)
+            peer = {**cost_sorties(instance, sorties), "iterations": result.num_iterations,
+                    "runtime_s": result.runtime, "feasible_by_pyvrp": result.best.is_feasible()}
+            feasible = result.best.is_feasible()
         ratio = ours["non_spray_m"] / peer["non_spray_m"]
         rows.append({"name": instance["name"], "passes": len(instance["passes"]), "ratio": ratio,
                      "ours": {k: ours[k] for k in ("sorties", "non_spray_m", "transfers_m", "supply_legs_m", "non_spray_s", "runtime_s", "planner")},
-                     "pyvrp": {**peer, "iterations": result.num_iterations, "runtime_s": result.runtime,
-                               "feasible_by_pyvrp": result.best.is_feasible()}})
+                     "pyvrp": peer})
         print(
             f"{instance['name']:<18} {len(instance['passes']):>6} |"
             f" {ours['non_spray_m']:>7.0f} ({ours['transfers_m']:>6.0f} + {ours['supply_legs_m']:>6.0f}) |"
@@ -299,7 +317,7 @@ def run(folder, seconds, seed, objective, results_path, iterations=None):
             f" {ratio:>6.3f} | {ours['sorties']:>3} / {peer['sorties']:<3}|"
             f" {ours['non_spray_s']:>9.0f} / {peer['non_spray_s']:<9.0f}"
         )
-        for problem in peer["problems"] + ([] if result.best.is_feasible() else ["PyVRP calls its solution infeasible"]):
+        for problem in peer["problems"] + ([] if feasible else ["PyVRP calls its solution infeasible"]):
             print(f"  PyVRP INFEASIBLE: {problem}")
         for failure in ours["check_failures"] + [m for m in [ours_consistent(instance)] if m]:
             print(f"  OURS CHECK: {failure}")
@@ -314,7 +332,9 @@ def run(folder, seconds, seed, objective, results_path, iterations=None):
         print(f"mean ratio over the {len(random_rows)} random farms {mean:.3f}")
     if results_path:
         with open(results_path, "w") as handle:
-            json.dump({"seconds": seconds, "seed": seed, "objective": objective, "farms": rows}, handle, indent=1)
+            settings = earlier if kept is not None else {"seconds": seconds, "seed": seed, "objective": objective}
+            json.dump({"seconds": settings["seconds"], "seed": settings["seed"],
+                       "objective": settings["objective"], "farms": rows}, handle, indent=1)
 
 
 # ---------------------------------------------------------------- validation on tiny instances
@@ -453,13 +473,14 @@ def main():
     parser.add_argument("--iterations", type=int, help="stop after this many iterations, not SECONDS")
     parser.add_argument("--objective", choices=("time", "duration", "distance"), default="time")
     parser.add_argument("--results", help="write the per-farm figures as JSON here")
+    parser.add_argument("--peer", help="reuse PyVRP's solutions of this earlier --results file")
     parser.add_argument("--validate", action="store_true", help="check the model on tiny instances")
     args = parser.parse_args()
     if args.validate:
         sys.exit(0 if validate() else 1)
     if not args.folder:
         parser.error("a folder of instances, or --validate")
-    run(args.folder, args.seconds, args.seed, args.objective, args.results, args.iterations)
+    run(args.folder, args.seconds, args.seed, args.objective, args.results, args.iterations, args.peer)
 
 
 if __name__ == "__main__":

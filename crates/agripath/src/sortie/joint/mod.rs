@@ -13,8 +13,10 @@
 //! `swarm`'s Runner like every other search. The tour kept is split by the exact planner
 //! ([`super::exact`]), which finds the same returns (tested).
 
+pub mod petals;
 pub mod search;
 pub mod split;
+pub mod starts;
 
 use std::sync::Mutex;
 
@@ -32,6 +34,8 @@ pub struct JointProblem<'a> {
     /// The passes, their ends and the transfer costs between them.
     pub ordering: &'a OrderingProblem<'a>,
     profiles: Vec<PassProfile>,
+    /// Route points of every tour (all the passes' points).
+    points: usize,
     limits: SplitLimits,
     speeds: Speeds,
     buffers: Mutex<SplitBuffers>,
@@ -69,9 +73,10 @@ impl<'a> JointProblem<'a> {
                     .collect();
                 PassProfile { spray_m, leg_s }
             })
-            .collect();
+            .collect::<Vec<PassProfile>>();
         Self {
             ordering,
+            points: profiles.iter().map(|profile| profile.spray_m.len()).sum(),
             profiles,
             limits: SplitLimits {
                 tank_m: model.spray_per_tank_m.unwrap_or(f64::INFINITY),
@@ -84,6 +89,11 @@ impl<'a> JointProblem<'a> {
             speeds,
             buffers: Mutex::new(SplitBuffers::default()),
         }
+    }
+
+    /// Route points of every tour of the problem (what one split lays out).
+    pub fn points(&self) -> usize {
+        self.points
     }
 
     /// Seconds of the transfer from `from`'s exit to `to`'s entry: at transit speed when it
@@ -102,6 +112,24 @@ impl<'a> JointProblem<'a> {
 
 fn distance_3d(a: &GroundPoint, b: &GroundPoint) -> f64 {
     ((a.x - b.x).powi(2) + (a.y - b.y).powi(2) + (a.ground_m - b.ground_m).powi(2)).sqrt()
+}
+
+impl JointProblem<'_> {
+    /// The sorties of the tour's cheapest split, as the tour positions of the passes each
+    /// begins and ends in ([`TourSplit::sorties`]).
+    pub fn sorties(&self, tour: &[Step]) -> Vec<(usize, usize)> {
+        let transfer = |from: Step, to: Step| self.transfer_s(from, to);
+        let split = TourSplit {
+            profiles: &self.profiles,
+            transfer_s: &transfer,
+            limits: self.limits,
+        };
+        let mut buffers = self
+            .buffers
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        split.sorties(tour, &mut buffers)
+    }
 }
 
 impl swarm::Problem for JointProblem<'_> {
@@ -136,6 +164,15 @@ impl swarm::Problem for JointProblem<'_> {
 pub struct JointSettings {
     /// Evaluations through the split per pass (the budget is this × passes + 2,000).
     pub evaluations_per_pass: u64,
+    /// Start tours raced ([`starts::start_tours`], 1 to [`starts::MOST_STARTS`]).
+    pub starts: usize,
+    /// Share of the budget the race of the starts uses, split evenly among them.
+    pub race_share: f64,
+    /// Whether the petal moves ([`petals`]) re-fly the incumbent's sorties out and back.
+    pub petals: bool,
+    /// Most route points the splits of a run may lay out in all (each split lays out every
+    /// point of the tour): bounds the run's time on big farms, deterministically.
+    pub most_points: u64,
     /// Seed of the kicks (run 0 of this seed).
     pub seed: u64,
 }
@@ -144,25 +181,95 @@ impl Default for JointSettings {
     fn default() -> Self {
         Self {
             evaluations_per_pass: 12,
+            starts: 2,
+            race_share: 0.5,
+            petals: true,
+            most_points: 100_000_000,
             seed: 1,
         }
     }
 }
 
-/// The joint search from `start` (a tour of `problem`'s passes, e.g. the best order from the
-/// supply point): the cheapest tour found within the budget.
-pub fn improve(problem: &JointProblem, start: Vec<Step>, settings: &JointSettings) -> Vec<Step> {
-    let passes = start.len() as u64;
-    if passes < 2 {
-        return start;
+impl JointSettings {
+    /// The Runner's budget on `problem`: evaluations per pass × passes + 2,000, but no more
+    /// splits than lay out `most_points` points (and at least two per pass).
+    pub fn budget(&self, problem: &JointProblem) -> u64 {
+        let passes = problem.profiles.len() as u64;
+        let wanted = self.evaluations_per_pass * passes + 2000;
+        let affordable = self.most_points / (problem.points as u64).max(1);
+        wanted.min(affordable.max(2 * passes)).max(1)
     }
-    let budget = settings.evaluations_per_pass * passes + 2000;
-    let runner = swarm::Runner::new(swarm::Termination::evaluations(budget), settings.seed)
-        .expect("a budget of at least one evaluation");
-    let mut search = search::JointSearch::new(start);
-    runner
-        .run_problem(&mut search, problem, 0, &mut ())
-        .best_solution
+}
+
+/// The joint search from `order` (a tour of `problem`'s passes, the sequencer's order from
+/// the supply point) and the other start tours made from it: the cheapest tour found
+/// within the budget.
+pub fn improve(problem: &JointProblem, order: Vec<Step>, settings: &JointSettings) -> Vec<Step> {
+    let budget = settings.budget(problem);
+    search(problem, order, settings, budget).tour
+}
+
+/// What a run of the joint search found.
+#[derive(Debug, Clone)]
+pub struct JointOutcome {
+    /// The cheapest tour found.
+    pub tour: Vec<Step>,
+    /// Its non-spray seconds (the split's, with the first and last legs).
+    pub cost: f64,
+    /// Splits scored (the Runner's evaluations).
+    pub evaluations: u64,
+    /// The Runner's iterations after the start (kicks and petal rounds).
+    pub iterations: usize,
+}
+
+/// The joint search from `order` and the start tours made from it (`settings.starts` of
+/// them, [`starts::start_tours`]), within `evaluations` splits.
+pub fn search(
+    problem: &JointProblem,
+    order: Vec<Step>,
+    settings: &JointSettings,
+    evaluations: u64,
+) -> JointOutcome {
+    let starts = starts::start_tours(problem.ordering, order, settings.starts);
+    search_from(problem, starts, settings, evaluations)
+}
+
+/// The joint search from `starts` (the first preferred on ties), raced over
+/// `settings.race_share` of the budget when there are several, within `evaluations` splits.
+pub fn search_from(
+    problem: &JointProblem,
+    starts: Vec<Vec<Step>>,
+    settings: &JointSettings,
+    evaluations: u64,
+) -> JointOutcome {
+    let first = starts.first().expect("at least one start tour");
+    if first.len() < 2 {
+        let cost = swarm::Problem::evaluate(problem, first);
+        return JointOutcome {
+            tour: first.clone(),
+            cost,
+            evaluations: 1,
+            iterations: 0,
+        };
+    }
+    let race =
+        (settings.race_share.clamp(0.0, 1.0) * evaluations as f64 / starts.len() as f64) as u64;
+    let runner = swarm::Runner::new(
+        swarm::Termination::evaluations(evaluations.max(1)),
+        settings.seed,
+    )
+    .expect("a budget of at least one evaluation");
+    let mut search = search::JointSearch::racing(starts, race);
+    if settings.petals {
+        search = search.with_petals();
+    }
+    let outcome = runner.run_problem(&mut search, problem, 0, &mut ());
+    JointOutcome {
+        tour: outcome.best_solution,
+        cost: outcome.best_cost,
+        evaluations: outcome.evaluations,
+        iterations: outcome.iterations,
+    }
 }
 
 #[cfg(test)]
@@ -345,6 +452,20 @@ mod tests {
                 )
                 .unwrap();
                 assert!(outcome.best_cost <= linear);
+                // The same with the starts raced: and never above the cheapest start.
+                let starts = starts::start_tours(&problem, tour.clone(), starts::MOST_STARTS);
+                let cheapest = starts
+                    .iter()
+                    .map(|start| joint.evaluate(start))
+                    .fold(f64::INFINITY, f64::min);
+                let raced = swarm::conformance::check_problem(
+                    || search::JointSearch::racing(starts.clone(), 60),
+                    &joint,
+                    600,
+                    |candidate: &[Step]| crate::sequence::tour::check_order(candidate, passes),
+                )
+                .unwrap();
+                assert!(starts.len() > 1 && raced.best_cost <= cheapest);
                 conformed = true;
             }
             match plan_sorties(&work, &sortie_model, SortiePlanner::Exact, 1) {

@@ -11,13 +11,18 @@
 //! which is why they are not discarded outright. The first move that lowers the split's
 //! cost is made, and the passes around it are looked at again.
 //!
+//! From several start tours ([`super::starts`]) the local search races: each start descends
+//! for the same number of splits, and only the cheapest descent goes on to its local optimum
+//! (one full descent costs most of the budget, and the search stalls in the local optimum of
+//! its start, so the budget is better spent choosing the start than finishing every descent).
+//!
 //! Each Runner iteration is one kick: a double bridge within `KICK_SPAN` positions of the
 //! incumbent (the Runner's best), then the local search around its cuts. The budget is the
 //! Runner's evaluation count.
 
 use swarm::{below, Optimizer, Search};
 
-use super::JointProblem;
+use super::{petals, JointProblem};
 use crate::sequence::local_search::nearest_ends;
 use crate::sequence::tour::{End, Step};
 
@@ -43,19 +48,76 @@ enum Move {
     },
 }
 
-/// The joint search's state: its starting tour and the neighbour lists.
+/// The joint search's state: its start tours, how far each races, and the neighbour lists.
 pub struct JointSearch {
-    start: Vec<Step>,
+    starts: Vec<Vec<Step>>,
+    race_evaluations: u64,
     neighbours: Vec<Vec<End>>,
+    /// Whether the petal moves ([`super::petals`]) are tried on the incumbent.
+    petals: bool,
+    /// The incumbent cost at which a round of petal moves last found nothing (not tried
+    /// again until the incumbent changes).
+    petals_failed_at: f64,
 }
 
 impl JointSearch {
     /// The search starting from `start`.
     pub fn new(start: Vec<Step>) -> Self {
+        Self::racing(vec![start], 0)
+    }
+
+    /// The search from several start tours (the first is the preferred one on ties): each
+    /// descends for `race_evaluations` splits, the cheapest descent then goes on to its
+    /// local optimum, and the kicks start from the best tour found. With one start the race
+    /// is skipped.
+    pub fn racing(starts: Vec<Vec<Step>>, race_evaluations: u64) -> Self {
+        assert!(!starts.is_empty(), "the joint search needs a start tour");
         Self {
-            start,
+            starts,
+            race_evaluations,
             neighbours: Vec::new(),
+            petals: false,
+            petals_failed_at: f64::NAN,
         }
+    }
+
+    /// The same search, trying the petal moves ([`super::petals`]) on every sortie of the
+    /// incumbent before each kick while they pay.
+    pub fn with_petals(mut self) -> Self {
+        self.petals = true;
+        self
+    }
+
+    /// One round of petal moves on the incumbent: every sortie's candidates scored through
+    /// the split, the first that pays made and descended around. Whether one paid.
+    fn petal_round(&self, run: &mut Search<JointProblem<'_>>) -> bool {
+        let incumbent = run.best_solution().to_vec();
+        let cost = run.best_cost();
+        let problem = run.problem();
+        for (first, last) in problem.sorties(&incumbent) {
+            if last <= first {
+                continue;
+            }
+            for candidate in petals::candidates(problem.ordering, &incumbent, first, last) {
+                if run.progress() >= 1.0 {
+                    return false;
+                }
+                let candidate_cost = run.evaluate(&candidate);
+                if candidate_cost < cost - 1e-9 {
+                    let touched: Vec<usize> = candidate[first..=last]
+                        .iter()
+                        .map(|step| step.pass)
+                        .collect();
+                    Descent::new(candidate, candidate_cost, touched).run(
+                        run,
+                        &self.neighbours,
+                        u64::MAX,
+                    );
+                    return true;
+                }
+            }
+        }
+        false
     }
 }
 
@@ -197,42 +259,67 @@ impl Moves<'_, '_> {
     }
 }
 
-impl JointSearch {
-    /// Local search from `tour` (of split cost `cost`) around the passes `active`, while the
-    /// budget lasts: the tour reached and its cost.
-    fn descend(
-        &self,
-        run: &mut Search<JointProblem<'_>>,
-        mut tour: Vec<Step>,
-        mut cost: f64,
-        active: impl IntoIterator<Item = usize>,
-    ) -> (Vec<Step>, f64) {
+/// A local search in progress: its tour, and the passes still to look at (a stack).
+struct Descent {
+    tour: Vec<Step>,
+    cost: f64,
+    position: Vec<usize>,
+    queue: Vec<usize>,
+    queued: Vec<bool>,
+}
+
+impl Descent {
+    /// The local search from `tour` (of split cost `cost`) around the passes `active`.
+    fn new(tour: Vec<Step>, cost: f64, active: impl IntoIterator<Item = usize>) -> Self {
         let n = tour.len();
-        let mut position = vec![0; n];
-        let reindex = |tour: &[Step], position: &mut Vec<usize>| {
-            for (index, step) in tour.iter().enumerate() {
-                position[step.pass] = index;
-            }
+        let mut descent = Self {
+            tour,
+            cost,
+            position: vec![0; n],
+            queue: Vec::new(),
+            queued: vec![false; n],
         };
-        reindex(&tour, &mut position);
-        let mut queued = vec![false; n];
-        let mut queue: Vec<usize> = Vec::new();
+        descent.reindex();
         for pass in active {
-            if !std::mem::replace(&mut queued[pass], true) {
-                queue.push(pass);
-            }
+            descent.push(pass);
         }
-        while let Some(pass) = queue.pop() {
-            queued[pass] = false;
-            if run.progress() >= 1.0 {
-                break;
+        descent
+    }
+
+    fn reindex(&mut self) {
+        for (index, step) in self.tour.iter().enumerate() {
+            self.position[step.pass] = index;
+        }
+    }
+
+    fn push(&mut self, pass: usize) {
+        if !std::mem::replace(&mut self.queued[pass], true) {
+            self.queue.push(pass);
+        }
+    }
+
+    /// Whether the tour is a local optimum of the moves.
+    fn is_done(&self) -> bool {
+        self.queue.is_empty()
+    }
+
+    /// Looks at the queued passes until none is left, the run's budget is spent or the run
+    /// has made `until` evaluations (a pass is looked at in full: up to
+    /// `SCORED_PER_POSITION` more).
+    fn run(&mut self, run: &mut Search<JointProblem<'_>>, neighbours: &[Vec<End>], until: u64) {
+        let n = self.tour.len();
+        while let Some(pass) = self.queue.pop() {
+            if run.progress() >= 1.0 || run.evaluations() >= until {
+                self.queue.push(pass);
+                return;
             }
-            let p = position[pass];
+            self.queued[pass] = false;
+            let p = self.position[pass];
             let moves = Moves {
-                tour: &tour,
-                position: &position,
+                tour: &self.tour,
+                position: &self.position,
                 problem: run.problem(),
-                neighbours: &self.neighbours,
+                neighbours,
             };
             let mut ranked: Vec<(f64, Move)> = moves
                 .around(p)
@@ -242,35 +329,29 @@ impl JointSearch {
             ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
             ranked.dedup_by(|a, b| a.1 == b.1);
             for &(_, change) in ranked.iter().take(SCORED_PER_POSITION) {
-                let candidate = apply(&tour, change);
+                let candidate = apply(&self.tour, change);
                 let candidate_cost = run.evaluate(&candidate);
-                if candidate_cost < cost - 1e-9 {
+                if candidate_cost < self.cost - 1e-9 {
                     let (low, high) = match change {
                         Move::Reverse { from, to } => (from, to),
                         Move::Relocate { from, to, gap, .. } => (from.min(gap), to.max(gap)),
                     };
-                    tour = candidate;
-                    cost = candidate_cost;
-                    reindex(&tour, &mut position);
+                    self.tour = candidate;
+                    self.cost = candidate_cost;
+                    self.reindex();
                     for index in [
                         low.saturating_sub(1),
                         low,
                         high.min(n - 1),
                         (high + 1).min(n - 1),
                     ] {
-                        let touched = tour[index].pass;
-                        if !std::mem::replace(&mut queued[touched], true) {
-                            queue.push(touched);
-                        }
+                        self.push(self.tour[index].pass);
                     }
-                    if !std::mem::replace(&mut queued[pass], true) {
-                        queue.push(pass);
-                    }
+                    self.push(pass);
                     break;
                 }
             }
         }
-        (tour, cost)
     }
 }
 
@@ -284,16 +365,41 @@ impl<'a> Optimizer<JointProblem<'a>> for JointSearch {
         self.neighbours = nearest_ends(problem.ordering, NEIGHBOURS, |end, other| {
             other / 2 != end / 2
         });
-        let start = std::mem::take(&mut self.start);
-        let cost = run.evaluate(&start);
-        let n = start.len();
-        self.descend(run, start, cost, 0..n);
+        let starts = std::mem::take(&mut self.starts);
+        let n = starts[0].len();
+        let racing = starts.len() > 1;
+        // Every start descends for its share of the race; the cheapest (the earliest on
+        // ties) goes on to its local optimum.
+        let mut leader: Option<Descent> = None;
+        for start in starts {
+            let cost = run.evaluate(&start);
+            let mut descent = Descent::new(start, cost, 0..n);
+            let until = if racing {
+                run.evaluations() + self.race_evaluations
+            } else {
+                u64::MAX
+            };
+            descent.run(run, &self.neighbours, until);
+            if leader.as_ref().is_none_or(|kept| descent.cost < kept.cost) {
+                leader = Some(descent);
+            }
+        }
+        let mut leader = leader.expect("at least one start");
+        if !leader.is_done() {
+            leader.run(run, &self.neighbours, u64::MAX);
+        }
         if n < 8 {
             run.declare_converged();
         }
     }
 
     fn step(&mut self, run: &mut Search<JointProblem<'a>>) {
+        if self.petals && run.best_cost() != self.petals_failed_at {
+            if self.petal_round(run) {
+                return;
+            }
+            self.petals_failed_at = run.best_cost();
+        }
         let incumbent = run.best_solution().to_vec();
         let n = incumbent.len();
         let span = KICK_SPAN.min(n - 2);
@@ -332,6 +438,6 @@ impl<'a> Optimizer<JointProblem<'a>> for JointSearch {
             .map(|&index| kicked[index].pass)
             .collect();
         let cost = run.evaluate(&kicked);
-        self.descend(run, kicked, cost, touched);
+        Descent::new(kicked, cost, touched).run(run, &self.neighbours, u64::MAX);
     }
 }

@@ -85,7 +85,13 @@ pub struct SplitBuffers {
     leg: Vec<f64>,
     /// Whether the segment after a point is a transfer between passes.
     between: Vec<bool>,
+    /// The tour position of each point's pass.
+    owner: Vec<usize>,
     start: Vec<f64>,
+    /// For each point, the first point of the best sortie ending there.
+    came: Vec<usize>,
+    /// For each point, the last point of the sortie whose return gave its start label.
+    label_end: Vec<usize>,
     swap_window: VecDeque<usize>,
     refill_window: VecDeque<usize>,
 }
@@ -111,12 +117,14 @@ impl TourSplit<'_> {
             transfer,
             leg,
             between,
+            owner,
             ..
         } = buffers;
         spray.clear();
         transfer.clear();
         leg.clear();
         between.clear();
+        owner.clear();
         let (mut spray_before, mut transfer_before) = (0.0, 0.0);
         for (position, step) in tour.iter().enumerate() {
             let profile = &self.profiles[step.pass];
@@ -133,6 +141,7 @@ impl TourSplit<'_> {
                 transfer.push(transfer_before);
                 leg.push(one_way);
                 between.push(false);
+                owner.push(position);
             }
             spray_before += length;
             if let Some(next) = tour.get(position + 1) {
@@ -155,8 +164,11 @@ impl TourSplit<'_> {
             leg,
             between,
             start,
+            came,
+            label_end,
             swap_window,
             refill_window,
+            ..
         } = buffers;
         let count = spray.len();
         let limits = self.limits;
@@ -175,6 +187,10 @@ impl TourSplit<'_> {
         start.clear();
         start.resize(count + 1, f64::INFINITY);
         start[0] = 0.0;
+        came.clear();
+        came.resize(count, 0);
+        label_end.clear();
+        label_end.resize(count + 1, 0);
         swap_window.clear();
         refill_window.clear();
         let key = |s: usize, start: &[f64]| start[s] + leg[s] - transfer[s];
@@ -228,14 +244,20 @@ impl TourSplit<'_> {
             };
             let flyable =
                 |s: usize| spray[e] - spray[s] <= tank && leg[s] + flight(s, e) + leg[e] <= usable;
-            let mut best = f64::INFINITY;
+            let (mut best, mut best_from) = (f64::INFINITY, 0);
+            let mut consider = |s: usize, start: &[f64]| {
+                let cost = sortie(s, start);
+                if cost < best {
+                    (best, best_from) = (cost, s);
+                }
+            };
             let mut scan = false;
             for front in [swap_window.front(), refill_window.front()]
                 .into_iter()
                 .flatten()
             {
                 if flyable(*front) {
-                    best = best.min(sortie(*front, start));
+                    consider(*front, start);
                 } else {
                     scan = true;
                 }
@@ -244,13 +266,14 @@ impl TourSplit<'_> {
                 // The battery breaks at a queue's best start: every start in reach, directly.
                 for s in lowest.max(1)..e {
                     if start[s].is_finite() && flyable(s) {
-                        best = best.min(sortie(s, start));
+                        consider(s, start);
                     }
                 }
             }
             if flyable(0) {
-                best = best.min(sortie(0, start));
+                consider(0, start);
             }
+            came[e] = best_from;
             if e == count - 1 {
                 return best + leg[e];
             }
@@ -259,12 +282,37 @@ impl TourSplit<'_> {
             }
             // Back to the supply point from e; out again to e, or past the transfer.
             let back = best + leg[e];
-            if between[e] {
-                start[e + 1] = start[e + 1].min(back);
+            if between[e] && back < start[e + 1] {
+                start[e + 1] = back;
+                label_end[e + 1] = e;
             }
-            start[e] = start[e].min(back);
+            if back < start[e] {
+                start[e] = back;
+                label_end[e] = e;
+            }
         }
         // A tour of one point.
         0.0
+    }
+
+    /// The sorties of the cheapest split of `tour`, in flying order, each as the tour
+    /// positions of the passes its first and last points lie in (empty when no split is
+    /// flyable).
+    pub fn sorties(&self, tour: &[Step], buffers: &mut SplitBuffers) -> Vec<(usize, usize)> {
+        if !self.cost(tour, buffers).is_finite() || buffers.spray.len() < 2 {
+            return Vec::new();
+        }
+        let mut sorties = Vec::new();
+        let mut end = buffers.spray.len() - 1;
+        loop {
+            let first = buffers.came[end];
+            sorties.push((buffers.owner[first], buffers.owner[end]));
+            if first == 0 {
+                break;
+            }
+            end = buffers.label_end[first];
+        }
+        sorties.reverse();
+        sorties
     }
 }

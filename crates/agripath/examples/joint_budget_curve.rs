@@ -1,0 +1,320 @@
+//! Quality against budget for the joint optimiser of order and returns (issue 19's "curve of
+//! quality against time budget"). For the seed 001 farm and random irregular farms (the farms
+//! and supply points of `bench_joint`), builds the joint problem as the pipeline does, then
+//! runs the joint search at several budgets (evaluations through the split per pass) from
+//! several sets of start tours (`sortie::joint::starts`), and writes each run's non-spray
+//! seconds and wall time to `DIR/joint_budget_curve.csv`, with a chart of the mean cost
+//! above each farm's best (over all runs, per cent) against the budget,
+//! `DIR/joint_budget_curve.svg`. Run:
+//!
+//! ```sh
+//! cargo run --release -p agripath --example joint_budget_curve -- \
+//!     [--farms 3] [--per-pass 2,4,8,12,16,24,32,48] [--starts F,FB,FBRS,FC,FBCD] \
+//!     [--race-share 0.5] [--out DIR]
+//! ```
+//!
+//! A set of starts is a word of letters, raced in that order: F the sequencer's order from the
+//! supply point (`Start::Fixed`), B it flown backwards, R its cheapest rotation, S that
+//! backwards, C the sequencer's closed tour (`Start::Closed`, a second sequencer run, timed
+//! and printed) cut at the supply point, D that backwards; a P anywhere in the word turns the
+//! petal moves on (`sortie::joint::petals`).
+
+use std::fmt::Write as _;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use agripath::bench::farms::irregular_farm;
+use agripath::coverage::drape::GroundPoint;
+use agripath::coverage::{plan_coverage, CoverageSettings};
+use agripath::plot::line_chart::{self, Chart, Series};
+use agripath::scenario::{Scenario, ScenarioParts};
+use agripath::sequence::tour::Start;
+use agripath::sequence::tour::Step;
+use agripath::sequence::{ordering_problem, passes_of, Sequencer, TransferModel};
+use agripath::sortie::joint::starts::{backwards, cheapest_rotation, cut_at_supply, rotated};
+use agripath::sortie::joint::{search_from, JointProblem, JointSettings};
+use agripath::sortie::route::{RoutePoint, Speeds};
+use agripath::sortie::SortieModel;
+
+/// Swath counts asked of the random farm generator, in turn (as `bench_joint`).
+const TARGETS: [usize; 5] = [120, 150, 180, 210, 240];
+/// How far south of the farm's bounding box a random farm's supply point stands, metres.
+const SUPPLY_SOUTH_M: f64 = 30.0;
+
+struct Options {
+    farms: usize,
+    per_pass: Vec<u64>,
+    starts: Vec<String>,
+    race_share: f64,
+    out: PathBuf,
+}
+
+fn usage() -> ! {
+    eprintln!(
+        "usage: joint_budget_curve [--farms N] [--per-pass LIST] [--starts LIST] \
+         [--race-share X] [--out DIR]"
+    );
+    std::process::exit(2)
+}
+
+fn list<T: std::str::FromStr>(value: &str) -> Vec<T> {
+    value
+        .split(',')
+        .map(|item| item.trim().parse().unwrap_or_else(|_| usage()))
+        .collect()
+}
+
+fn options() -> Options {
+    let mut options = Options {
+        farms: 3,
+        per_pass: vec![2, 4, 8, 12, 16, 24, 32, 48],
+        starts: ["F", "FB", "FBRS", "FC", "FBCD"].map(String::from).to_vec(),
+        race_share: JointSettings::default().race_share,
+        out: PathBuf::from("."),
+    };
+    let mut args = std::env::args().skip(1);
+    while let Some(flag) = args.next() {
+        let value = args.next().unwrap_or_else(|| usage());
+        match flag.as_str() {
+            "--farms" => options.farms = value.parse().unwrap_or_else(|_| usage()),
+            "--per-pass" => options.per_pass = list(&value),
+            "--starts" => options.starts = value.split(',').map(String::from).collect(),
+            "--race-share" => options.race_share = value.parse().unwrap_or_else(|_| usage()),
+            "--out" => options.out = PathBuf::from(value),
+            _ => usage(),
+        }
+    }
+    options
+}
+
+/// The seed 001 farm (supply at its launch point) and the first `count` random farms of
+/// `bench_joint` (supply 30 m south of the middle of the farm's south side).
+fn farms(count: usize) -> Vec<(String, Scenario, [f64; 2])> {
+    let mut farms = vec![(
+        "seed001".to_string(),
+        agripath::demo::scenario().expect("the embedded demo farm"),
+        [0.0, 0.0],
+    )];
+    for seed in 1..=count as u64 {
+        let target = TARGETS[(seed as usize - 1) % TARGETS.len()];
+        let farm = irregular_farm(seed, target, 5.0);
+        let bounds = farm.bounds();
+        let supply = [
+            0.5 * (bounds.min().x + bounds.max().x),
+            bounds.min().y - SUPPLY_SOUTH_M,
+        ];
+        let scenario =
+            Scenario::with_farm(farm, ScenarioParts::default()).expect("a random farm is valid");
+        farms.push((format!("random_s{seed}_{target}"), scenario, supply));
+    }
+    farms
+}
+
+/// The sortie model as the pipeline builds it: returns at the safe height, the climbs and
+/// descents at climb speed kept out of the battery (`pipeline::sortie_model`).
+fn sortie_model(vehicle: &agripath::model::Vehicle, supply: RoutePoint) -> SortieModel {
+    let mut model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
+    let cruise_m = vehicle.spray_height_m + vehicle.safe_height_m.max(5.0);
+    let vertical_m = 4.0 * cruise_m - 2.0 * vehicle.spray_height_m;
+    let reserve_s = vertical_m / vehicle.climb_speed_mps - vertical_m / vehicle.transit_speed_mps;
+    model.battery_reserve_s = reserve_s.clamp(0.0, 0.5 * model.endurance_s);
+    model
+}
+
+/// One run of the search: farm, starts, evaluations per pass, cost, seconds.
+struct Row {
+    farm: usize,
+    starts: String,
+    per_pass: u64,
+    cost_s: f64,
+    runtime_s: f64,
+}
+
+fn main() {
+    let options = options();
+    std::fs::create_dir_all(&options.out).expect("the output folder can be made");
+    let mut rows: Vec<Row> = Vec::new();
+    let mut names = Vec::new();
+    println!(
+        "{:<16} {:>6} {:>6} {:>8} {:>11} {:>9}",
+        "farm", "passes", "starts", "per pass", "non-spray", "runtime"
+    );
+    for (index, (name, scenario, supply)) in farms(options.farms).into_iter().enumerate() {
+        let vehicle = &scenario.vehicle;
+        let coverage = plan_coverage(
+            &scenario.farm,
+            scenario.terrain.as_ref(),
+            vehicle,
+            &CoverageSettings::default(),
+        )
+        .expect("a coverage plan");
+        let transfers = TransferModel::new(&scenario.farm, vehicle.safe_height_m);
+        let supply = GroundPoint {
+            x: supply[0],
+            y: supply[1],
+            ground_m: scenario
+                .terrain
+                .height_m(supply[0], supply[1])
+                .expect("the supply point is on the terrain"),
+        };
+        let (problem, groups) = ordering_problem(&coverage, &transfers, Start::Fixed(supply));
+        let started = Instant::now();
+        let order = Sequencer::default().sequencer().order(&problem, &groups);
+        let sequenced_s = started.elapsed().as_secs_f64();
+        let needs_closed = options.starts.iter().any(|word| word.contains(['C', 'D']));
+        let closed = needs_closed.then(|| {
+            let started = Instant::now();
+            let (free, free_groups) = ordering_problem(&coverage, &transfers, Start::Closed);
+            let tour = Sequencer::default().sequencer().order(&free, &free_groups);
+            println!(
+                "{name}: the closed tour (its own ordering problem and sequencer run) in {:.3} s",
+                started.elapsed().as_secs_f64()
+            );
+            cut_at_supply(&problem, &tour)
+        });
+        let start = |letter: char| -> Vec<Step> {
+            let turned = || {
+                cheapest_rotation(&problem, &order)
+                    .map_or(order.clone(), |(k, _)| rotated(&order, k))
+            };
+            match letter {
+                'F' => order.clone(),
+                'B' => backwards(&order),
+                'R' => turned(),
+                'S' => backwards(&turned()),
+                'C' => closed.clone().expect("the closed tour"),
+                'D' => backwards(closed.as_ref().expect("the closed tour")),
+                _ => usage(),
+            }
+        };
+        let model = sortie_model(
+            vehicle,
+            RoutePoint {
+                x: supply.x,
+                y: supply.y,
+                ground_m: supply.ground_m,
+            },
+        );
+        let points: Vec<&[GroundPoint]> = passes_of(&coverage)
+            .into_iter()
+            .map(|(_, points)| points)
+            .collect();
+        let joint = JointProblem::new(&problem, &points, &model, Speeds::of(vehicle));
+        println!(
+            "{name}: {} passes, {} route points, the sequencer's order in {sequenced_s:.3} s",
+            order.len(),
+            joint.points()
+        );
+        for word in &options.starts {
+            let tours: Vec<Vec<Step>> = word.chars().filter(|&c| c != 'P').map(start).collect();
+            for &per_pass in &options.per_pass {
+                let settings = JointSettings {
+                    evaluations_per_pass: per_pass,
+                    race_share: options.race_share,
+                    petals: word.contains('P'),
+                    ..JointSettings::default()
+                };
+                let started = Instant::now();
+                let outcome =
+                    search_from(&joint, tours.clone(), &settings, settings.budget(&joint));
+                let runtime_s = started.elapsed().as_secs_f64();
+                println!(
+                    "{:<16} {:>6} {:>6} {:>8} {:>9.1} s {:>7.3} s {:>6} iterations",
+                    name,
+                    order.len(),
+                    word,
+                    per_pass,
+                    outcome.cost,
+                    runtime_s,
+                    outcome.iterations
+                );
+                rows.push(Row {
+                    farm: index,
+                    starts: word.clone(),
+                    per_pass,
+                    cost_s: outcome.cost,
+                    runtime_s,
+                });
+            }
+        }
+        names.push(name);
+    }
+    let best: Vec<f64> = (0..names.len())
+        .map(|farm| {
+            rows.iter()
+                .filter(|row| row.farm == farm)
+                .map(|row| row.cost_s)
+                .fold(f64::INFINITY, f64::min)
+        })
+        .collect();
+    let mut csv = String::from("farm,starts,evaluations_per_pass,non_spray_s,relative,runtime_s\n");
+    for row in &rows {
+        writeln!(
+            csv,
+            "{},{},{},{:.3},{:.5},{:.4}",
+            names[row.farm],
+            row.starts,
+            row.per_pass,
+            row.cost_s,
+            row.cost_s / best[row.farm],
+            row.runtime_s
+        )
+        .expect("writing to a string");
+    }
+    let series: Vec<Series> = options
+        .starts
+        .iter()
+        .map(|starts| Series {
+            name: format!("starts {starts}"),
+            points: options
+                .per_pass
+                .iter()
+                .map(|&per_pass| {
+                    let chosen: Vec<&Row> = rows
+                        .iter()
+                        .filter(|row| &row.starts == starts && row.per_pass == per_pass)
+                        .collect();
+                    let mean = chosen
+                        .iter()
+                        .map(|row| row.cost_s / best[row.farm])
+                        .sum::<f64>()
+                        / chosen.len() as f64;
+                    // Per cent above the best, whose ticks read better than ratios.
+                    (per_pass as f64, 100.0 * (mean - 1.0))
+                })
+                .collect(),
+        })
+        .collect();
+    println!("\nmean cost above the farm's best (mean runtime):");
+    for (series, starts) in series.iter().zip(&options.starts) {
+        let cells: Vec<String> = series
+            .points
+            .iter()
+            .map(|&(per_pass, mean)| {
+                let chosen: Vec<&Row> = rows
+                    .iter()
+                    .filter(|row| &row.starts == starts && row.per_pass as f64 == per_pass)
+                    .collect();
+                let runtime =
+                    chosen.iter().map(|row| row.runtime_s).sum::<f64>() / chosen.len() as f64;
+                format!("{per_pass}: +{mean:.2} % ({runtime:.3} s)")
+            })
+            .collect();
+        println!("  {:<9} {}", series.name, cells.join("  "));
+    }
+    let title = format!(
+        "Joint optimiser: quality against budget ({} farms)",
+        names.len()
+    );
+    let svg = line_chart::render(
+        &Chart {
+            title: &title,
+            x_label: "evaluations through the split per pass",
+            y_label: "non-spray time above the best found, %",
+            log_y: false,
+        },
+        &series,
+    );
+    std::fs::write(options.out.join("joint_budget_curve.csv"), csv).expect("the CSV is written");
+    std::fs::write(options.out.join("joint_budget_curve.svg"), svg).expect("the SVG is written");
+}
