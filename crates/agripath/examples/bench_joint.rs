@@ -23,8 +23,9 @@
 //! point of the route, issue 19's old rule); `--headland N` sets the edge passes around each
 //! boundary and hole (default 1; issue 19's seed 001 figures are those of `--headland 0
 //! --free-start-demo`, seed 001's own layout with the old supply rule). `--big SWATHS` adds one
-//! large farm, `irregular_farm(1, SWATHS, 5.0)` with the same supply rule and no size filter,
-//! for the issue's 5,000-swath time goal (not exported: its transfer matrix would be
+//! large farm, `tiled_irregular_farm(1, SWATHS, 100, 5.0)` (random irregular farms of about
+//! 100 swaths in rows, supply point in the gap between the middle rows), for the issue's
+//! 5,000-swath time goal (not exported: its transfer matrix would be
 //! hundreds of megabytes).
 
 use std::path::PathBuf;
@@ -185,8 +186,8 @@ fn farms(options: &Options) -> Vec<Farm> {
         }
     }
     if let Some(swaths) = options.big {
-        let farm = irregular_farm(1, swaths, 5.0);
-        let supply = south_of(&farm);
+        let (farm, supply) = agripath::bench::farms::tiled_irregular_farm(1, swaths, 100, 5.0);
+        let supply = [supply.x, supply.y];
         let scenario =
             Scenario::with_farm(farm, ScenarioParts::default()).expect("a random farm is valid");
         farms.push(Farm {

@@ -138,6 +138,95 @@ pub fn irregular_farm(seed: u64, swaths: usize, swath_width_m: f64) -> Farm {
     }
 }
 
+/// About `swaths` swaths of width `swath_width_m` as one compact farm, for the large-farm time
+/// goal: [`irregular_farm`]s of about `per_tile` swaths each (seeds `seed`, `seed + 1`, …) laid
+/// out in rows about as wide as the whole is tall, [`TILE_GAP_M`] apart, so that every pass
+/// is short and the farm's far corners are a few kilometres from its middle (one
+/// [`irregular_farm`] of 5,000 swaths is 25 km long and has passes no battery flies). Also
+/// returns a supply point in the middle of the gap between the two middle rows, where no
+/// field lies.
+pub fn tiled_irregular_farm(
+    seed: u64,
+    swaths: usize,
+    per_tile: usize,
+    swath_width_m: f64,
+) -> (Farm, Coord<f64>) {
+    use geo::{BoundingRect, Translate};
+    let tiles: Vec<Farm> = (0..swaths.div_ceil(per_tile.max(1)).max(1) as u64)
+        .map(|index| irregular_farm(seed + index, per_tile, swath_width_m))
+        .collect();
+    let bounds: Vec<geo::Rect<f64>> = tiles
+        .iter()
+        .map(|tile| {
+            let rects = tile
+                .fields
+                .iter()
+                .filter_map(|field| field.polygon.bounding_rect());
+            rects
+                .reduce(|a, b| {
+                    geo::Rect::new(
+                        Coord {
+                            x: a.min().x.min(b.min().x),
+                            y: a.min().y.min(b.min().y),
+                        },
+                        Coord {
+                            x: a.max().x.max(b.max().x),
+                            y: a.max().y.max(b.max().y),
+                        },
+                    )
+                })
+                .expect("a random farm has fields")
+        })
+        .collect();
+    let area: f64 = bounds
+        .iter()
+        .map(|rect| (rect.width() + TILE_GAP_M) * (rect.height() + TILE_GAP_M))
+        .sum();
+    let row_width = area.sqrt();
+    let mut fields = Vec::new();
+    // Rows run downwards from y = 0; `row_bottoms` is where each row's tallest tile ends.
+    let (mut x, mut top, mut bottom) = (0.0, 0.0_f64, 0.0_f64);
+    let mut row_bottoms = Vec::new();
+    for (index, (tile, rect)) in tiles.iter().zip(&bounds).enumerate() {
+        if x > 0.0 && x + rect.width() > row_width {
+            row_bottoms.push(bottom);
+            top = bottom - TILE_GAP_M;
+            x = 0.0;
+        }
+        let (dx, dy) = (x - rect.min().x, top - rect.max().y);
+        for field in &tile.fields {
+            fields.push(Field {
+                name: format!("T{}.{}", index + 1, field.name),
+                polygon: field.polygon.translate(dx, dy),
+                sprayed_with_others: Vec::new(),
+            });
+        }
+        bottom = if x == 0.0 {
+            top - rect.height()
+        } else {
+            bottom.min(top - rect.height())
+        };
+        x += rect.width() + TILE_GAP_M;
+    }
+    row_bottoms.push(bottom);
+    // Between the two middle rows (below the farm when it is one row).
+    let middle = (row_bottoms.len() / 2).saturating_sub(usize::from(row_bottoms.len() > 1));
+    let supply = Coord {
+        x: 0.5 * row_width,
+        y: row_bottoms[middle] - 0.5 * TILE_GAP_M,
+    };
+    let first = tiles.into_iter().next().expect("at least one tile");
+    let farm = Farm {
+        source: format!("tiled random irregular farm {seed}, {swaths} swaths").into(),
+        fields,
+        ..first
+    };
+    (farm, supply)
+}
+
+/// Metres between the tiles of [`tiled_irregular_farm`]: the gap a supply vehicle stands in.
+pub const TILE_GAP_M: f64 = 60.0;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -174,5 +263,44 @@ mod tests {
             assert_eq!(farm.fields, irregular_farm(seed, 200, 5.0).fields);
         }
         assert!(holes > 10, "holes are drawn: {holes}");
+    }
+
+    #[test]
+    fn a_tiled_farm_is_compact_its_fields_apart_and_its_supply_point_off_them() {
+        let (farm, supply) = tiled_irregular_farm(1, 2000, 100, 5.0);
+        assert!(farm.fields.len() >= 40, "{} fields", farm.fields.len());
+        let point = geo::Point::from(supply);
+        for (i, a) in farm.fields.iter().enumerate() {
+            assert!(a.polygon.is_valid());
+            assert!(
+                !a.polygon.contains(&point),
+                "{} holds the supply point",
+                a.name
+            );
+            for b in &farm.fields[i + 1..] {
+                assert!(
+                    !a.polygon.intersects(&b.polygon),
+                    "{} meets {}",
+                    a.name,
+                    b.name
+                );
+            }
+        }
+        use geo::BoundingRect;
+        let bounds = geo::MultiPolygon::new(
+            farm.fields
+                .iter()
+                .map(|field| field.polygon.clone())
+                .collect(),
+        )
+        .bounding_rect()
+        .unwrap();
+        // About square: neither side more than three times the other.
+        let (width, height) = (bounds.width(), bounds.height());
+        assert!(
+            width < 3.0 * height && height < 3.0 * width,
+            "{width} × {height}"
+        );
+        assert!(bounds.contains(&point) || supply.y < bounds.min().y);
     }
 }

@@ -60,7 +60,9 @@ pub(crate) fn tick_label(value: f64) -> String {
     if value != 0.0 && (value.abs() >= 1e5 || value.abs() < 1e-3) {
         format!("{value:e}")
     } else {
-        format!("{value}")
+        // k · step in floating point is 0.30000000000000004 for 3 × 0.1: round it away.
+        let rounded = (value * 1e9).round() / 1e9;
+        format!("{rounded}")
     }
 }
 
@@ -260,6 +262,14 @@ pub fn render_banded(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn tick_labels_read_as_written() {
+        assert_eq!(tick_label(3.0 * 0.1), "0.3");
+        assert_eq!(tick_label(1200.0), "1200");
+        assert_eq!(tick_label(0.25), "0.25");
+        assert_eq!(tick_label(2e-4), "2e-4");
+    }
 
     #[test]
     fn ticks_are_round_and_inside() {

@@ -370,6 +370,51 @@ mod tests {
     use proptest::prelude::*;
     use tour::is_permutation;
 
+    /// Above the full matrix's limit the costs within each field are precomputed: they must
+    /// be eq. (8) as the model computes it over the whole farm, pair by pair.
+    #[test]
+    fn a_large_farm_costs_the_same_from_its_field_blocks_as_computed() {
+        let (farm, _) = crate::bench::farms::tiled_irregular_farm(3, 1300, 100, 5.0);
+        let scenario =
+            crate::scenario::Scenario::with_farm(farm, crate::scenario::ScenarioParts::default())
+                .unwrap();
+        let settings = CoverageSettings {
+            headland_passes: 0,
+            ..CoverageSettings::default()
+        };
+        let plan = plan_coverage(
+            &scenario.farm,
+            scenario.terrain.as_ref(),
+            &scenario.vehicle,
+            &settings,
+        )
+        .unwrap();
+        let model = TransferModel::new(&scenario.farm, scenario.vehicle.safe_height_m);
+        let (problem, _) = ordering_problem(&plan, &model, Start::Open);
+        assert!(problem.passes() > 1000 && !problem.has_cost_matrix());
+        let fields = problem.fields.clone().unwrap();
+        let (mut same_field, mut flat) = (0, 0);
+        for from in (0..2 * problem.passes()).step_by(17) {
+            // Every end of the same pass's field neighbourhood, and a spread of the others.
+            for to in (from.saturating_sub(40)..from + 40)
+                .chain((0..2 * problem.passes()).step_by(97))
+                .filter(|&to| to < 2 * problem.passes())
+            {
+                let computed = model.cost(problem.point(from), problem.point(to));
+                let looked_up = problem.cost(from, to);
+                assert!(
+                    (computed - looked_up).abs() < 1e-9,
+                    "ends {from} and {to}: {looked_up} against {computed}"
+                );
+                if fields[from / 2] == fields[to / 2] && from != to {
+                    same_field += 1;
+                    flat += usize::from(!problem.climbs(from, to));
+                }
+            }
+        }
+        assert!(same_field > 1000 && flat > 500, "{same_field} {flat}");
+    }
+
     fn demo_plan(headland: usize) -> (crate::scenario::Scenario, CoveragePlan) {
         let scenario = crate::demo::scenario().unwrap();
         let settings = CoverageSettings {

@@ -92,6 +92,9 @@ pub struct OrderingProblem<'a> {
     model: &'a TransferModel<'a>,
     /// Every end-to-end cost, precomputed when there are few enough ends.
     matrix: Option<Vec<f64>>,
+    /// Without the full matrix: the costs between ends of one field, precomputed field by
+    /// field (the only pairs eq. 8's geometric test is needed for).
+    field_blocks: Option<FieldBlocks>,
     /// The cost between the start point and every end, precomputed (the local search asks
     /// for it at every move at the ends of the tour).
     start_costs: Vec<f64>,
@@ -99,6 +102,77 @@ pub struct OrderingProblem<'a> {
 
 /// Ends up to which all end-to-end costs are precomputed (2000² × 8 bytes = 32 MB).
 const MATRIX_LIMIT_ENDS: usize = 2000;
+
+/// Most costs the field blocks of a large problem hold in all (8 M × 8 bytes = 64 MB).
+const FIELD_BLOCKS_LIMIT: usize = 8_000_000;
+
+/// On a farm with more ends than [`MATRIX_LIMIT_ENDS`], the end-to-end costs within each
+/// field. Between two fields a transfer always climbs (eq. 8's test is only needed inside
+/// one field), so those costs are cheap to compute; within a field each needs the polygon
+/// test, and the local search asks for the same pairs again and again: a 5,000-swath farm
+/// spent most of its ordering time in that test. Values are the same as computed.
+struct FieldBlocks {
+    /// Each end's row in its field's block.
+    row: Vec<usize>,
+    /// Each field's block (its ends × its ends), when it fitted in [`FIELD_BLOCKS_LIMIT`].
+    blocks: Vec<Option<(usize, Vec<f64>)>>,
+}
+
+impl FieldBlocks {
+    fn build(problem: &OrderingProblem, fields: &[usize]) -> Self {
+        let count = 2 * problem.ends.len();
+        let field_count = fields.iter().max().map_or(0, |&field| field + 1);
+        let mut members: Vec<Vec<End>> = vec![Vec::new(); field_count];
+        let mut row = vec![0; count];
+        for (end, row) in row.iter_mut().enumerate() {
+            let members = &mut members[fields[end / 2]];
+            *row = members.len();
+            members.push(end);
+        }
+        // Fields in order while the blocks fit; a field left out is computed on demand.
+        let mut room = FIELD_BLOCKS_LIMIT;
+        let wanted: Vec<bool> = members
+            .iter()
+            .map(|ends| {
+                let size = ends.len() * ends.len();
+                let fits = ends.len() <= MATRIX_LIMIT_ENDS && size <= room;
+                if fits {
+                    room -= size;
+                }
+                fits
+            })
+            .collect();
+        let blocks = members
+            .iter()
+            .zip(wanted)
+            .map(|(ends, wanted)| {
+                wanted.then(|| {
+                    let size = ends.len();
+                    let mut block = vec![0.0; size * size];
+                    for (from_row, &from) in ends.iter().enumerate() {
+                        for (to_row, &to) in ends.iter().enumerate().take(from_row) {
+                            let cost = problem.compute(from, to);
+                            block[from_row * size + to_row] = cost;
+                            block[to_row * size + from_row] = cost;
+                        }
+                    }
+                    (size, block)
+                })
+            })
+            .collect();
+        Self { row, blocks }
+    }
+
+    /// The precomputed cost, when both ends lie in one field that has a block.
+    fn cost(&self, fields: &[usize], from: End, to: End) -> Option<f64> {
+        let field = fields[from / 2];
+        if field != fields[to / 2] {
+            return None;
+        }
+        let (size, block) = self.blocks[field].as_ref()?;
+        Some(block[self.row[from] * size + self.row[to]])
+    }
+}
 
 impl<'a> OrderingProblem<'a> {
     /// The problem of ordering the passes with `ends` from `start`, transfers costed by
@@ -130,6 +204,7 @@ impl<'a> OrderingProblem<'a> {
             start,
             model,
             matrix: None,
+            field_blocks: None,
             start_costs: Vec::new(),
         };
         if let Some(point) = start.point() {
@@ -147,6 +222,12 @@ impl<'a> OrderingProblem<'a> {
                 }
             }
             problem.matrix = Some(matrix);
+        } else {
+            let blocks = problem
+                .fields
+                .as_deref()
+                .map(|fields| FieldBlocks::build(&problem, fields));
+            problem.field_blocks = blocks;
         }
         problem
     }
@@ -183,7 +264,12 @@ impl<'a> OrderingProblem<'a> {
     pub fn cost(&self, from: End, to: End) -> f64 {
         match &self.matrix {
             Some(matrix) => matrix[from * 2 * self.ends.len() + to],
-            None => self.compute(from, to),
+            None => self
+                .field_blocks
+                .as_ref()
+                .zip(self.fields.as_deref())
+                .and_then(|(blocks, fields)| blocks.cost(fields, from, to))
+                .unwrap_or_else(|| self.compute(from, to)),
         }
     }
 

@@ -34,8 +34,6 @@ pub struct JointProblem<'a> {
     /// The passes, their ends and the transfer costs between them.
     pub ordering: &'a OrderingProblem<'a>,
     profiles: Vec<PassProfile>,
-    /// Route points of every tour (all the passes' points).
-    points: usize,
     limits: SplitLimits,
     speeds: Speeds,
     buffers: Mutex<SplitBuffers>,
@@ -76,7 +74,6 @@ impl<'a> JointProblem<'a> {
             .collect::<Vec<PassProfile>>();
         Self {
             ordering,
-            points: profiles.iter().map(|profile| profile.spray_m.len()).sum(),
             profiles,
             limits: SplitLimits {
                 tank_m: model.spray_per_tank_m.unwrap_or(f64::INFINITY),
@@ -93,7 +90,10 @@ impl<'a> JointProblem<'a> {
 
     /// Route points of every tour of the problem (what one split lays out).
     pub fn points(&self) -> usize {
-        self.points
+        self.profiles
+            .iter()
+            .map(|profile| profile.spray_m.len())
+            .sum()
     }
 
     /// Seconds of the transfer from `from`'s exit to `to`'s entry: at transit speed when it
@@ -115,6 +115,20 @@ fn distance_3d(a: &GroundPoint, b: &GroundPoint) -> f64 {
 }
 
 impl JointProblem<'_> {
+    /// The steps the split of `tour` takes ([`SplitBuffers`]' count): the unit of
+    /// [`JointSettings::most_split_steps`].
+    pub fn split_steps(&self, tour: &[Step]) -> u64 {
+        let transfer = |from: Step, to: Step| self.transfer_s(from, to);
+        let split = TourSplit {
+            profiles: &self.profiles,
+            transfer_s: &transfer,
+            limits: self.limits,
+        };
+        let mut buffers = SplitBuffers::default();
+        split.cost(tour, &mut buffers);
+        buffers.steps
+    }
+
     /// The sorties of the tour's cheapest split, as the tour positions of the passes each
     /// begins and ends in ([`TourSplit::sorties`]).
     pub fn sorties(&self, tour: &[Step]) -> Vec<(usize, usize)> {
@@ -170,9 +184,10 @@ pub struct JointSettings {
     pub race_share: f64,
     /// Whether the petal moves ([`petals`]) re-fly the incumbent's sorties out and back.
     pub petals: bool,
-    /// Most route points the splits of a run may lay out in all (each split lays out every
-    /// point of the tour): bounds the run's time on big farms, deterministically.
-    pub most_points: u64,
+    /// Most split steps (start positions considered, [`JointProblem::split_steps`]) the
+    /// splits of a run may take in all: bounds the run's time on big farms, where a split
+    /// costs thousands of times a small farm's, deterministically (a count, not a clock).
+    pub most_split_steps: u64,
     /// Seed of the kicks (run 0 of this seed).
     pub seed: u64,
 }
@@ -184,20 +199,23 @@ impl Default for JointSettings {
             starts: 2,
             race_share: 0.5,
             petals: true,
-            most_points: 100_000_000,
+            // About 3-5 s of splits on a 2-core machine of 2026 (3-5 ns a step); a farm of
+            // 250 swaths takes under 3 % of it at the default 12 evaluations per pass.
+            most_split_steps: 1_000_000_000,
             seed: 1,
         }
     }
 }
 
 impl JointSettings {
-    /// The Runner's budget on `problem`: evaluations per pass × passes + 2,000, but no more
-    /// splits than lay out `most_points` points (and at least two per pass).
-    pub fn budget(&self, problem: &JointProblem) -> u64 {
+    /// The Runner's budget on `problem` from a tour whose split takes `steps_per_split`
+    /// steps: evaluations per pass × passes + 2,000, but no more splits than take
+    /// `most_split_steps` steps in all (at least one).
+    pub fn budget(&self, problem: &JointProblem, steps_per_split: u64) -> u64 {
         let passes = problem.profiles.len() as u64;
         let wanted = self.evaluations_per_pass * passes + 2000;
-        let affordable = self.most_points / (problem.points as u64).max(1);
-        wanted.min(affordable.max(2 * passes)).max(1)
+        let affordable = self.most_split_steps / steps_per_split.max(1);
+        wanted.min(affordable).max(1)
     }
 }
 
@@ -205,7 +223,7 @@ impl JointSettings {
 /// the supply point) and the other start tours made from it: the cheapest tour found
 /// within the budget.
 pub fn improve(problem: &JointProblem, order: Vec<Step>, settings: &JointSettings) -> Vec<Step> {
-    let budget = settings.budget(problem);
+    let budget = settings.budget(problem, problem.split_steps(&order));
     search(problem, order, settings, budget).tour
 }
 

@@ -94,6 +94,10 @@ pub struct SplitBuffers {
     label_end: Vec<usize>,
     swap_window: VecDeque<usize>,
     refill_window: VecDeque<usize>,
+    /// Start positions considered by the splits run with these buffers (each point once,
+    /// and every start in reach where the battery breaks a queue's order): the work a split
+    /// costs, which the joint search's budget is measured in on big farms.
+    pub(super) steps: u64,
 }
 
 /// The split of tours of given passes.
@@ -168,6 +172,7 @@ impl TourSplit<'_> {
             label_end,
             swap_window,
             refill_window,
+            steps,
             ..
         } = buffers;
         let count = spray.len();
@@ -262,8 +267,10 @@ impl TourSplit<'_> {
                     scan = true;
                 }
             }
+            *steps += 1;
             if scan {
                 // The battery breaks at a queue's best start: every start in reach, directly.
+                *steps += e.saturating_sub(lowest.max(1)) as u64;
                 for s in lowest.max(1)..e {
                     if start[s].is_finite() && flyable(s) {
                         consider(s, start);
