@@ -29,8 +29,8 @@
 //!   swath along a slanted side, a swath grazing a hole's band) it turns the sprayer off
 //!   where most of its width is band.
 //!
-//! Gaps shorter than [`SHORTEST_GAP_M`] are sprayed through, pieces shorter than
-//! [`SHORTEST_CUT_SWATH_M`] are not flown; a swath may come out as several pieces (as a
+//! Gaps shorter than `SHORTEST_GAP_M` are sprayed through, pieces shorter than
+//! `SHORTEST_CUT_SWATH_M` are not flown; a swath may come out as several pieces (as a
 //! hole splits one). The core is the innermost pass region eroded by w/2 with round joins,
 //! which is where the pass's flown strip (rectangles with round turns) ends: with it `gap`
 //! leaves no swath/edge double dose at all (0.00 % of the area on the benchmark farms,

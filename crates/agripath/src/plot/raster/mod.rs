@@ -9,7 +9,7 @@
 //! `transform`), `image` (base64 PNG, `preserveAspectRatio="none"`), `clipPath` (rect, path,
 //! circle) referenced by `clip-path`, `title`; fill, stroke, their opacities, `opacity`,
 //! fill-rule, stroke-width, dasharray, linecap, linejoin, paint-order, transforms. Any other
-//! element, attribute or value is an error naming it (see [`paint`]).
+//! element, attribute or value is an error naming it (see `paint.rs`).
 
 mod paint;
 mod parse;

@@ -73,7 +73,7 @@ pub fn directed(problem: &OrderingProblem, steps: &[Step]) -> Vec<Step> {
     chosen
 }
 
-/// The interleave of `steps` from `offset` (0 or 1): every other pass from steps[offset]
+/// The interleave of `steps` from `offset` (0 or 1): every other pass from `steps[offset]`
 /// out, the ones between back.
 pub fn interleaved(steps: &[Step], offset: usize) -> Vec<Step> {
     let out = steps.iter().skip(offset).step_by(2);
