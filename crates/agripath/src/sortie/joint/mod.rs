@@ -115,34 +115,44 @@ fn distance_3d(a: &GroundPoint, b: &GroundPoint) -> f64 {
 }
 
 impl JointProblem<'_> {
-    /// The steps the split of `tour` takes ([`SplitBuffers`]' count): the unit of
-    /// [`JointSettings::most_split_steps`].
-    pub fn split_steps(&self, tour: &[Step]) -> u64 {
+    /// Runs `work` with this problem's split and `buffers` (the shared ones when `None`).
+    fn with_split<T>(
+        &self,
+        buffers: Option<&mut SplitBuffers>,
+        work: impl FnOnce(&TourSplit, &mut SplitBuffers) -> T,
+    ) -> T {
         let transfer = |from: Step, to: Step| self.transfer_s(from, to);
         let split = TourSplit {
             profiles: &self.profiles,
             transfer_s: &transfer,
             limits: self.limits,
         };
+        match buffers {
+            Some(buffers) => work(&split, buffers),
+            None => work(
+                &split,
+                &mut self
+                    .buffers
+                    .lock()
+                    .unwrap_or_else(std::sync::PoisonError::into_inner),
+            ),
+        }
+    }
+
+    /// The steps the split of `tour` takes ([`SplitBuffers`]' count): the unit of
+    /// [`JointSettings::most_split_steps`].
+    pub fn split_steps(&self, tour: &[Step]) -> u64 {
         let mut buffers = SplitBuffers::default();
-        split.cost(tour, &mut buffers);
+        self.with_split(Some(&mut buffers), |split, buffers| {
+            split.cost(tour, buffers)
+        });
         buffers.steps
     }
 
     /// The sorties of the tour's cheapest split, as the tour positions of the passes each
     /// begins and ends in ([`TourSplit::sorties`]).
     pub fn sorties(&self, tour: &[Step]) -> Vec<(usize, usize)> {
-        let transfer = |from: Step, to: Step| self.transfer_s(from, to);
-        let split = TourSplit {
-            profiles: &self.profiles,
-            transfer_s: &transfer,
-            limits: self.limits,
-        };
-        let mut buffers = self
-            .buffers
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner);
-        split.sorties(tour, &mut buffers)
+        self.with_split(None, |split, buffers| split.sorties(tour, buffers))
     }
 }
 
@@ -151,17 +161,7 @@ impl swarm::Problem for JointProblem<'_> {
 
     /// Non-spray seconds of the tour's best split.
     fn evaluate(&self, tour: &[Step]) -> f64 {
-        let transfer = |from: Step, to: Step| self.transfer_s(from, to);
-        let split = TourSplit {
-            profiles: &self.profiles,
-            transfer_s: &transfer,
-            limits: self.limits,
-        };
-        let mut buffers = self
-            .buffers
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner);
-        split.cost(tour, &mut buffers)
+        self.with_split(None, |split, buffers| split.cost(tour, buffers))
     }
 
     fn first_solution(&self) -> Vec<Step> {
