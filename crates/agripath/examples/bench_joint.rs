@@ -32,7 +32,7 @@ use std::path::PathBuf;
 use std::str::FromStr;
 use std::time::Instant;
 
-use agripath::bench::farms::irregular_farm;
+use agripath::bench::farms::{irregular_farm, supply_south_of, ROUTING_SWATH_TARGETS};
 use agripath::coverage::drape::GroundPoint;
 use agripath::coverage::CoverageSettings;
 use agripath::pipeline::{plan_mission, PlannedMission};
@@ -45,12 +45,8 @@ use agripath::sortie::route::{RoutePoint, Segment};
 use agripath::sortie::{PlannedSorties, SortiePlanner, SortieSettings};
 use serde_json::{json, Value};
 
-/// Swath counts asked of the random farm generator, in turn.
-const TARGETS: [usize; 5] = [120, 150, 180, 210, 240];
 /// Interior swaths a random farm's plan must have to be kept (issue 19's 100-250).
 const KEPT_SWATHS: std::ops::RangeInclusive<usize> = 100..=250;
-/// How far south of the farm's bounding box a random farm's supply point stands, metres.
-const SUPPLY_SOUTH_M: f64 = 30.0;
 /// Seeds tried before giving up on finding enough farms of the kept size.
 const MAX_SEEDS: u64 = 200;
 /// Float slack of the consistency checks, metres or seconds (the report rounds to 1e-4).
@@ -167,9 +163,9 @@ fn farms(options: &Options) -> Vec<Farm> {
     let mut seed = 0;
     while farms.len() < wanted && seed < MAX_SEEDS {
         seed += 1;
-        let target = TARGETS[(seed as usize - 1) % TARGETS.len()];
+        let target = ROUTING_SWATH_TARGETS[(seed as usize - 1) % ROUTING_SWATH_TARGETS.len()];
         let farm = irregular_farm(seed, target, 5.0);
-        let supply = south_of(&farm);
+        let supply = supply_south_of(&farm);
         let scenario =
             Scenario::with_farm(farm, ScenarioParts::default()).expect("a random farm is valid");
         let Ok(mission) = plan_mission(&scenario, &settings(options, Some(supply))) else {
@@ -197,15 +193,6 @@ fn farms(options: &Options) -> Vec<Farm> {
         });
     }
     farms
-}
-
-/// The supply point of a random farm: 30 m south of the middle of its bounding box's south side.
-fn south_of(farm: &agripath::model::Farm) -> [f64; 2] {
-    let bounds = farm.bounds();
-    [
-        0.5 * (bounds.min().x + bounds.max().x),
-        bounds.min().y - SUPPLY_SOUTH_M,
-    ]
 }
 
 fn route_point(point: &GroundPoint) -> RoutePoint {

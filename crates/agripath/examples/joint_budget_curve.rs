@@ -23,9 +23,10 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use agripath::bench::farms::irregular_farm;
+use agripath::bench::farms::{irregular_farm, supply_south_of, ROUTING_SWATH_TARGETS};
 use agripath::coverage::drape::GroundPoint;
 use agripath::coverage::{plan_coverage, CoverageSettings};
+use agripath::pipeline::sortie_model;
 use agripath::plot::line_chart::{self, Chart, Series};
 use agripath::scenario::{Scenario, ScenarioParts};
 use agripath::sequence::tour::Start;
@@ -34,12 +35,6 @@ use agripath::sequence::{ordering_problem, passes_of, Sequencer, TransferModel};
 use agripath::sortie::joint::starts::{backwards, cheapest_rotation, cut_at_supply, rotated};
 use agripath::sortie::joint::{search_from, JointProblem, JointSettings};
 use agripath::sortie::route::{RoutePoint, Speeds};
-use agripath::sortie::SortieModel;
-
-/// Swath counts asked of the random farm generator, in turn (as `bench_joint`).
-const TARGETS: [usize; 5] = [120, 150, 180, 210, 240];
-/// How far south of the farm's bounding box a random farm's supply point stands, metres.
-const SUPPLY_SOUTH_M: f64 = 30.0;
 
 struct Options {
     farms: usize,
@@ -96,29 +91,14 @@ fn farms(count: usize) -> Vec<(String, Scenario, [f64; 2])> {
         [0.0, 0.0],
     )];
     for seed in 1..=count as u64 {
-        let target = TARGETS[(seed as usize - 1) % TARGETS.len()];
+        let target = ROUTING_SWATH_TARGETS[(seed as usize - 1) % ROUTING_SWATH_TARGETS.len()];
         let farm = irregular_farm(seed, target, 5.0);
-        let bounds = farm.bounds();
-        let supply = [
-            0.5 * (bounds.min().x + bounds.max().x),
-            bounds.min().y - SUPPLY_SOUTH_M,
-        ];
+        let supply = supply_south_of(&farm);
         let scenario =
             Scenario::with_farm(farm, ScenarioParts::default()).expect("a random farm is valid");
         farms.push((format!("random_s{seed}_{target}"), scenario, supply));
     }
     farms
-}
-
-/// The sortie model as the pipeline builds it: returns at the safe height, the climbs and
-/// descents at climb speed kept out of the battery (`pipeline::sortie_model`).
-fn sortie_model(vehicle: &agripath::model::Vehicle, supply: RoutePoint) -> SortieModel {
-    let mut model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
-    let cruise_m = vehicle.spray_height_m + vehicle.safe_height_m.max(5.0);
-    let vertical_m = 4.0 * cruise_m - 2.0 * vehicle.spray_height_m;
-    let reserve_s = vertical_m / vehicle.climb_speed_mps - vertical_m / vehicle.transit_speed_mps;
-    model.battery_reserve_s = reserve_s.clamp(0.0, 0.5 * model.endurance_s);
-    model
 }
 
 /// One run of the search: farm, starts, evaluations per pass, cost, seconds.

@@ -105,8 +105,9 @@ pub struct PlannedMission {
     pub settings: PlanSettings,
 }
 
-/// The sortie model the plans of `vehicle` are split with, from `supply`.
-fn sortie_model(vehicle: &crate::model::Vehicle, supply: RoutePoint) -> SortieModel {
+/// The sortie model the plans of `vehicle` are split with, from `supply` (public for the
+/// benchmarks that build the joint problem as the pipeline does).
+pub fn sortie_model(vehicle: &crate::model::Vehicle, supply: RoutePoint) -> SortieModel {
     // Returns fly at the safe height, as transfers that leave the field do (decision 0008).
     let mut model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
     // The mission climbs and descends at climb speed (takeoff to the cruise height, down to

@@ -138,6 +138,25 @@ pub fn irregular_farm(seed: u64, swaths: usize, swath_width_m: f64) -> Farm {
     }
 }
 
+/// Swath counts asked of [`irregular_farm`] in turn by the routing benchmarks (`bench_joint`,
+/// `joint_budget_curve`): farm `seed` asks for `ROUTING_SWATH_TARGETS[(seed - 1) % 5]`.
+pub const ROUTING_SWATH_TARGETS: [usize; 5] = [120, 150, 180, 210, 240];
+
+/// How far south of a random farm's bounding box its supply point stands in the routing
+/// benchmarks, metres.
+pub const SUPPLY_SOUTH_M: f64 = 30.0;
+
+/// A random farm's supply point in the routing benchmarks: [`SUPPLY_SOUTH_M`] south of the
+/// middle of its bounding box's south side (outside every field, where a truck could stand
+/// by the farm's edge).
+pub fn supply_south_of(farm: &Farm) -> [f64; 2] {
+    let bounds = farm.bounds();
+    [
+        0.5 * (bounds.min().x + bounds.max().x),
+        bounds.min().y - SUPPLY_SOUTH_M,
+    ]
+}
+
 /// About `swaths` swaths of width `swath_width_m` as one compact farm, for the large-farm time
 /// goal: [`irregular_farm`]s of about `per_tile` swaths each (seeds `seed`, `seed + 1`, …) laid
 /// out in rows about as wide as the whole is tall, [`TILE_GAP_M`] apart, so that every pass

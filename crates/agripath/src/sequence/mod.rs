@@ -378,17 +378,7 @@ mod tests {
         let scenario =
             crate::scenario::Scenario::with_farm(farm, crate::scenario::ScenarioParts::default())
                 .unwrap();
-        let settings = CoverageSettings {
-            headland_passes: 0,
-            ..CoverageSettings::default()
-        };
-        let plan = plan_coverage(
-            &scenario.farm,
-            scenario.terrain.as_ref(),
-            &scenario.vehicle,
-            &settings,
-        )
-        .unwrap();
+        let plan = coverage_of(&scenario, 0);
         let model = TransferModel::new(&scenario.farm, scenario.vehicle.safe_height_m);
         let (problem, _) = ordering_problem(&plan, &model, Start::Open);
         assert!(problem.passes() > 1000 && !problem.has_cost_matrix());
@@ -415,19 +405,24 @@ mod tests {
         assert!(same_field > 1000 && flat > 500, "{same_field} {flat}");
     }
 
-    fn demo_plan(headland: usize) -> (crate::scenario::Scenario, CoveragePlan) {
-        let scenario = crate::demo::scenario().unwrap();
+    /// The scenario's coverage with `headland` edge passes, the other settings default.
+    fn coverage_of(scenario: &crate::scenario::Scenario, headland: usize) -> CoveragePlan {
         let settings = CoverageSettings {
             headland_passes: headland,
             ..CoverageSettings::default()
         };
-        let plan = plan_coverage(
+        plan_coverage(
             &scenario.farm,
             scenario.terrain.as_ref(),
             &scenario.vehicle,
             &settings,
         )
-        .unwrap();
+        .unwrap()
+    }
+
+    fn demo_plan(headland: usize) -> (crate::scenario::Scenario, CoveragePlan) {
+        let scenario = crate::demo::scenario().unwrap();
+        let plan = coverage_of(&scenario, headland);
         (scenario, plan)
     }
 

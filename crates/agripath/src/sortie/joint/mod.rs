@@ -199,8 +199,9 @@ impl Default for JointSettings {
             starts: 2,
             race_share: 0.5,
             petals: true,
-            // About 3-5 s of splits on a 2-core machine of 2026 (3-5 ns a step); a farm of
-            // 250 swaths takes under 3 % of it at the default 12 evaluations per pass.
+            // Binds only on big farms: the 11 farms of `bench_joint` (up to 250 swaths) plan the
+            // same with it as without; the 4,556-swath tiled farm plans in 9.4 s
+            // (docs/benchmarks.md, "5,000 swaths on a flyable farm").
             most_split_steps: 1_000_000_000,
             seed: 1,
         }
