@@ -1,7 +1,6 @@
 //! Coverage of several fields on 3D terrain (seed 001 §2): swaths at the best heading per
 //! field, draped on the terrain, with edge passes around every boundary and hole.
 
-pub mod corner_spur;
 pub mod drape;
 pub mod edge_cut;
 pub mod heading;
@@ -191,6 +190,17 @@ pub fn plan_coverage(
 ) -> Result<CoveragePlan, Fault> {
     settings.validate()?;
     check_work_size(farm, vehicle.swath_width_m)?;
+    // A camera has no dose to double: its images want the overlap, so surveys keep the swaths
+    // whole whatever `--edge-cut` says (decision 0019).
+    let surveying = CoverageSettings {
+        edge_cut: EdgeCut::Overlap,
+        ..*settings
+    };
+    let settings = if vehicle.is_survey() {
+        &surveying
+    } else {
+        settings
+    };
     let fields = farm
         .fields
         .iter()
@@ -368,7 +378,15 @@ pub fn cover_field(
     // then moves their spray on/off points against the band (decision 0019).
     let segments = match pass_regions.last() {
         Some(innermost) => {
-            edge_cut::cut_swath_ends(&segments, innermost, frame, width_m, settings.edge_cut)
+            let budget_m2 = edge_cut::MISSED_BUDGET_SHARE * sprayable.unsigned_area();
+            edge_cut::cut_swath_ends(
+                &segments,
+                innermost,
+                frame,
+                width_m,
+                settings.edge_cut,
+                budget_m2,
+            )
         }
         None => segments,
     };
@@ -384,14 +402,7 @@ pub fn cover_field(
             })
         })
         .collect::<Result<Vec<_>, Fault>>()?;
-    let edges = edge_passes(
-        index,
-        &pass_regions,
-        terrain,
-        settings.drape_spacing_m,
-        // `--edge-cut overlap` is the layout before decision 0019, spurs included.
-        (settings.edge_cut != EdgeCut::Overlap).then_some(width_m),
-    )?;
+    let edges = edge_passes(index, &pass_regions, terrain, settings.drape_spacing_m)?;
 
     // Measured in the rotated frame, where swath strips are axis-parallel rectangles whose
     // shared edges are exactly equal: tilted in the plan frame, their nearly collinear edges
@@ -418,15 +429,12 @@ pub fn cover_field(
     })
 }
 
-/// Edge passes along every ring of each pass region, sampled every `spacing_m`: closed, or
-/// opened at sharp corners into paths that start with a spur into the tip
-/// ([`corner_spur`]).
+/// Edge passes along every ring of each pass region, closed, sampled every `spacing_m`.
 fn edge_passes(
     field: usize,
     pass_regions: &[MultiPolygon<f64>],
     terrain: &dyn Terrain,
     spacing_m: f64,
-    spur_width_m: Option<f64>,
 ) -> Result<Vec<EdgePass>, Fault> {
     let mut passes = Vec::new();
     for (pass, region) in pass_regions.iter().enumerate() {
@@ -435,37 +443,31 @@ fn edge_passes(
             {
                 continue;
             }
-            let paths = match spur_width_m {
-                Some(width_m) => corner_spur::pass_paths(&ring, region, width_m),
-                None => vec![ring],
-            };
-            for path in paths {
-                let mut points = Vec::new();
-                for pair in path.windows(2) {
-                    let (start, end) = (pair[0], pair[1]);
-                    let length = (end.x - start.x).hypot(end.y - start.y);
-                    let steps = (length / spacing_m).ceil().max(1.0) as usize;
-                    for step in 0..steps {
-                        let t = step as f64 / steps as f64;
-                        points.push(ground_point(
-                            Coord {
-                                x: start.x + t * (end.x - start.x),
-                                y: start.y + t * (end.y - start.y),
-                            },
-                            terrain,
-                        )?);
-                    }
+            let mut points = Vec::new();
+            for pair in ring.windows(2) {
+                let (start, end) = (pair[0], pair[1]);
+                let length = (end.x - start.x).hypot(end.y - start.y);
+                let steps = (length / spacing_m).ceil().max(1.0) as usize;
+                for step in 0..steps {
+                    let t = step as f64 / steps as f64;
+                    points.push(ground_point(
+                        Coord {
+                            x: start.x + t * (end.x - start.x),
+                            y: start.y + t * (end.y - start.y),
+                        },
+                        terrain,
+                    )?);
                 }
-                if let Some(&last) = path.last() {
-                    points.push(ground_point(last, terrain)?);
-                }
-                passes.push(EdgePass {
-                    field,
-                    pass,
-                    length_m: path_length_3d(&points),
-                    points,
-                });
             }
+            if let Some(&last) = ring.last() {
+                points.push(ground_point(last, terrain)?);
+            }
+            passes.push(EdgePass {
+                field,
+                pass,
+                length_m: path_length_3d(&points),
+                points,
+            });
         }
     }
     Ok(passes)
