@@ -22,6 +22,14 @@
 //! (keys start(s) + leg(s) − T_s, and the same − α S_s). The battery limit is not monotone
 //! in s: where a queue's best start breaks it (rare: the tank binds first), the window is
 //! scanned.
+//!
+//! The search scores tours that differ from the one it stands on only from some position i
+//! on (a move changes a stretch of the tour). The labels start(s), the two queues and the
+//! lowest start in reach before the first point of position i depend only on positions
+//! 0 … i − 1, so the split resumes there: the buffers keep the last tour's layout and labels,
+//! and a checkpoint of the queues at every position's first point ([`SplitCache`] keeps two,
+//! the pinned tour and the last candidate). The sums S and T are redone in the same order, so
+//! a resumed split's cost is the full split's to the bit.
 
 use std::collections::VecDeque;
 
