@@ -31,7 +31,7 @@ use agripath::plot::line_chart::{self, Chart, Series};
 use agripath::scenario::{Scenario, ScenarioParts};
 use agripath::sequence::tour::Start;
 use agripath::sequence::tour::Step;
-use agripath::sequence::{ordering_problem, passes_of, Sequencer, TransferModel};
+use agripath::sequence::{ordering_problem, Sequencer, TransferModel};
 use agripath::sortie::joint::starts::{backwards, cheapest_rotation, cut_at_supply, rotated};
 use agripath::sortie::joint::{search_from, JointProblem, JointSettings};
 use agripath::sortie::route::{RoutePoint, Speeds};
@@ -175,11 +175,7 @@ fn main() {
                 ground_m: supply.ground_m,
             },
         );
-        let points: Vec<&[GroundPoint]> = passes_of(&coverage)
-            .into_iter()
-            .map(|(_, points)| points)
-            .collect();
-        let joint = JointProblem::new(&problem, &points, &model, Speeds::of(vehicle));
+        let joint = JointProblem::of_coverage(&problem, &coverage, &model, Speeds::of(vehicle));
         // What a split from the first position costs: the order and the order backwards
         // (which differ at the first position, so nothing is resumed) in turn, the rate the
         // search would score at without resuming.

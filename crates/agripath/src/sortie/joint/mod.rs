@@ -89,6 +89,22 @@ impl<'a> JointProblem<'a> {
         }
     }
 
+    /// The problem of flying the passes of `coverage` (numbered as
+    /// [`crate::sequence::passes_of`] numbers them, as `ordering`'s are) in sorties of
+    /// `model` at `speeds`.
+    pub fn of_coverage(
+        ordering: &'a OrderingProblem<'a>,
+        coverage: &crate::coverage::CoveragePlan,
+        model: &SortieModel,
+        speeds: Speeds,
+    ) -> Self {
+        let points: Vec<&[GroundPoint]> = crate::sequence::passes_of(coverage)
+            .into_iter()
+            .map(|(_, points)| points)
+            .collect();
+        Self::new(ordering, &points, model, speeds)
+    }
+
     /// Route points of every tour of the problem (what one split lays out).
     pub fn points(&self) -> usize {
         self.profiles
@@ -311,9 +327,9 @@ pub fn search_from(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::coverage::{plan_coverage, CoverageSettings};
+    use crate::coverage::{plan_coverage, CoveragePlan, CoverageSettings};
     use crate::sequence::tour::Start;
-    use crate::sequence::{ordering_problem, passes_of, route_of_tour, Sequencer, TransferModel};
+    use crate::sequence::{ordering_problem, route_of_tour, Sequencer, TransferModel};
     use crate::sortie::route::{RoutePoint, WorkRoute};
     use crate::sortie::{plan_sorties, SortiePlanner};
     use swarm::Problem;
@@ -323,7 +339,7 @@ mod tests {
     fn joint_of<R>(
         scenario: &crate::scenario::Scenario,
         supply: [f64; 2],
-        work: impl FnOnce(&JointProblem, Vec<Step>) -> R,
+        work: impl FnOnce(&JointProblem, Vec<Step>, &CoveragePlan, &TransferModel) -> R,
     ) -> R {
         let vehicle = &scenario.vehicle;
         let coverage = plan_coverage(
@@ -348,13 +364,10 @@ mod tests {
                 ground_m: supply.ground_m,
             },
         );
-        let points: Vec<&[GroundPoint]> = passes_of(&coverage)
-            .into_iter()
-            .map(|(_, points)| points)
-            .collect();
-        let joint = JointProblem::new(&problem, &points, &sortie_model, Speeds::of(vehicle));
+        let joint =
+            JointProblem::of_coverage(&problem, &coverage, &sortie_model, Speeds::of(vehicle));
         let order = Sequencer::default().sequencer().order(&problem, &groups);
-        work(&joint, order)
+        work(&joint, order, &coverage, &model)
     }
 
     /// The resumed split (from the pinned tour or the last candidate) equals the split from
@@ -376,7 +389,7 @@ mod tests {
             farms.push((scenario, supply));
         }
         for (farm, (scenario, supply)) in farms.iter().enumerate() {
-            joint_of(scenario, *supply, |joint, order| {
+            joint_of(scenario, *supply, |joint, order, _, _| {
                 let n = order.len();
                 let mut stream = swarm::run_stream(farm as u64, 0);
                 let mut tour = order;
@@ -447,51 +460,33 @@ mod tests {
     fn the_linear_split_equals_the_exact_split_with_the_first_and_last_legs() {
         let scenario = crate::demo::scenario().unwrap();
         let vehicle = &scenario.vehicle;
-        let coverage = plan_coverage(
-            &scenario.farm,
-            scenario.terrain.as_ref(),
-            vehicle,
-            &CoverageSettings::default(),
-        )
-        .unwrap();
-        let model = TransferModel::new(&scenario.farm, vehicle.safe_height_m);
-        let supply = GroundPoint {
-            x: 0.0,
-            y: 0.0,
-            ground_m: scenario.terrain.height_m(0.0, 0.0).unwrap(),
-        };
-        let (problem, groups) = ordering_problem(&coverage, &model, Start::Fixed(supply));
-        let speeds = Speeds::of(vehicle);
-        let sortie_model = SortieModel::new(
-            vehicle,
-            RoutePoint {
-                x: supply.x,
-                y: supply.y,
-                ground_m: supply.ground_m,
-            },
-            2.0 * vehicle.safe_height_m,
-        );
-        let points: Vec<&[GroundPoint]> = passes_of(&coverage)
-            .into_iter()
-            .map(|(_, points)| points)
-            .collect();
-        let joint = JointProblem::new(&problem, &points, &sortie_model, speeds);
-        let mut stream = swarm::run_stream(3, 0);
-        let mut tours = vec![Sequencer::default().sequencer().order(&problem, &groups)];
-        tours.extend((0..3).map(|_| joint.random_solution(&mut stream)));
-        for tour in tours {
-            let linear = joint.evaluate(&tour);
-            let flight = route_of_tour(&coverage, &model, &problem, &tour);
-            let work = WorkRoute::from_route(&flight, speeds);
-            let plan = plan_sorties(&work, &sortie_model, SortiePlanner::Exact, 1).unwrap();
-            let ends = sortie_model.leg_m(&work.points()[0])
-                + sortie_model.leg_m(&work.points()[work.len() - 1]);
-            let exact = plan.objective_s() + ends / sortie_model.transit_mps;
-            assert!(
-                (exact - linear).abs() < 1e-6,
-                "exact {exact} against the linear split {linear}"
+        joint_of(&scenario, [0.0, 0.0], |joint, order, coverage, model| {
+            let speeds = Speeds::of(vehicle);
+            let sortie_model = crate::pipeline::sortie_model(
+                vehicle,
+                RoutePoint {
+                    x: 0.0,
+                    y: 0.0,
+                    ground_m: scenario.terrain.height_m(0.0, 0.0).unwrap(),
+                },
             );
-        }
+            let mut stream = swarm::run_stream(3, 0);
+            let mut tours = vec![order];
+            tours.extend((0..3).map(|_| joint.random_solution(&mut stream)));
+            for tour in tours {
+                let linear = joint.evaluate(&tour);
+                let flight = route_of_tour(coverage, model, joint.ordering, &tour);
+                let work = WorkRoute::from_route(&flight, speeds);
+                let plan = plan_sorties(&work, &sortie_model, SortiePlanner::Exact, 1).unwrap();
+                let ends = sortie_model.leg_m(&work.points()[0])
+                    + sortie_model.leg_m(&work.points()[work.len() - 1]);
+                let exact = plan.objective_s() + ends / sortie_model.transit_mps;
+                assert!(
+                    (exact - linear).abs() < 1e-6,
+                    "exact {exact} against the linear split {linear}"
+                );
+            }
+        });
     }
 
     /// Random passes (short polylines) in random orders and directions, with tanks and
