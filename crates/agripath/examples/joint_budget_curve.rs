@@ -31,7 +31,7 @@ use agripath::plot::line_chart::{self, Chart, Series};
 use agripath::scenario::{Scenario, ScenarioParts};
 use agripath::sequence::tour::Start;
 use agripath::sequence::tour::Step;
-use agripath::sequence::{ordering_problem, passes_of, Sequencer, TransferModel};
+use agripath::sequence::{ordering_problem, Sequencer, TransferModel};
 use agripath::sortie::joint::starts::{backwards, cheapest_rotation, cut_at_supply, rotated};
 use agripath::sortie::joint::{search_from, JointProblem, JointSettings};
 use agripath::sortie::route::{RoutePoint, Speeds};
@@ -175,13 +175,21 @@ fn main() {
                 ground_m: supply.ground_m,
             },
         );
-        let points: Vec<&[GroundPoint]> = passes_of(&coverage)
-            .into_iter()
-            .map(|(_, points)| points)
-            .collect();
-        let joint = JointProblem::new(&problem, &points, &model, Speeds::of(vehicle));
+        let joint = JointProblem::of_coverage(&problem, &coverage, &model, Speeds::of(vehicle));
+        // What a split from the first position costs: the order and the order backwards
+        // (which differ at the first position, so nothing is resumed) in turn, the rate the
+        // search would score at without resuming.
+        let timed = Instant::now();
+        let full_splits = 200;
+        let turned = backwards(&order);
+        for split in 0..full_splits {
+            let tour = if split % 2 == 0 { &order } else { &turned };
+            std::hint::black_box(swarm::Problem::evaluate(&joint, std::hint::black_box(tour)));
+        }
+        let full_rate = full_splits as f64 / timed.elapsed().as_secs_f64();
         println!(
-            "{name}: {} passes, {} route points, the sequencer's order in {sequenced_s:.3} s",
+            "{name}: {} passes, {} route points, the sequencer's order in {sequenced_s:.3} s, \
+             {full_rate:.0} full splits/s",
             order.len(),
             joint.points()
         );
@@ -194,6 +202,7 @@ fn main() {
                     petals: word.contains('P'),
                     ..JointSettings::default()
                 };
+                let labelled_before = joint.points_labelled();
                 let started = Instant::now();
                 let outcome = search_from(
                     &joint,
@@ -202,15 +211,20 @@ fn main() {
                     settings.budget(&joint, joint.split_steps(&tours[0])),
                 );
                 let runtime_s = started.elapsed().as_secs_f64();
+                // Splits per second, and the share of a full split's points each laid out
+                // (the split resumes at the first changed position).
+                let labelled = (joint.points_labelled() - labelled_before) as f64;
                 println!(
-                    "{:<16} {:>6} {:>6} {:>8} {:>9.1} s {:>7.3} s {:>6} iterations",
+                    "{:<16} {:>6} {:>6} {:>8} {:>9.1} s {:>7.3} s {:>6} iterations {:>7.0} splits/s {:>5.3} of the points each",
                     name,
                     order.len(),
                     word,
                     per_pass,
                     outcome.cost,
                     runtime_s,
-                    outcome.iterations
+                    outcome.iterations,
+                    outcome.evaluations as f64 / runtime_s,
+                    labelled / (outcome.evaluations as f64 * joint.points() as f64)
                 );
                 rows.push(Row {
                     farm: index,

@@ -20,9 +20,7 @@ use crate::plot::terrain_map::{terrain_map_png, TerrainPicture};
 use crate::report::Report;
 use crate::scenario::Scenario;
 use crate::sequence::tour::Start;
-use crate::sequence::{
-    ordering_problem, passes_of, route, route_of_tour, start_of, Route, TransferModel,
-};
+use crate::sequence::{ordering_problem, route, route_of_tour, start_of, Route, TransferModel};
 use crate::settings::PlanSettings;
 use crate::sortie::joint::{JointProblem, JointSettings};
 use crate::sortie::route::{RoutePoint, Speeds, WorkRoute};
@@ -148,12 +146,8 @@ fn joint_route(
             ground_m: supply.ground_m,
         },
     );
-    let points: Vec<&[GroundPoint]> = passes_of(coverage)
-        .into_iter()
-        .map(|(_, points)| points)
-        .collect();
     let vehicle = &scenario.vehicle;
-    let joint = JointProblem::new(&problem, &points, &sorties, Speeds::of(vehicle));
+    let joint = JointProblem::of_coverage(&problem, coverage, &sorties, Speeds::of(vehicle));
     let joint_settings = JointSettings {
         seed: settings.sorties.seed,
         ..JointSettings::default()

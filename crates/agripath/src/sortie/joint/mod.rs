@@ -24,7 +24,7 @@ use swarm::RunStream;
 
 use crate::coverage::drape::GroundPoint;
 use crate::sequence::tour::{OrderingProblem, Step};
-use split::{PassProfile, SplitBuffers, SplitLimits, TourSplit};
+use split::{PassProfile, SplitBuffers, SplitCache, SplitLimits, TourSplit};
 
 use super::route::Speeds;
 use super::SortieModel;
@@ -36,7 +36,8 @@ pub struct JointProblem<'a> {
     profiles: Vec<PassProfile>,
     limits: SplitLimits,
     speeds: Speeds,
-    buffers: Mutex<SplitBuffers>,
+    /// The splits' buffers: the pinned tour and the last candidate ([`SplitCache`]).
+    cache: Mutex<SplitCache>,
 }
 
 impl<'a> JointProblem<'a> {
@@ -84,8 +85,24 @@ impl<'a> JointProblem<'a> {
                 refill_max_s: model.refill_max_s,
             },
             speeds,
-            buffers: Mutex::new(SplitBuffers::default()),
+            cache: Mutex::new(SplitCache::default()),
         }
+    }
+
+    /// The problem of flying the passes of `coverage` (numbered as
+    /// [`crate::sequence::passes_of`] numbers them, as `ordering`'s are) in sorties of
+    /// `model` at `speeds`.
+    pub fn of_coverage(
+        ordering: &'a OrderingProblem<'a>,
+        coverage: &crate::coverage::CoveragePlan,
+        model: &SortieModel,
+        speeds: Speeds,
+    ) -> Self {
+        let points: Vec<&[GroundPoint]> = crate::sequence::passes_of(coverage)
+            .into_iter()
+            .map(|(_, points)| points)
+            .collect();
+        Self::new(ordering, &points, model, speeds)
     }
 
     /// Route points of every tour of the problem (what one split lays out).
@@ -115,44 +132,60 @@ fn distance_3d(a: &GroundPoint, b: &GroundPoint) -> f64 {
 }
 
 impl JointProblem<'_> {
-    /// Runs `work` with this problem's split and `buffers` (the shared ones when `None`).
-    fn with_split<T>(
-        &self,
-        buffers: Option<&mut SplitBuffers>,
-        work: impl FnOnce(&TourSplit, &mut SplitBuffers) -> T,
-    ) -> T {
+    /// Runs `work` with this problem's split.
+    fn with_split<T>(&self, work: impl FnOnce(&TourSplit) -> T) -> T {
         let transfer = |from: Step, to: Step| self.transfer_s(from, to);
         let split = TourSplit {
             profiles: &self.profiles,
             transfer_s: &transfer,
             limits: self.limits,
         };
-        match buffers {
-            Some(buffers) => work(&split, buffers),
-            None => work(
-                &split,
-                &mut self
-                    .buffers
-                    .lock()
-                    .unwrap_or_else(std::sync::PoisonError::into_inner),
-            ),
-        }
+        work(&split)
     }
 
-    /// The steps the split of `tour` takes ([`SplitBuffers`]' count): the unit of
-    /// [`JointSettings::most_split_steps`].
+    /// Runs `work` with this problem's split and its shared cache.
+    fn with_cache<T>(&self, work: impl FnOnce(&TourSplit, &mut SplitCache) -> T) -> T {
+        self.with_split(|split| {
+            work(
+                split,
+                &mut self
+                    .cache
+                    .lock()
+                    .unwrap_or_else(std::sync::PoisonError::into_inner),
+            )
+        })
+    }
+
+    /// The steps the split of `tour` takes ([`SplitBuffers`]' count, a split from the
+    /// first position): the unit of [`JointSettings::most_split_steps`].
     pub fn split_steps(&self, tour: &[Step]) -> u64 {
         let mut buffers = SplitBuffers::default();
-        self.with_split(Some(&mut buffers), |split, buffers| {
-            split.cost(tour, buffers)
-        });
+        self.with_split(|split| split.cost(tour, &mut buffers));
         buffers.steps
     }
 
+    /// The non-spray seconds of `tour`'s best split from the first position, with fresh
+    /// buffers (what [`swarm::Problem::evaluate`] resumes; for tests and benchmarks).
+    pub fn full_split_cost(&self, tour: &[Step]) -> f64 {
+        self.with_split(|split| split.cost(tour, &mut SplitBuffers::default()))
+    }
+
     /// The sorties of the tour's cheapest split, as the tour positions of the passes each
-    /// begins and ends in ([`TourSplit::sorties`]).
+    /// begins and ends in ([`TourSplit::sorties`]); the tour is pinned.
     pub fn sorties(&self, tour: &[Step]) -> Vec<(usize, usize)> {
-        self.with_split(None, |split, buffers| split.sorties(tour, buffers))
+        self.with_cache(|split, cache| cache.sorties(split, tour))
+    }
+
+    /// Keeps `tour`'s split for the evaluations that follow to resume from (the tour a
+    /// search stands on, whose neighbours it scores next): saves time, changes no cost.
+    pub fn pin(&self, tour: &[Step]) {
+        self.with_cache(|split, cache| cache.pin(split, tour));
+    }
+
+    /// Route points the evaluations so far laid out and labelled (a full split lays out
+    /// [`JointProblem::points`], a resumed one fewer).
+    pub fn points_labelled(&self) -> u64 {
+        self.with_cache(|_, cache| cache.points_labelled())
     }
 }
 
@@ -161,7 +194,7 @@ impl swarm::Problem for JointProblem<'_> {
 
     /// Non-spray seconds of the tour's best split.
     fn evaluate(&self, tour: &[Step]) -> f64 {
-        self.with_split(None, |split, buffers| split.cost(tour, buffers))
+        self.with_cache(|split, cache| cache.cost(split, tour))
     }
 
     fn first_solution(&self) -> Vec<Step> {
@@ -294,16 +327,20 @@ pub fn search_from(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::coverage::{plan_coverage, CoverageSettings};
+    use crate::coverage::{plan_coverage, CoveragePlan, CoverageSettings};
     use crate::sequence::tour::Start;
-    use crate::sequence::{ordering_problem, passes_of, route_of_tour, Sequencer, TransferModel};
+    use crate::sequence::{ordering_problem, route_of_tour, Sequencer, TransferModel};
     use crate::sortie::route::{RoutePoint, WorkRoute};
     use crate::sortie::{plan_sorties, SortiePlanner};
     use swarm::Problem;
 
-    #[test]
-    fn the_linear_split_equals_the_exact_split_with_the_first_and_last_legs() {
-        let scenario = crate::demo::scenario().unwrap();
+    /// The joint problem of `scenario`'s default coverage from a supply point, and the
+    /// sequencer's order from it.
+    fn joint_of<R>(
+        scenario: &crate::scenario::Scenario,
+        supply: [f64; 2],
+        work: impl FnOnce(&JointProblem, Vec<Step>, &CoveragePlan, &TransferModel) -> R,
+    ) -> R {
         let vehicle = &scenario.vehicle;
         let coverage = plan_coverage(
             &scenario.farm,
@@ -314,42 +351,142 @@ mod tests {
         .unwrap();
         let model = TransferModel::new(&scenario.farm, vehicle.safe_height_m);
         let supply = GroundPoint {
-            x: 0.0,
-            y: 0.0,
-            ground_m: scenario.terrain.height_m(0.0, 0.0).unwrap(),
+            x: supply[0],
+            y: supply[1],
+            ground_m: scenario.terrain.height_m(supply[0], supply[1]).unwrap(),
         };
         let (problem, groups) = ordering_problem(&coverage, &model, Start::Fixed(supply));
-        let speeds = Speeds::of(vehicle);
-        let sortie_model = SortieModel::new(
+        let sortie_model = crate::pipeline::sortie_model(
             vehicle,
             RoutePoint {
                 x: supply.x,
                 y: supply.y,
                 ground_m: supply.ground_m,
             },
-            2.0 * vehicle.safe_height_m,
         );
-        let points: Vec<&[GroundPoint]> = passes_of(&coverage)
-            .into_iter()
-            .map(|(_, points)| points)
-            .collect();
-        let joint = JointProblem::new(&problem, &points, &sortie_model, speeds);
-        let mut stream = swarm::run_stream(3, 0);
-        let mut tours = vec![Sequencer::default().sequencer().order(&problem, &groups)];
-        tours.extend((0..3).map(|_| joint.random_solution(&mut stream)));
-        for tour in tours {
-            let linear = joint.evaluate(&tour);
-            let flight = route_of_tour(&coverage, &model, &problem, &tour);
-            let work = WorkRoute::from_route(&flight, speeds);
-            let plan = plan_sorties(&work, &sortie_model, SortiePlanner::Exact, 1).unwrap();
-            let ends = sortie_model.leg_m(&work.points()[0])
-                + sortie_model.leg_m(&work.points()[work.len() - 1]);
-            let exact = plan.objective_s() + ends / sortie_model.transit_mps;
-            assert!(
-                (exact - linear).abs() < 1e-6,
-                "exact {exact} against the linear split {linear}"
-            );
+        let joint =
+            JointProblem::of_coverage(&problem, &coverage, &sortie_model, Speeds::of(vehicle));
+        let order = Sequencer::default().sequencer().order(&problem, &groups);
+        work(&joint, order, &coverage, &model)
+    }
+
+    /// The resumed split (from the pinned tour or the last candidate) equals the split from
+    /// the first position, bit for bit, with the same sorties, on random moves of every kind
+    /// the search makes (reversals, flips, relocations of chains, kicks) anywhere in the
+    /// tour, pinned or not, on the seed 001 farm and two random farms.
+    #[test]
+    fn the_resumed_split_equals_the_full_split_on_random_moves() {
+        let seed001 = crate::demo::scenario().unwrap();
+        let mut farms = vec![(seed001, [0.0, 0.0])];
+        for seed in [1, 4] {
+            let farm = crate::bench::farms::irregular_farm(seed, 150, 5.0);
+            let supply = crate::bench::farms::supply_south_of(&farm);
+            let scenario = crate::scenario::Scenario::with_farm(
+                farm,
+                crate::scenario::ScenarioParts::default(),
+            )
+            .unwrap();
+            farms.push((scenario, supply));
         }
+        for (farm, (scenario, supply)) in farms.iter().enumerate() {
+            joint_of(scenario, *supply, |joint, order, _, _| {
+                let n = order.len();
+                let mut stream = swarm::run_stream(farm as u64, 0);
+                let mut tour = order;
+                let mut seen = vec![tour.clone()];
+                let (mut resumed, mut checked) = (0u64, 0);
+                for trial in 0..300 {
+                    let mut candidate = match trial % 7 {
+                        // An earlier tour again (the pinned one or any other).
+                        6 => seen[swarm::below(&mut stream, seen.len())].clone(),
+                        kind => {
+                            let mut changed = tour.clone();
+                            let a = swarm::below(&mut stream, n);
+                            let b = (a + 1 + swarm::below(&mut stream, 40)).min(n);
+                            match kind {
+                                0 | 1 => {
+                                    changed[a..b].reverse();
+                                    changed[a..b]
+                                        .iter_mut()
+                                        .for_each(|step| *step = step.flipped());
+                                }
+                                2 => changed[a] = changed[a].flipped(),
+                                _ => {
+                                    let chain: Vec<Step> = changed.drain(a..b).collect();
+                                    let at = swarm::below(&mut stream, changed.len() + 1);
+                                    changed.splice(at..at, chain);
+                                }
+                            }
+                            changed
+                        }
+                    };
+                    if trial % 11 == 0 {
+                        candidate = starts::backwards(&candidate);
+                    }
+                    let before = joint.points_labelled();
+                    let cost = joint.evaluate(&candidate);
+                    resumed += joint.points() as u64 - (joint.points_labelled() - before);
+                    let full = joint.full_split_cost(&candidate);
+                    assert_eq!(cost.to_bits(), full.to_bits(), "farm {farm} trial {trial}");
+                    if trial % 5 == 0 {
+                        let mut fresh = SplitBuffers::default();
+                        let sorties =
+                            joint.with_split(|split| split.sorties(&candidate, &mut fresh));
+                        assert_eq!(
+                            joint.sorties(&candidate),
+                            sorties,
+                            "farm {farm} trial {trial}"
+                        );
+                    }
+                    checked += 1;
+                    // Walk like a search: keep some candidates and pin them.
+                    if swarm::uniform(&mut stream) < 0.3 {
+                        tour = candidate.clone();
+                        joint.pin(&tour);
+                        seen.push(candidate);
+                    }
+                }
+                // Not vacuous: the splits did resume (most points of most candidates were
+                // not laid out again).
+                assert!(
+                    checked == 300 && resumed > 300 * joint.points() as u64 / 4,
+                    "farm {farm}: {resumed} points reused"
+                );
+            });
+        }
+    }
+
+    #[test]
+    fn the_linear_split_equals_the_exact_split_with_the_first_and_last_legs() {
+        let scenario = crate::demo::scenario().unwrap();
+        let vehicle = &scenario.vehicle;
+        joint_of(&scenario, [0.0, 0.0], |joint, order, coverage, model| {
+            let speeds = Speeds::of(vehicle);
+            let sortie_model = crate::pipeline::sortie_model(
+                vehicle,
+                RoutePoint {
+                    x: 0.0,
+                    y: 0.0,
+                    ground_m: scenario.terrain.height_m(0.0, 0.0).unwrap(),
+                },
+            );
+            let mut stream = swarm::run_stream(3, 0);
+            let mut tours = vec![order];
+            tours.extend((0..3).map(|_| joint.random_solution(&mut stream)));
+            for tour in tours {
+                let linear = joint.evaluate(&tour);
+                let flight = route_of_tour(coverage, model, joint.ordering, &tour);
+                let work = WorkRoute::from_route(&flight, speeds);
+                let plan = plan_sorties(&work, &sortie_model, SortiePlanner::Exact, 1).unwrap();
+                let ends = sortie_model.leg_m(&work.points()[0])
+                    + sortie_model.leg_m(&work.points()[work.len() - 1]);
+                let exact = plan.objective_s() + ends / sortie_model.transit_mps;
+                assert!(
+                    (exact - linear).abs() < 1e-6,
+                    "exact {exact} against the linear split {linear}"
+                );
+            }
+        });
     }
 
     /// Random passes (short polylines) in random orders and directions, with tanks and

@@ -308,6 +308,9 @@ impl Descent {
     /// `SCORED_PER_POSITION` more).
     fn run(&mut self, run: &mut Search<JointProblem<'_>>, neighbours: &[Vec<End>], until: u64) {
         let n = self.tour.len();
+        // The candidates differ from this tour from their first changed position on: their
+        // splits resume there.
+        run.problem().pin(&self.tour);
         while let Some(pass) = self.queue.pop() {
             if run.progress() >= 1.0 || run.evaluations() >= until {
                 self.queue.push(pass);
@@ -338,6 +341,7 @@ impl Descent {
                     };
                     self.tour = candidate;
                     self.cost = candidate_cost;
+                    run.problem().pin(&self.tour);
                     self.reindex();
                     for index in [
                         low.saturating_sub(1),

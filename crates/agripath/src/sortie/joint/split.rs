@@ -22,6 +22,14 @@
 //! (keys start(s) + leg(s) − T_s, and the same − α S_s). The battery limit is not monotone
 //! in s: where a queue's best start breaks it (rare: the tank binds first), the window is
 //! scanned.
+//!
+//! The search scores tours that differ from the one it stands on only from some position i
+//! on (a move changes a stretch of the tour). The labels start(s), the two queues and the
+//! lowest start in reach before the first point of position i depend only on positions
+//! 0 … i − 1, so the split resumes there: the buffers keep the last tour's layout and labels,
+//! and a checkpoint of the queues at every position's first point ([`SplitCache`] keeps two,
+//! the pinned tour and the last candidate). The sums S and T are redone in the same order, so
+//! a resumed split's cost is the full split's to the bit.
 
 use std::collections::VecDeque;
 
@@ -77,9 +85,33 @@ impl SplitLimits {
     }
 }
 
-/// Reused buffers of one evaluation.
+/// The state of the split just before the first point of one tour position: the two queues
+/// and the lowest start in reach, from which the split of a tour that differs from the one
+/// laid out only from that position on resumes.
+#[derive(Debug, Default, Clone)]
+struct Checkpoint {
+    swap: Vec<usize>,
+    refill: Vec<usize>,
+    lowest: usize,
+}
+
+/// Reused buffers of one evaluation, which remember the last tour split with them: a tour
+/// that shares its first k positions with it resumes the split at position k (the labels,
+/// queues and layout before it depend only on those positions, so the result is the full
+/// split's, bit for bit). Use one set of buffers with one [`TourSplit`] only.
 #[derive(Debug, Default)]
 pub struct SplitBuffers {
+    /// The tour laid out last; its first `valid` positions' state is kept.
+    tour: Vec<Step>,
+    valid: usize,
+    /// The last tour's cost (when `valid` covers it).
+    cost: f64,
+    /// Per tour position: its first point, the spray metres and transfer seconds before it,
+    /// and the split's state before its first point.
+    position_first: Vec<usize>,
+    position_spray: Vec<f64>,
+    position_transfer: Vec<f64>,
+    checkpoints: Vec<Checkpoint>,
     spray: Vec<f64>,
     transfer: Vec<f64>,
     leg: Vec<f64>,
@@ -98,6 +130,118 @@ pub struct SplitBuffers {
     /// and every start in reach where the battery breaks a queue's order): the work a split
     /// costs, which the joint search's budget is measured in on big farms.
     pub(super) steps: u64,
+    /// Points the splits run with these buffers laid out and labelled (a resumed split only
+    /// those from its first changed position on).
+    pub(super) points_labelled: u64,
+}
+
+impl SplitBuffers {
+    /// The leading positions of `tour` whose split state these buffers hold.
+    fn resumable(&self, tour: &[Step]) -> usize {
+        if tour.len() != self.tour.len() {
+            return 0;
+        }
+        let shared = tour
+            .iter()
+            .zip(&self.tour)
+            .take_while(|(a, b)| a == b)
+            .count();
+        shared.min(self.valid)
+    }
+
+    /// Whether these buffers hold the whole split of `tour`.
+    fn holds(&self, tour: &[Step]) -> bool {
+        self.valid == tour.len() && self.tour == tour
+    }
+
+    /// Makes these buffers' state that of `other` for its first `upto` positions (which
+    /// `other` holds, `upto` < its tour's length), copying only what differs.
+    fn take_prefix(&mut self, other: &SplitBuffers, upto: usize) {
+        let from = self.resumable(&other.tour);
+        if from >= upto {
+            return;
+        }
+        let (first, last) = (other.position_first[from], other.position_first[upto]);
+        fn copy<T: Copy>(into: &mut Vec<T>, from: &[T], range: std::ops::Range<usize>) {
+            into.truncate(range.start);
+            into.extend_from_slice(&from[range]);
+        }
+        copy(&mut self.spray, &other.spray, first..last);
+        copy(&mut self.transfer, &other.transfer, first..last);
+        copy(&mut self.leg, &other.leg, first..last);
+        copy(&mut self.between, &other.between, first..last);
+        copy(&mut self.owner, &other.owner, first..last);
+        copy(&mut self.came, &other.came, first..last);
+        copy(&mut self.start, &other.start, first..last + 1);
+        copy(&mut self.label_end, &other.label_end, first..last + 1);
+        copy(
+            &mut self.position_first,
+            &other.position_first,
+            from..upto + 1,
+        );
+        copy(
+            &mut self.position_spray,
+            &other.position_spray,
+            from..upto + 1,
+        );
+        copy(
+            &mut self.position_transfer,
+            &other.position_transfer,
+            from..upto + 1,
+        );
+        self.checkpoints.truncate(upto + 1);
+        self.checkpoints.resize_with(upto + 1, Checkpoint::default);
+        for position in from..=upto {
+            self.checkpoints[position].clone_from(&other.checkpoints[position]);
+        }
+        self.tour.clone_from(&other.tour);
+        self.valid = upto;
+    }
+}
+
+/// Two sets of buffers: the tour the search stands on (`pinned`, [`SplitCache::pin`]) and
+/// the candidates, each resumed from whichever of the two shares more of its start.
+#[derive(Debug, Default)]
+pub struct SplitCache {
+    pinned: SplitBuffers,
+    scratch: SplitBuffers,
+}
+
+impl SplitCache {
+    /// The cost of `tour` by `split` ([`TourSplit::cost`]), resumed from the pinned tour or
+    /// the last candidate.
+    pub fn cost(&mut self, split: &TourSplit, tour: &[Step]) -> f64 {
+        if self.pinned.holds(tour) {
+            return self.pinned.cost;
+        }
+        let pinned = self.pinned.resumable(tour);
+        if pinned > self.scratch.resumable(tour) {
+            self.scratch.take_prefix(&self.pinned, pinned);
+        }
+        split.cost(tour, &mut self.scratch)
+    }
+
+    /// The sorties of `tour` by `split` ([`TourSplit::sorties`]).
+    pub fn sorties(&mut self, split: &TourSplit, tour: &[Step]) -> Vec<(usize, usize)> {
+        if !self.pinned.holds(tour) {
+            self.cost(split, tour);
+            std::mem::swap(&mut self.pinned, &mut self.scratch);
+        }
+        split.sorties_of(&self.pinned)
+    }
+
+    /// Keeps `tour`'s split as the one candidates resume from.
+    pub fn pin(&mut self, split: &TourSplit, tour: &[Step]) {
+        if !self.pinned.holds(tour) {
+            self.cost(split, tour);
+            std::mem::swap(&mut self.pinned, &mut self.scratch);
+        }
+    }
+
+    /// Points laid out and labelled by the splits of this cache (both sets of buffers).
+    pub fn points_labelled(&self) -> u64 {
+        self.pinned.points_labelled + self.scratch.points_labelled
+    }
 }
 
 /// The split of tours of given passes.
@@ -114,23 +258,47 @@ pub struct TourSplit<'a> {
 const SLACK: f64 = 1e-6;
 
 impl TourSplit<'_> {
-    /// Lays out the points of `tour` in flying order.
-    fn lay_out(&self, tour: &[Step], buffers: &mut SplitBuffers) {
+    /// Lays out the points of `tour` in flying order from position `resume` on (the
+    /// buffers hold the layout of the positions before it).
+    fn lay_out(&self, tour: &[Step], resume: usize, buffers: &mut SplitBuffers) {
         let SplitBuffers {
             spray,
             transfer,
             leg,
             between,
             owner,
+            position_first,
+            position_spray,
+            position_transfer,
             ..
         } = buffers;
-        spray.clear();
-        transfer.clear();
-        leg.clear();
-        between.clear();
-        owner.clear();
-        let (mut spray_before, mut transfer_before) = (0.0, 0.0);
-        for (position, step) in tour.iter().enumerate() {
+        let (mut spray_before, mut transfer_before) = if resume == 0 {
+            (0.0, 0.0)
+        } else {
+            // The same sums, in the same order, as a layout from the first position.
+            let last = tour[resume - 1];
+            (
+                position_spray[resume - 1] + self.profiles[last.pass].length(),
+                position_transfer[resume - 1] + (self.transfer_s)(last, tour[resume]),
+            )
+        };
+        let first_point = if resume == 0 {
+            0
+        } else {
+            position_first[resume]
+        };
+        for values in [&mut *spray, &mut *transfer, &mut *leg] {
+            values.truncate(first_point);
+        }
+        between.truncate(first_point);
+        owner.truncate(first_point);
+        position_first.truncate(resume);
+        position_spray.truncate(resume);
+        position_transfer.truncate(resume);
+        for (position, step) in tour.iter().enumerate().skip(resume) {
+            position_first.push(spray.len());
+            position_spray.push(spray_before);
+            position_transfer.push(transfer_before);
             let profile = &self.profiles[step.pass];
             let length = profile.length();
             let count = profile.spray_m.len();
@@ -156,23 +324,47 @@ impl TourSplit<'_> {
     }
 
     /// The least non-spray seconds of any split of `tour` (`f64::INFINITY` when none is
-    /// flyable).
+    /// flyable), resumed at the first position where `tour` differs from the tour last split
+    /// with `buffers`.
     pub fn cost(&self, tour: &[Step], buffers: &mut SplitBuffers) -> f64 {
+        if buffers.holds(tour) {
+            return buffers.cost;
+        }
         if tour.is_empty() {
+            buffers.tour.clear();
+            buffers.spray.clear();
+            buffers.valid = 0;
+            buffers.cost = 0.0;
             return 0.0;
         }
-        self.lay_out(tour, buffers);
+        let resume = buffers.resumable(tour);
+        buffers.tour.clear();
+        buffers.tour.extend_from_slice(tour);
+        buffers.valid = 0;
+        self.lay_out(tour, resume, buffers);
+        let cost = self.label(resume, buffers);
+        buffers.valid = tour.len();
+        buffers.cost = cost;
+        cost
+    }
+
+    /// The split's labels from the first point of position `resume` on (the buffers hold
+    /// the labels and the checkpoints of the positions before it): the cost.
+    fn label(&self, resume: usize, buffers: &mut SplitBuffers) -> f64 {
         let SplitBuffers {
             spray,
             transfer,
             leg,
             between,
+            position_first,
+            checkpoints,
             start,
             came,
             label_end,
             swap_window,
             refill_window,
             steps,
+            points_labelled,
             ..
         } = buffers;
         let count = spray.len();
@@ -189,19 +381,47 @@ impl TourSplit<'_> {
         let flight = |s: usize, e: usize| {
             (spray[e] - spray[s]) / limits.spray_mps + transfer[e] - transfer[s]
         };
-        start.clear();
-        start.resize(count + 1, f64::INFINITY);
-        start[0] = 0.0;
-        came.clear();
+        let positions = position_first.len();
+        checkpoints.resize_with(positions, Checkpoint::default);
+        let (first_point, mut lowest) = if resume == 0 {
+            start.clear();
+            start.resize(count + 1, f64::INFINITY);
+            start[0] = 0.0;
+            label_end.clear();
+            label_end.resize(count + 1, 0);
+            swap_window.clear();
+            refill_window.clear();
+            (1, 1)
+        } else {
+            let first_point = position_first[resume];
+            start.truncate(first_point + 1);
+            start.resize(count + 1, f64::INFINITY);
+            label_end.truncate(first_point + 1);
+            label_end.resize(count + 1, 0);
+            let checkpoint = &checkpoints[resume];
+            swap_window.clear();
+            swap_window.extend(&checkpoint.swap);
+            refill_window.clear();
+            refill_window.extend(&checkpoint.refill);
+            (first_point, checkpoint.lowest)
+        };
+        came.truncate(first_point);
         came.resize(count, 0);
-        label_end.clear();
-        label_end.resize(count + 1, 0);
-        swap_window.clear();
-        refill_window.clear();
+        *points_labelled += (count - first_point.min(count)) as u64;
+        let mut next_position = resume.max(1);
         let key = |s: usize, start: &[f64]| start[s] + leg[s] - transfer[s];
         let refill_key = |s: usize, start: &[f64]| key(s, start) - slope * spray[s];
-        let mut lowest = 1;
-        for e in 1..count {
+        for e in first_point..count {
+            // The state before a position's first point, for the splits that resume there.
+            if next_position < positions && position_first[next_position] == e {
+                let checkpoint = &mut checkpoints[next_position];
+                checkpoint.swap.clear();
+                checkpoint.swap.extend(swap_window.iter());
+                checkpoint.refill.clear();
+                checkpoint.refill.extend(refill_window.iter());
+                checkpoint.lowest = lowest;
+                next_position += 1;
+            }
             // Start e − 1 is final: it enters the swap window (s = 0, the first sortie,
             // pays no service and is costed on its own below).
             let entering = e - 1;
@@ -306,7 +526,13 @@ impl TourSplit<'_> {
     /// positions of the passes its first and last points lie in (empty when no split is
     /// flyable).
     pub fn sorties(&self, tour: &[Step], buffers: &mut SplitBuffers) -> Vec<(usize, usize)> {
-        if !self.cost(tour, buffers).is_finite() || buffers.spray.len() < 2 {
+        self.cost(tour, buffers);
+        self.sorties_of(buffers)
+    }
+
+    /// The sorties of the split `buffers` hold (of the tour last split with them).
+    fn sorties_of(&self, buffers: &SplitBuffers) -> Vec<(usize, usize)> {
+        if !buffers.cost.is_finite() || buffers.spray.len() < 2 {
             return Vec::new();
         }
         let mut sorties = Vec::new();
