@@ -560,6 +560,7 @@ mod tests {
         spray_mps: 3.0,
         turn_mps: 3.0,
         transit_mps: 6.0,
+        transfer_climb_s: 0.0,
     };
 
     fn model(tank_m: f64, endurance_s: f64) -> SortieModel {

@@ -55,6 +55,10 @@ pub struct Speeds {
     pub turn_mps: f64,
     /// Speed of transfers.
     pub transit_mps: f64,
+    /// Seconds a transfer that climbs out of the field flies beyond its eq. 8 metres at
+    /// transit speed: the mission climbs to the cruise height and descends again at climb
+    /// speed (decision 0012), where eq. 8 charges the 2h at transit speed.
+    pub transfer_climb_s: f64,
 }
 
 impl Speeds {
@@ -64,8 +68,22 @@ impl Speeds {
             spray_mps: vehicle.spray_speed_mps,
             turn_mps: vehicle.turn_speed_mps,
             transit_mps: vehicle.transit_speed_mps,
+            transfer_climb_s: transfer_climb_s(vehicle),
         }
     }
+}
+
+/// What the climb and descent of a transfer between fields add to its eq. 8 time: the
+/// mission files rise from the spray height to the cruise height, max(h, 5 m) higher, and
+/// come down again at climb speed ([`crate::mission::flight`]), eq. 8 adds 2h at transit
+/// speed. Without it the split planned sorties the files fly longer than the battery lasts
+/// (the demo's sorties flew 12 s longer for every such transfer; the preflight refused a
+/// survey's sortie at 101.9 % of its battery).
+fn transfer_climb_s(vehicle: &crate::model::Vehicle) -> f64 {
+    let rise_m = vehicle.safe_height_m.max(5.0);
+    (2.0 * rise_m / vehicle.climb_speed_mps
+        - 2.0 * vehicle.safe_height_m / vehicle.transit_speed_mps)
+        .max(0.0)
 }
 
 fn distance_3d(a: &RoutePoint, b: &RoutePoint) -> f64 {
@@ -106,7 +124,7 @@ impl WorkRoute {
                     }
                     Segment::Transfer => {
                         other += length;
-                        flight += length / speeds.transit_mps;
+                        flight += length / speeds.transit_mps + speeds.transfer_climb_s;
                     }
                 }
             }
