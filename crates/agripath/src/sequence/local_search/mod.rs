@@ -22,7 +22,9 @@
 //!      transfers that stay in it), the runs reordered and re-cornered as whole blocks, and
 //!      the pass-level search again where they now meet.
 //! 3. Iterated local search: a seeded double-bridge kick, then 1-2 again; a kick is kept only
-//!    when the tour gets cheaper. A kick works in place on the incumbent: the three new
+//!    when the tour gets cheaper. On an open path (`Start::Open`) a kick may also cut before
+//!    the first or after the last pass, and its descent also makes Or-3opt moves
+//!    (`three_opt.rs`: Lin-Kernighan's sequential 3-opt step over the near-end lists). A kick works in place on the incumbent: the three new
 //!    transfers are costed, only the passes at the cuts are queued, the moves report their
 //!    gains (no re-costing of the tour unless it gained), and a kick that does not gain is
 //!    undone by copying the incumbent back (the same tours as kicks on a copy on the 14

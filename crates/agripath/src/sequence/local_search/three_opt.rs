@@ -344,7 +344,7 @@ mod tests {
                 let tour: Vec<Step> = (0..30)
                     .map(|k| Step {
                         pass: (k * 11 + seed as usize) % 30,
-                        reversed: (k + seed as usize) % 3 == 0,
+                        reversed: (k + seed as usize).is_multiple_of(3),
                     })
                     .collect();
                 let mut search = search(&problem, &neighbours, &groups, tour, true);
