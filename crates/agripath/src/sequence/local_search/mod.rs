@@ -22,7 +22,9 @@
 //!      transfers that stay in it), the runs reordered and re-cornered as whole blocks, and
 //!      the pass-level search again where they now meet.
 //! 3. Iterated local search: a seeded double-bridge kick, then 1-2 again; a kick is kept only
-//!    when the tour gets cheaper. A kick works in place on the incumbent: the three new
+//!    when the tour gets cheaper. On an open path (`Start::Open`) a kick may also cut before
+//!    the first or after the last pass, and its descent also makes Or-3opt moves
+//!    (`three_opt.rs`: Lin-Kernighan's sequential 3-opt step over the near-end lists). A kick works in place on the incumbent: the three new
 //!    transfers are costed, only the passes at the cuts are queued, the moves report their
 //!    gains (no re-costing of the tour unless it gained), and a kick that does not gain is
 //!    undone by copying the incumbent back (the same tours as kicks on a copy on the 14
@@ -36,11 +38,12 @@ mod blocks;
 mod construction;
 mod moves;
 mod runs;
+mod three_opt;
 
 pub use construction::{block_local_search, boustrophedon, exact_field_order, LARGE_FARM_FIELDS};
 
 use super::greedy::greedy_with_starts;
-use super::tour::{End, OrderingProblem, Step};
+use super::tour::{End, OrderingProblem, Start, Step};
 #[cfg(test)]
 use construction::{block_steps, boustrophedon_by_grid};
 use moves::Search;
@@ -91,10 +94,18 @@ fn kick_budget(settings: &LocalSearchSettings, passes: usize) -> usize {
 const LOCAL_KICKS_ABOVE: usize = 1000;
 const LOCAL_KICK_SPAN: usize = 60;
 
-/// The three cuts of a double-bridge kick on `n` items, in increasing order within 1..n:
-/// anywhere, or within `LOCAL_KICK_SPAN` positions on long tours. `None` when two cuts
-/// coincide (the caller skips that kick).
-fn bridge_cuts(n: usize, stream: &mut swarm::RunStream) -> Option<[usize; 3]> {
+/// The three cuts of a double-bridge kick on `n` items, in increasing order: anywhere within
+/// 1..n, or within `LOCAL_KICK_SPAN` positions on long tours. On a path with a free first
+/// end (`free_first`) a cut may also fall at 0, before the first pass, and with a free last
+/// end (`free_last`) at n, after the last: the kick then changes where the path begins or
+/// ends (the open path's dummy node is moved as any other node is in a kick on a cycle).
+/// `None` when two cuts coincide (the caller skips that kick).
+fn bridge_cuts(
+    n: usize,
+    free_first: bool,
+    free_last: bool,
+    stream: &mut swarm::RunStream,
+) -> Option<[usize; 3]> {
     let mut cuts: [usize; 3] = if n > LOCAL_KICKS_ABOVE {
         let first = 1 + swarm::below(stream, n - 1 - LOCAL_KICK_SPAN);
         [
@@ -103,7 +114,9 @@ fn bridge_cuts(n: usize, stream: &mut swarm::RunStream) -> Option<[usize; 3]> {
             first + 1 + swarm::below(stream, LOCAL_KICK_SPAN),
         ]
     } else {
-        [0; 3].map(|_| 1 + swarm::below(stream, n - 1))
+        let lowest = usize::from(!free_first);
+        let highest = n - 1 + usize::from(free_last);
+        [0; 3].map(|_| lowest + swarm::below(stream, highest + 1 - lowest))
     };
     cuts.sort_unstable();
     (cuts[0] < cuts[1] && cuts[1] < cuts[2]).then_some(cuts)
@@ -112,7 +125,7 @@ fn bridge_cuts(n: usize, stream: &mut swarm::RunStream) -> Option<[usize; 3]> {
 /// A double-bridge kick: cut `items` at three random places and swap the middle two parts.
 /// `None` when two cuts coincide (the caller skips that kick).
 fn double_bridge<T: Copy>(items: &[T], stream: &mut swarm::RunStream) -> Option<Vec<T>> {
-    let [a, b, c] = bridge_cuts(items.len(), stream)?;
+    let [a, b, c] = bridge_cuts(items.len(), false, false, stream)?;
     let mut kicked = items.to_vec();
     kicked[a..c].rotate_left(b - a);
     Some(kicked)
@@ -200,6 +213,9 @@ impl<'g> IteratedLocalSearch<'g> {
             closed: problem.start.is_closed(),
             from_start: !problem.start.free_first(),
             home: problem.start.returns_home(),
+            // Or-3opt in the descents from the constructions led to worse optima (decision
+            // 0018, fourth step): `step` turns it on for the kicks of open paths only.
+            three_opt: false,
             queue: Vec::new(),
             queued: Vec::new(),
         }
@@ -285,7 +301,8 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
     fn step(&mut self, run: &mut swarm::Search<OrderingProblem<'a>>) {
         let problem = run.problem();
         let n = problem.passes();
-        let Some([a, b, c]) = bridge_cuts(n, run.stream()) else {
+        let open = problem.start == Start::Open;
+        let Some([a, b, c]) = bridge_cuts(n, open, open, run.stream()) else {
             return;
         };
         // The incumbent is the Runner's best: only kicks that beat it reach the Runner.
@@ -296,6 +313,9 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
             workspace.position = vec![0; n];
         }
         let mut search = self.search(problem, workspace.tour, workspace.position);
+        // Or-3opt, and cuts at the free ends, on open paths only: the other starts were not
+        // helped by them (decision 0018, fourth step) and keep their routes.
+        search.three_opt = open;
         (search.queue, search.queued) = (workspace.queue, workspace.queued);
         if fresh {
             search.reindex();
@@ -307,7 +327,17 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
         // The middle join of the kicked tour is at a + c - b, not b; waking it instead was
         // measured (decision 0018) and is no better over seeds 1-3, and this keeps every
         // route as it was.
-        let touched = [0, a - 1, a, b - 1, b, c - 1, c, n - 1].map(|i| search.tour[i].pass);
+        let touched = [
+            0,
+            a.saturating_sub(1),
+            a,
+            b - 1,
+            b,
+            c - 1,
+            c.min(n - 1),
+            n - 1,
+        ]
+        .map(|i| search.tour[i.min(n - 1)].pass);
         let gained = search.descend(touched, KICK_MOVES);
         // Only a kick kept is handed to the Runner: a closed tour and its rotation cost the
         // same up to float noise but fly different open routes, so the Runner's best must
@@ -334,7 +364,7 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
 mod tests {
     use super::*;
     use crate::coverage::drape::GroundPoint;
-    use crate::sequence::tour::{is_permutation, Start};
+    use crate::sequence::tour::is_permutation;
     use crate::sequence::TransferModel;
 
     /// Three "fields" of three parallel passes each, far apart on a line.

@@ -4,7 +4,7 @@
 use super::super::tour::{End, OrderingProblem, Step};
 
 /// Marker for the start point in edge costs.
-const START: End = usize::MAX;
+pub(super) const START: End = usize::MAX;
 
 pub(super) struct Search<'a, 'b> {
     pub(super) problem: &'a OrderingProblem<'b>,
@@ -19,6 +19,9 @@ pub(super) struct Search<'a, 'b> {
     pub(super) from_start: bool,
     /// The tour ends at the start point (`Start::Fixed`).
     pub(super) home: bool,
+    /// Whether the descent also makes Or-3opt moves (`three_opt.rs`); off only to measure
+    /// and test what the move adds.
+    pub(super) three_opt: bool,
     /// The descent's queue of passes to look at, and which passes are in it (kept between
     /// descents so that a kick allocates nothing).
     pub(super) queue: Vec<usize>,
@@ -29,7 +32,7 @@ impl Search<'_, '_> {
     /// The cost of a transfer between two ends, either of which may be the start point;
     /// `None` (an open end of the path) costs nothing: that is the open path's dummy node,
     /// at zero cost from every end.
-    fn edge(&self, from: Option<End>, to: Option<End>) -> f64 {
+    pub(super) fn edge(&self, from: Option<End>, to: Option<End>) -> f64 {
         match (from, to) {
             (Some(START), Some(START)) => 0.0,
             (Some(START), Some(end)) | (Some(end), Some(START)) => {
@@ -41,7 +44,7 @@ impl Search<'_, '_> {
     }
 
     /// The end the flight comes from before position `p`.
-    fn previous(&self, p: usize) -> Option<End> {
+    pub(super) fn previous(&self, p: usize) -> Option<End> {
         if p > 0 {
             Some(self.tour[p - 1].exit())
         } else if self.closed {
@@ -54,7 +57,7 @@ impl Search<'_, '_> {
     }
 
     /// The end the flight goes to after position `q`.
-    fn next(&self, q: usize) -> Option<End> {
+    pub(super) fn next(&self, q: usize) -> Option<End> {
         if q + 1 < self.tour.len() {
             Some(self.tour[q + 1].entry())
         } else if self.closed {
@@ -71,7 +74,7 @@ impl Search<'_, '_> {
     }
 
     /// Positions of the passes at `from..to` (a move changes only the stretch it touched).
-    fn reindex_range(&mut self, from: usize, to: usize) {
+    pub(super) fn reindex_range(&mut self, from: usize, to: usize) {
         for (index, step) in self.tour[from..to].iter().enumerate() {
             self.position[step.pass] = from + index;
         }
@@ -83,14 +86,26 @@ impl Search<'_, '_> {
         self.edge(self.previous(p), Some(self.tour[p].entry()))
     }
 
-    /// A double bridge in place: the stretches `a..b` and `b..c` (0 < a < b < c < n) swap
-    /// places, each flown as it was. Returns the change in tour cost: three transfers change,
-    /// the first and the last pass stay where they are.
+    /// The cost of the transfer at gap `g` (0..=n): into position `g`, or for `g == n` out of
+    /// the last pass (to the start point, the first pass of a closed tour, or nothing).
+    fn gap_cost(&self, g: usize) -> f64 {
+        let n = self.tour.len();
+        if g < n {
+            self.transfer_into(g)
+        } else {
+            self.edge(Some(self.tour[n - 1].exit()), self.next(n - 1))
+        }
+    }
+
+    /// A double bridge in place: the stretches `a..b` and `b..c` (a < b < c ≤ n) swap
+    /// places, each flown as it was. Returns the change in tour cost: three transfers change.
+    /// With 0 < a and c < n the first and the last pass stay where they are; a = 0 or c = n
+    /// (on a path with a free end there) changes the first or the last pass.
     pub(super) fn double_bridge(&mut self, a: usize, b: usize, c: usize) -> f64 {
-        let old = self.transfer_into(a) + self.transfer_into(b) + self.transfer_into(c);
+        let old = self.gap_cost(a) + self.gap_cost(b) + self.gap_cost(c);
         self.tour[a..c].rotate_left(b - a);
         self.reindex_range(a, c);
-        let new = self.transfer_into(a) + self.transfer_into(a + c - b) + self.transfer_into(c);
+        let new = self.gap_cost(a) + self.gap_cost(a + c - b) + self.gap_cost(c);
         new - old
     }
 
@@ -108,7 +123,7 @@ impl Search<'_, '_> {
         old - new
     }
 
-    fn reverse(&mut self, p: usize, q: usize) {
+    pub(super) fn reverse(&mut self, p: usize, q: usize) {
         self.tour[p..=q].reverse();
         for step in &mut self.tour[p..=q] {
             *step = step.flipped();
@@ -313,6 +328,16 @@ impl Search<'_, '_> {
             if changed.is_none() {
                 changed = self.or_opt_at(p);
             }
+            if changed.is_none() && self.three_opt {
+                if let Some((from, middle, to, gain)) = self.three_opt_at(p) {
+                    // The join between the two chains is a new transfer too.
+                    for position in [middle.saturating_sub(1), middle.min(n - 1)] {
+                        let touched = self.tour[position].pass;
+                        wake(touched, &mut queue, &mut queued);
+                    }
+                    changed = Some((from, to, gain));
+                }
+            }
             if let Some((from, to, gain)) = changed {
                 gained += gain;
                 for position in [from.saturating_sub(1), from, to, (to + 1).min(n - 1)] {
@@ -497,6 +522,7 @@ mod tests {
                 closed: start.is_closed(),
                 from_start: !start.free_first(),
                 home: start.returns_home(),
+                three_opt: true,
                 queue: Vec::new(),
                 queued: Vec::new(),
             };
