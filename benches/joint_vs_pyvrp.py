@@ -97,11 +97,13 @@ def exit_end(pass_index, reversed_):
 
 
 def transfer_s(instance, from_end, to_end):
-    """Seconds of the transfer between two ends: transit speed when it climbs, else turn speed."""
+    """Seconds of the transfer between two ends: transit speed when it climbs (plus its climb
+    and descent at climb speed, `transfer_climb_s`, as our split charges it), else turn speed."""
     vehicle = instance["vehicle"]
     metres = instance["transfer_m"][from_end][to_end]
-    speed = vehicle["transit_mps"] if instance["transfer_climbs"][from_end][to_end] else vehicle["turn_mps"]
-    return metres / speed
+    if instance["transfer_climbs"][from_end][to_end]:
+        return metres / vehicle["transit_mps"] + vehicle.get("transfer_climb_s", 0.0)
+    return metres / vehicle["turn_mps"]
 
 
 def service_s(vehicle, spray_m):

@@ -429,6 +429,7 @@ fn instance(
             "spray_mps": spray_mps,
             "turn_mps": vehicle.turn_speed_mps,
             "transit_mps": split.model.transit_mps,
+            "transfer_climb_s": agripath::sortie::route::Speeds::of(vehicle).transfer_climb_s,
             "battery_swap_s": split.model.battery_swap_s,
             "refill_base_s": split.model.refill_base_s,
             "refill_max_s": split.model.refill_max_s,
