@@ -75,7 +75,7 @@ impl Speeds {
 
 /// What the climb and descent of a transfer between fields add to its eq. 8 time: the
 /// mission files rise from the spray height to the cruise height, max(h, 5 m) higher, and
-/// come down again at climb speed ([`crate::mission::flight`]), eq. 8 adds 2h at transit
+/// come down again at climb speed (the mission writer's transfers), eq. 8 adds 2h at transit
 /// speed. Without it the split planned sorties the files fly longer than the battery lasts
 /// (the demo's sorties flew 12 s longer for every such transfer; the preflight refused a
 /// survey's sortie at 101.9 % of its battery).
