@@ -195,14 +195,6 @@ fn farms(options: &Options) -> Vec<Farm> {
     farms
 }
 
-fn route_point(point: &GroundPoint) -> RoutePoint {
-    RoutePoint {
-        x: point.x,
-        y: point.y,
-        ground_m: point.ground_m,
-    }
-}
-
 fn length_3d(a: &GroundPoint, b: &GroundPoint) -> f64 {
     ((a.x - b.x).powi(2) + (a.y - b.y).powi(2) + (a.ground_m - b.ground_m).powi(2)).sqrt()
 }
@@ -398,7 +390,7 @@ fn instance(
         })
         .collect();
     let supply_leg_m: Vec<f64> = (0..count)
-        .map(|end| fine(split.model.leg_m(&route_point(&end_point(end)))))
+        .map(|end| fine(split.model.leg_m(&RoutePoint::from(end_point(end)))))
         .collect();
     let order = flown_order(mission);
     let sorties: Vec<Value> = split

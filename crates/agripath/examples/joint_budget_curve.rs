@@ -34,7 +34,7 @@ use agripath::sequence::tour::Step;
 use agripath::sequence::{ordering_problem, Sequencer, TransferModel};
 use agripath::sortie::joint::starts::{backwards, cheapest_rotation, cut_at_supply, rotated};
 use agripath::sortie::joint::{search_from, JointProblem, JointSettings};
-use agripath::sortie::route::{RoutePoint, Speeds};
+use agripath::sortie::route::Speeds;
 
 struct Options {
     farms: usize,
@@ -167,14 +167,7 @@ fn main() {
                 _ => usage(),
             }
         };
-        let model = sortie_model(
-            vehicle,
-            RoutePoint {
-                x: supply.x,
-                y: supply.y,
-                ground_m: supply.ground_m,
-            },
-        );
+        let model = sortie_model(vehicle, supply.into());
         let joint = JointProblem::of_coverage(&problem, &coverage, &model, Speeds::of(vehicle));
         // What a split from the first position costs: the order and the order backwards
         // (which differ at the first position, so nothing is resumed) in turn, the rate the

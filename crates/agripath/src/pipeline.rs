@@ -138,14 +138,7 @@ fn joint_route(
     };
     let (problem, groups) = ordering_problem(coverage, model, Start::Fixed(supply));
     let ordered = settings.sequencer.sequencer().order(&problem, &groups);
-    let sorties = sortie_model(
-        &scenario.vehicle,
-        RoutePoint {
-            x: supply.x,
-            y: supply.y,
-            ground_m: supply.ground_m,
-        },
-    );
+    let sorties = sortie_model(&scenario.vehicle, supply.into());
     let vehicle = &scenario.vehicle;
     let joint = JointProblem::of_coverage(&problem, coverage, &sorties, Speeds::of(vehicle));
     let joint_settings = JointSettings {
@@ -224,14 +217,7 @@ fn planned_cost_s(
         None => {
             let vehicle = &scenario.vehicle;
             let work_route = WorkRoute::from_route(route, Speeds::of(vehicle));
-            let model = sortie_model(
-                vehicle,
-                RoutePoint {
-                    x: supply.x,
-                    y: supply.y,
-                    ground_m: supply.ground_m,
-                },
-            );
+            let model = sortie_model(vehicle, supply.into());
             let plan = model.evaluate(&work_route, crate::sortie::SortiePlanner::Exact, vec![]);
             plan_cost_s(&work_route, &model, &plan)
         }
@@ -255,11 +241,7 @@ fn split_into_sorties(
     };
     let supply = start
         .or(route.launch.map(|leg| leg.from))
-        .map_or(first, |point| RoutePoint {
-            x: point.x,
-            y: point.y,
-            ground_m: point.ground_m,
-        });
+        .map_or(first, RoutePoint::from);
     let model = sortie_model(vehicle, supply);
     let plan = plan_sorties(&work_route, &model, planner, settings.seed)?;
     let visit_offsets = route

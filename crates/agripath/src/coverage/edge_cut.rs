@@ -189,7 +189,7 @@ pub fn cut_swath_ends(
         .collect();
     let cut_at = |level: usize| {
         let mut pieces: Vec<Segment> = Vec::with_capacity(segments.len());
-        let (mut doubled_m2, mut missed_m2) = (0.0, 0.0);
+        let mut missed_m2 = 0.0;
         for (segment, profile) in segments.iter().zip(&profiles) {
             let first_piece = pieces.len();
             for &(from, to, depth) in profile {
@@ -214,36 +214,31 @@ pub fn cut_swath_ends(
                 }
             }
             pieces.truncate(kept);
-            // D and M of this swath: core under no piece is missed, non-core under one is
-            // sprayed twice.
+            // M of this swath: core under no piece is missed.
             let own = &pieces[first_piece..];
             let sprayed_of = |from: f64, to: f64| -> f64 {
                 own.iter()
                     .map(|piece| (to.min(piece.end_x) - from.max(piece.start_x)).max(0.0))
                     .sum()
             };
-            let mut core_sprayed_m2 = 0.0;
             for &(from, to, depth) in profile {
-                let under = sprayed_of(from, to);
-                core_sprayed_m2 += depth as f64 * spacing * under;
-                missed_m2 += depth as f64 * spacing * (to - from - under);
+                missed_m2 += depth as f64 * spacing * (to - from - sprayed_of(from, to));
             }
-            let sprayed_m2: f64 = own.iter().map(|p| (p.end_x - p.start_x) * width_m).sum();
-            doubled_m2 += sprayed_m2 - core_sprayed_m2;
         }
-        (pieces, doubled_m2, missed_m2)
+        (pieces, missed_m2)
     };
     match cut {
         EdgeCut::Overlap => segments.to_vec(),
         EdgeCut::Gap => cut_at(ROWS - 1).0,
         // The pointwise rule at every level (spray where more than `level` lines are core),
-        // from the least double dose down: the first whose missed core fits the budget. If
-        // none does, the swaths as they were (no cut misses nothing).
+        // from the least sprayed down (each level sprays a superset of the one above, so the
+        // least double dose): the first whose missed core fits the budget. If none does, the
+        // swaths as they were (no cut misses nothing).
         EdgeCut::Balanced => (0..ROWS)
             .rev()
             .map(cut_at)
-            .find(|(_, _, missed_m2)| *missed_m2 <= missed_budget_m2)
-            .map_or_else(|| segments.to_vec(), |(pieces, _, _)| pieces),
+            .find(|(_, missed_m2)| *missed_m2 <= missed_budget_m2)
+            .map_or_else(|| segments.to_vec(), |(pieces, _)| pieces),
     }
 }
 

@@ -30,6 +30,16 @@ pub struct RoutePoint {
     pub ground_m: f64,
 }
 
+impl From<crate::coverage::drape::GroundPoint> for RoutePoint {
+    fn from(point: crate::coverage::drape::GroundPoint) -> Self {
+        Self {
+            x: point.x,
+            y: point.y,
+            ground_m: point.ground_m,
+        }
+    }
+}
+
 /// The route with prefix sums.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WorkRoute {
@@ -152,11 +162,7 @@ impl WorkRoute {
         let mut extra = Vec::new();
         for (index, visit) in route.visits.iter().enumerate() {
             for (k, point) in visit.points.iter().enumerate() {
-                let point = RoutePoint {
-                    x: point.x,
-                    y: point.y,
-                    ground_m: point.ground_m,
-                };
+                let point = RoutePoint::from(*point);
                 if !points.is_empty() {
                     if k == 0 {
                         let transfer = &route.transfers[index - 1];

@@ -63,11 +63,7 @@ impl<'a> JointProblem<'a> {
                 let leg_s = points
                     .iter()
                     .map(|point| {
-                        model.leg_m(&super::route::RoutePoint {
-                            x: point.x,
-                            y: point.y,
-                            ground_m: point.ground_m,
-                        }) / model.transit_mps
+                        model.leg_m(&super::route::RoutePoint::from(*point)) / model.transit_mps
                     })
                     .collect();
                 PassProfile { spray_m, leg_s }
@@ -357,14 +353,7 @@ mod tests {
             ground_m: scenario.terrain.height_m(supply[0], supply[1]).unwrap(),
         };
         let (problem, groups) = ordering_problem(&coverage, &model, Start::Fixed(supply));
-        let sortie_model = crate::pipeline::sortie_model(
-            vehicle,
-            RoutePoint {
-                x: supply.x,
-                y: supply.y,
-                ground_m: supply.ground_m,
-            },
-        );
+        let sortie_model = crate::pipeline::sortie_model(vehicle, supply.into());
         let joint =
             JointProblem::of_coverage(&problem, &coverage, &sortie_model, Speeds::of(vehicle));
         let order = Sequencer::default().sequencer().order(&problem, &groups);
@@ -537,11 +526,7 @@ mod tests {
             let problem =
                 OrderingProblem::new(ends, crate::sequence::tour::Start::Fixed(supply), &model);
             let sortie_model = SortieModel {
-                supply: RoutePoint {
-                    x: supply.x,
-                    y: supply.y,
-                    ground_m: supply.ground_m,
-                },
+                supply: supply.into(),
                 spray_per_tank_m: Some(60.0 + 120.0 * swarm::uniform(&mut stream)),
                 endurance_s: 400.0 + 400.0 * swarm::uniform(&mut stream),
                 battery_reserve_s: 0.0,
@@ -587,11 +572,7 @@ mod tests {
             let work = WorkRoute::new(
                 route_points
                     .iter()
-                    .map(|point| RoutePoint {
-                        x: point.x,
-                        y: point.y,
-                        ground_m: point.ground_m,
-                    })
+                    .map(|point| RoutePoint::from(*point))
                     .collect(),
                 segments,
                 Some(extra),
