@@ -8,7 +8,7 @@ vertices at evenly spaced angles with jitter, 120-280 m across; 0-2 star-shaped 
 4-7 vertices well inside (only in fields of 6 or more vertices, whose chords stay clear of
 them); three fields a farm, 400 m apart, at random latitudes between -50 and 60 degrees; no DEM.
 
-  python3 benches/spray_once.py target/release/agripath [FIELDS] [SEED] [--edge-cut MODE]
+  python3 benches/spray_once.py target/release/agripath [FIELDS] [SEED] [--edge-cut MODE] [--scale K]
 """
 import json
 import math
@@ -23,6 +23,13 @@ extra = []
 if "--edge-cut" in args:
     at = args.index("--edge-cut")
     extra = ["--edge-cut", args[at + 1]]
+    del args[at:at + 2]
+# --scale K: fields K times as wide (and farms K times as far apart), to see how the double
+# dose falls with the size of the field (it goes as the swath width over the field's width).
+scale = 1.0
+if "--scale" in args:
+    at = args.index("--scale")
+    scale = float(args[at + 1])
     del args[at:at + 2]
 AGRIPATH = args[0]
 FIELDS = int(args[1]) if len(args) > 1 else 24
@@ -49,7 +56,7 @@ def star(cx, cy, r_low, r_high, count, concave=True):
 
 
 def field(cx, cy):
-    size = rng.uniform(60, 140)
+    size = scale * rng.uniform(60, 140)
     vertices = rng.randint(4, 12)
     rings = [star(cx, cy, 0.55 * size, size, vertices)]
     holes = rng.randint(0, 2) if vertices >= 6 else 0
@@ -62,6 +69,7 @@ def field(cx, cy):
 
 
 rows = []
+flight = {"non_spray_time_s": 0.0, "total_time_s": 0.0, "turns": 0}
 # KEEP=DIR keeps the farms and plan folders there to look at.
 with (tempfile.TemporaryDirectory() if not os.environ.get("KEEP") else open(os.devnull)) as _scratch:
     scratch = os.environ.get("KEEP") or _scratch
@@ -73,7 +81,7 @@ with (tempfile.TemporaryDirectory() if not os.environ.get("KEEP") else open(os.d
         to_lonlat = lambda p: [lon0 + p[0] / metres_lon, lat0 + p[1] / 111_320.0]
         features = []
         for k in range(3):
-            rings = field(400.0 * k, 0.0)
+            rings = field(scale * 400.0 * k, 0.0)
             features.append({"type": "Feature", "properties": {"name": f"F{k + 1}"},
                              "geometry": {"type": "Polygon",
                                           "coordinates": [[to_lonlat(p) for p in ring] for ring in rings]}})
@@ -87,7 +95,10 @@ with (tempfile.TemporaryDirectory() if not os.environ.get("KEEP") else open(os.d
         if run.returncode != 0:
             print(f"farm {farm_index - 1}: exit {run.returncode}: {run.stderr.strip()}")
             continue
-        verdict = json.load(open(os.path.join(out, "report.json")))["preflight"]
+        report = json.load(open(os.path.join(out, "report.json")))
+        verdict = report["preflight"]
+        for key in flight:
+            flight[key] += report[key]
         for figures in verdict["fields"]:
             area = figures["sprayable_area_m2"]
             rows.append((farm_index - 1, figures["name"], area, figures["covered_fraction"],
@@ -106,3 +117,5 @@ print(f"{len(rows)} fields{' with ' + ' '.join(extra) if extra else ' (default s
       f"coverage mean {100 * sum(r[3] for r in rows) / len(rows):.2f}% (least {100 * min(r[3] for r in rows):.2f}%); "
       f"most spray outside {100 * max(r[7] for r in rows):.3f}%; "
       f"unsafe farms {len({r[0] for r in rows if not r[6]})}")
+print(f"{farm_index} farms flown: non-spray time {flight['non_spray_time_s']:.0f} s, "
+      f"total time {flight['total_time_s']:.0f} s, turns {flight['turns']}")

@@ -106,27 +106,56 @@ impl FromStr for EdgeCut {
     }
 }
 
-/// Cuts `segments` (rotated frame `frame`, swaths `width_m` apart) by `cut` against the
-/// core, the sprayable region inside the band of the innermost edge pass (`innermost` is
-/// that pass's region, its ring the pass line): the pieces of each swath to spray.
+/// The core of a field: the sprayable region inside the band of its innermost edge pass,
+/// computed once and cut against at any heading.
+pub struct Core {
+    rings: Vec<Vec<geo::Coord<f64>>>,
+}
+
+impl Core {
+    /// The core inside `innermost`, the innermost pass's region (its ring the pass line), for
+    /// passes `width_m` wide.
+    pub fn new(innermost: &MultiPolygon<f64>, width_m: f64) -> Self {
+        // Round joins: where the pass line turns away from the core (a concave corner of the
+        // field) the pass sprays the disc of its turn, which a mitred core would call core
+        // and leave the swaths to spray again.
+        let core = innermost.buffer_with_style(
+            BufferStyle::new(-width_m / 2.0)
+                .line_join(LineJoin::Round(CORE_ARC_SEGMENT_PER_RADIUS)),
+        );
+        Self {
+            rings: rings(&core),
+        }
+    }
+}
+
+/// The pieces of swath a cut leaves, and what they spray twice.
+#[derive(Debug, Clone, PartialEq)]
+pub struct CutSwaths {
+    /// The pieces to spray, in the order of the swaths they come from.
+    pub segments: Vec<Segment>,
+    /// Band the pieces spray again, m²: their strips less the core under them, as sampled by
+    /// the cut's lines.
+    pub double_m2: f64,
+}
+
+/// Cuts `segments` (rotated frame `frame`, swaths `width_m` apart) by `cut` against `core`:
+/// the pieces of each swath to spray.
 pub fn cut_swath_ends(
     segments: &[Segment],
-    innermost: &MultiPolygon<f64>,
+    core: &Core,
     frame: Frame,
     width_m: f64,
     cut: EdgeCut,
     missed_budget_m2: f64,
-) -> Vec<Segment> {
-    if cut == EdgeCut::Overlap || segments.is_empty() {
-        return segments.to_vec();
+) -> CutSwaths {
+    if segments.is_empty() {
+        return CutSwaths {
+            segments: Vec::new(),
+            double_m2: 0.0,
+        };
     }
-    // Round joins: where the pass line turns away from the core (a concave corner of the
-    // field) the pass sprays the disc of its turn, which a mitred core would call core and
-    // leave the swaths to spray again.
-    let core = innermost.buffer_with_style(
-        BufferStyle::new(-width_m / 2.0).line_join(LineJoin::Round(CORE_ARC_SEGMENT_PER_RADIUS)),
-    );
-    let core_rings = rings(&core);
+    let core_rings = &core.rings;
     let rotated = RotatedRings::new(core_rings.iter().map(Vec::as_slice), frame);
     // Sample rows at y_swath + v_i, v_i = −w/2 + (i + ½)·Δv, all swaths on one grid.
     let spacing = width_m / ROWS as f64;
@@ -190,6 +219,7 @@ pub fn cut_swath_ends(
     let cut_at = |level: usize| {
         let mut pieces: Vec<Segment> = Vec::with_capacity(segments.len());
         let mut missed_m2 = 0.0;
+        let mut double_m2 = 0.0;
         for (segment, profile) in segments.iter().zip(&profiles) {
             let first_piece = pieces.len();
             for &(from, to, depth) in profile {
@@ -221,15 +251,30 @@ pub fn cut_swath_ends(
                     .map(|piece| (to.min(piece.end_x) - from.max(piece.start_x)).max(0.0))
                     .sum()
             };
+            let mut core_sprayed_m2 = 0.0;
             for &(from, to, depth) in profile {
-                missed_m2 += depth as f64 * spacing * (to - from - sprayed_of(from, to));
+                let sprayed = sprayed_of(from, to);
+                missed_m2 += depth as f64 * spacing * (to - from - sprayed);
+                core_sprayed_m2 += depth as f64 * spacing * sprayed;
             }
+            let sprayed_length: f64 = own.iter().map(Segment::length).sum();
+            double_m2 += width_m * sprayed_length - core_sprayed_m2;
         }
-        (pieces, missed_m2)
+        (pieces, missed_m2, double_m2)
     };
-    match cut {
-        EdgeCut::Overlap => segments.to_vec(),
-        EdgeCut::Gap => cut_at(ROWS - 1).0,
+    // The swaths whole: all of their strips but the core under them is sprayed twice.
+    let whole = || {
+        let core_m2: f64 = profiles
+            .iter()
+            .flatten()
+            .map(|&(from, to, depth)| depth as f64 * spacing * (to - from))
+            .sum();
+        let length: f64 = segments.iter().map(Segment::length).sum();
+        (segments.to_vec(), 0.0, width_m * length - core_m2)
+    };
+    let (segments, _, double_m2) = match cut {
+        EdgeCut::Overlap => whole(),
+        EdgeCut::Gap => cut_at(ROWS - 1),
         // The pointwise rule at every level (spray where more than `level` lines are core),
         // from the least sprayed down (each level sprays a superset of the one above, so the
         // least double dose): the first whose missed core fits the budget. If none does, the
@@ -237,8 +282,12 @@ pub fn cut_swath_ends(
         EdgeCut::Balanced => (0..ROWS)
             .rev()
             .map(cut_at)
-            .find(|(_, missed_m2)| *missed_m2 <= missed_budget_m2)
-            .map_or_else(|| segments.to_vec(), |(pieces, _)| pieces),
+            .find(|(_, missed_m2, _)| *missed_m2 <= missed_budget_m2)
+            .unwrap_or_else(whole),
+    };
+    CutSwaths {
+        segments,
+        double_m2,
     }
 }
 
@@ -269,11 +318,20 @@ mod tests {
     fn square_ends_stop_at_the_band_in_every_mode_but_overlap() {
         let (innermost, segments) = square_case();
         let frame = Frame::new(0.0);
-        let kept = cut_swath_ends(&segments, &innermost, frame, 5.0, EdgeCut::Overlap, 0.0);
-        assert_eq!(kept, segments);
+        let core = Core::new(&innermost, 5.0);
+        let kept = cut_swath_ends(&segments, &core, frame, 5.0, EdgeCut::Overlap, 0.0);
+        assert_eq!(kept.segments, segments);
+        // Each swath reaches 2.5 m into the band at both ends: 10 × 2 × 2.5 × 5 m².
+        assert!((kept.double_m2 - 250.0).abs() < 1e-6, "{}", kept.double_m2);
         // With no missed ground allowed at all, `balanced` still cuts square ends to the core.
         for cut in [EdgeCut::Balanced, EdgeCut::Gap] {
-            for segment in cut_swath_ends(&segments, &innermost, frame, 5.0, cut, 0.0) {
+            let cut_swaths = cut_swath_ends(&segments, &core, frame, 5.0, cut, 0.0);
+            assert!(
+                cut_swaths.double_m2.abs() < 1e-6,
+                "{cut:?} {}",
+                cut_swaths.double_m2
+            );
+            for segment in cut_swaths.segments {
                 assert!((segment.start_x - 5.0).abs() < 1e-6, "{cut:?} {segment:?}");
                 assert!((segment.end_x - 95.0).abs() < 1e-6, "{cut:?} {segment:?}");
             }
@@ -300,9 +358,17 @@ mod tests {
                 }
             })
             .collect();
+        let core_of_cut = Core::new(&innermost, 5.0);
         let figures = |cut: EdgeCut, budget_m2: f64| {
-            let cut_segments =
-                cut_swath_ends(&segments, &innermost, Frame::new(0.0), 5.0, cut, budget_m2);
+            let cut_swaths = cut_swath_ends(
+                &segments,
+                &core_of_cut,
+                Frame::new(0.0),
+                5.0,
+                cut,
+                budget_m2,
+            );
+            let cut_segments = cut_swaths.segments;
             let mut doubled = 0.0;
             let mut missed = 0.0;
             for segment in &cut_segments {
@@ -316,6 +382,12 @@ mod tests {
                 doubled += strip.difference(&core).unsigned_area();
                 missed += lane.intersection(&core).difference(&strip).unsigned_area();
             }
+            // The cut's own double dose, from its 32 lines, against the overlay's.
+            assert!(
+                (cut_swaths.double_m2 - doubled).abs() <= 0.02 * doubled + 0.5,
+                "{cut:?} {budget_m2}: {} against {doubled}",
+                cut_swaths.double_m2
+            );
             (doubled, missed)
         };
         let (overlap_d, overlap_m) = figures(EdgeCut::Overlap, 0.0);
@@ -358,8 +430,10 @@ mod tests {
             end_x: 100.0,
         };
         let frame = Frame::new(0.0);
-        let cut =
-            |mode, budget_m2| cut_swath_ends(&[segment], &innermost, frame, 5.0, mode, budget_m2);
+        let core = Core::new(&innermost, 5.0);
+        let cut = |mode, budget_m2| {
+            cut_swath_ends(&[segment], &core, frame, 5.0, mode, budget_m2).segments
+        };
         assert_eq!(cut(EdgeCut::Overlap, 0.0), vec![segment]);
         assert!(
             cut(EdgeCut::Gap, 0.0).is_empty(),

@@ -17,7 +17,10 @@ use crate::model::{Farm, Vehicle};
 use crate::terrain::Terrain;
 use drape::{drape, draped_length, path_length_3d, GroundPoint};
 pub use edge_cut::EdgeCut;
-use heading::{choose_heading, HeadingChoice, HeadingObjective, HeadingSample};
+use heading::{
+    choose_heading, near_best_headings, HeadingChoice, HeadingObjective, HeadingSample,
+    DOSE_CANDIDATES, DOSE_TOLERANCE,
+};
 use measure::{edge_strip, measure, swath_strip, CoverageMeasure};
 use region::{edge_pass_regions, rings, sprayable_region};
 use scan_lines::{scan_segments, Frame, RotatedRings, Segment};
@@ -98,6 +101,10 @@ impl CoverageSettings {
                 Err(Fault::NonFinite)
             }
             HeadingObjective::Seed {
+                count_weight,
+                length_weight,
+            }
+            | HeadingObjective::LeastDose {
                 count_weight,
                 length_weight,
             } if !(count_weight >= 0.0
@@ -373,22 +380,61 @@ pub fn cover_field(
         choose_heading(settings.heading, settings.refine_heading, evaluate)?
     };
 
-    let (frame, x_origin, segments) = layout_at(heading.heading_deg);
     // The heading is chosen on the uncut swaths (seed 001's E over the interior); the cut
-    // then moves their spray on/off points against the band (decision 0019).
-    let segments = match pass_regions.last() {
-        Some(innermost) => {
-            let budget_m2 = edge_cut::MISSED_BUDGET_SHARE * sprayable.unsigned_area();
-            edge_cut::cut_swath_ends(
-                &segments,
-                innermost,
-                frame,
-                width_m,
-                settings.edge_cut,
-                budget_m2,
-            )
+    // then moves their spray on/off points against the band (decision 0019), and `dose`
+    // measures it at E's best few headings to keep the one that sprays least twice.
+    let cut_against = match pass_regions.last() {
+        Some(innermost) if settings.edge_cut != EdgeCut::Overlap => {
+            Some(edge_cut::Core::new(innermost, width_m))
         }
-        None => segments,
+        _ => None,
+    };
+    let budget_m2 = edge_cut::MISSED_BUDGET_SHARE * sprayable.unsigned_area();
+    let cut_at = |choice: &HeadingChoice, core: &edge_cut::Core| {
+        let (frame, x_origin, segments) = layout_at(choice.heading_deg);
+        let cut = edge_cut::cut_swath_ends(
+            &segments,
+            core,
+            frame,
+            width_m,
+            settings.edge_cut,
+            budget_m2,
+        );
+        (frame, x_origin, cut)
+    };
+    let (heading, frame, x_origin, segments) = match &cut_against {
+        Some(core) => {
+            let candidates = match settings.heading {
+                HeadingObjective::LeastDose { .. } => near_best_headings(
+                    settings.heading,
+                    &heading,
+                    &heading_samples,
+                    DOSE_TOLERANCE,
+                    DOSE_CANDIDATES,
+                ),
+                _ => vec![heading],
+            };
+            let (choice, (frame, x_origin, cut)) = candidates
+                .into_iter()
+                .map(|candidate| {
+                    let cut = cut_at(&candidate, core);
+                    (candidate, cut)
+                })
+                // Strictly less: ties keep the better E.
+                .reduce(|kept, next| {
+                    if next.1 .2.double_m2 < kept.1 .2.double_m2 {
+                        next
+                    } else {
+                        kept
+                    }
+                })
+                .expect("E's own heading is always a candidate");
+            (choice, frame, x_origin, cut.segments)
+        }
+        None => {
+            let (frame, x_origin, segments) = layout_at(heading.heading_deg);
+            (heading, frame, x_origin, segments)
+        }
     };
     let swaths = segments
         .iter()

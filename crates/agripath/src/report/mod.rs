@@ -376,6 +376,12 @@ impl Report {
             } => {
                 format!("E (ω_N = {count_weight}, ω_L = {length_weight})")
             }
+            HeadingObjective::LeastDose {
+                count_weight,
+                length_weight,
+            } => {
+                format!("E (ω_N = {count_weight}, ω_L = {length_weight}), then least double dose")
+            }
             HeadingObjective::Swaths => "fewest swaths".into(),
             HeadingObjective::Length => "shortest length".into(),
             HeadingObjective::Fixed { heading_deg } => format!("fixed {heading_deg}°"),

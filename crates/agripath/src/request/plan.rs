@@ -29,7 +29,7 @@ pub struct PlanOptions {
     /// degrees from east, counter-clockwise.
     #[cfg_attr(
         feature = "cli",
-        arg(long, default_value = "auto", allow_negative_numbers = true)
+        arg(long, default_value = "dose", allow_negative_numbers = true)
     )]
     pub heading: String,
     /// Weights ω_N,ω_L of seed 001's E.
@@ -162,7 +162,7 @@ impl Default for PlanOptions {
     fn default() -> Self {
         PlanOptions {
             headland_passes: 1,
-            heading: "auto".into(),
+            heading: "dose".into(),
             weights: vec![0.5, 0.5],
             refine_heading: true,
             edge_cut: "balanced".into(),
