@@ -387,12 +387,12 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         flag(
             &["--heading", "north"],
             "--heading",
-            "expected auto, swaths, length",
+            "expected dose, auto, swaths, length",
         ),
         flag(
             &["--heading", "inf"],
             "--heading",
-            "expected auto, swaths, length",
+            "expected dose, auto, swaths, length",
         ),
         flag(&["--weights", "1"], "--weights", "expected two weights"),
         flag(&["--weights", "a,b"], "arguments", "invalid value 'a'"),

@@ -2,6 +2,7 @@
 //! field, draped on the terrain, with edge passes around every boundary and hole.
 
 pub mod drape;
+pub mod edge_corners;
 pub mod edge_cut;
 pub mod heading;
 pub mod measure;
@@ -163,6 +164,11 @@ pub struct FieldCoverage {
     pub measure: CoverageMeasure,
     /// The heading scan (0..179°), for plots.
     pub heading_samples: Vec<HeadingSample>,
+    /// Corners of edge passes where the pass stops spraying and starts again rather than
+    /// spray the corner's wedge twice ([`edge_corners`]).
+    pub edge_corners_cut: usize,
+    /// Double dose those corners save by the corner model, m².
+    pub edge_corners_saved_m2: f64,
 }
 
 impl FieldCoverage {
@@ -448,7 +454,15 @@ pub fn cover_field(
             })
         })
         .collect::<Result<Vec<_>, Fault>>()?;
-    let edges = edge_passes(index, &pass_regions, terrain, settings.drape_spacing_m)?;
+    // `--edge-cut overlap` is the layout before decision 0019: passes round their corners.
+    let corner_width_m = (settings.edge_cut != EdgeCut::Overlap).then_some(width_m);
+    let (edges, corner_cuts) = edge_passes(
+        index,
+        &pass_regions,
+        terrain,
+        settings.drape_spacing_m,
+        corner_width_m,
+    )?;
 
     // Measured in the rotated frame, where swath strips are axis-parallel rectangles whose
     // shared edges are exactly equal: tilted in the plan frame, their nearly collinear edges
@@ -472,51 +486,67 @@ pub fn cover_field(
         edges,
         measure,
         heading_samples,
+        edge_corners_cut: corner_cuts.corners,
+        edge_corners_saved_m2: corner_cuts.double_saved_m2,
     })
 }
 
-/// Edge passes along every ring of each pass region, closed, sampled every `spacing_m`.
+/// Edge passes along every ring of each pass region, sampled every `spacing_m`: closed, or,
+/// with `corner_width_m`, opened where a corner is cut ([`edge_corners`]); and the corners cut.
 fn edge_passes(
     field: usize,
     pass_regions: &[MultiPolygon<f64>],
     terrain: &dyn Terrain,
     spacing_m: f64,
-) -> Result<Vec<EdgePass>, Fault> {
+    corner_width_m: Option<f64>,
+) -> Result<(Vec<EdgePass>, edge_corners::CornerCuts), Fault> {
     let mut passes = Vec::new();
+    let mut all_cuts = edge_corners::CornerCuts::default();
     for (pass, region) in pass_regions.iter().enumerate() {
         for ring in rings(region) {
             if geo::Polygon::new(geo::LineString::new(ring.clone()), vec![]).unsigned_area() == 0.0
             {
                 continue;
             }
-            let mut points = Vec::new();
-            for pair in ring.windows(2) {
-                let (start, end) = (pair[0], pair[1]);
-                let length = (end.x - start.x).hypot(end.y - start.y);
-                let steps = (length / spacing_m).ceil().max(1.0) as usize;
-                for step in 0..steps {
-                    let t = step as f64 / steps as f64;
-                    points.push(ground_point(
-                        Coord {
-                            x: start.x + t * (end.x - start.x),
-                            y: start.y + t * (end.y - start.y),
-                        },
-                        terrain,
-                    )?);
+            let paths = match corner_width_m {
+                Some(width_m) => {
+                    let cuts = edge_corners::cut_corners(&ring, region, width_m);
+                    all_cuts.corners += cuts.corners;
+                    all_cuts.double_saved_m2 += cuts.double_saved_m2;
+                    cuts.paths
                 }
+                None => vec![ring],
+            };
+            for path in paths {
+                let mut points = Vec::new();
+                for pair in path.windows(2) {
+                    let (start, end) = (pair[0], pair[1]);
+                    let length = (end.x - start.x).hypot(end.y - start.y);
+                    let steps = (length / spacing_m).ceil().max(1.0) as usize;
+                    for step in 0..steps {
+                        let t = step as f64 / steps as f64;
+                        points.push(ground_point(
+                            Coord {
+                                x: start.x + t * (end.x - start.x),
+                                y: start.y + t * (end.y - start.y),
+                            },
+                            terrain,
+                        )?);
+                    }
+                }
+                if let Some(&last) = path.last() {
+                    points.push(ground_point(last, terrain)?);
+                }
+                passes.push(EdgePass {
+                    field,
+                    pass,
+                    length_m: path_length_3d(&points),
+                    points,
+                });
             }
-            if let Some(&last) = ring.last() {
-                points.push(ground_point(last, terrain)?);
-            }
-            passes.push(EdgePass {
-                field,
-                pass,
-                length_m: path_length_3d(&points),
-                points,
-            });
         }
     }
-    Ok(passes)
+    Ok((passes, all_cuts))
 }
 
 fn ground_point(point: Coord<f64>, terrain: &dyn Terrain) -> Result<GroundPoint, Fault> {

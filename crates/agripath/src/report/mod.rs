@@ -34,8 +34,14 @@ pub struct FieldReport {
     pub swaths: usize,
     /// Draped length of the interior swaths, metres.
     pub spray_length_m: f64,
-    /// Number of edge passes.
+    /// Number of edge passes (a ring whose corners are cut counts once per piece).
     pub edge_passes: usize,
+    /// Corners of edge passes flown spray-off across rather than sprayed twice (decision
+    /// 0019), and the double dose that saves by the corner model, m².
+    pub edge_corners_cut: usize,
+    /// Double dose the cut corners save, m² (the corner model's figure; the preflight's
+    /// read-back measures the whole field as flown).
+    pub edge_corners_saved_m2: f64,
     /// Draped length of the edge passes, metres.
     pub edge_length_m: f64,
     /// Sprayable area (the field less holes, obstacles and margins), m².
@@ -227,6 +233,8 @@ impl Report {
                 swaths: field.swaths.len(),
                 spray_length_m: round(field.spray_length_m(), 1e-4),
                 edge_passes: field.edges.len(),
+                edge_corners_cut: field.edge_corners_cut,
+                edge_corners_saved_m2: round(field.edge_corners_saved_m2, 1e-4),
                 edge_length_m: round(field.edge_length_m(), 1e-4),
                 sprayable_area_m2: round(field.measure.sprayable_area_m2, 1e-4),
                 covered_fraction: round(field.measure.covered_fraction, 1e-6),

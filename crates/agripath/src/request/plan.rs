@@ -25,7 +25,8 @@ pub struct PlanOptions {
         arg(long = "headland", value_name = "HEADLAND", default_value_t = 1)
     )]
     pub headland_passes: usize,
-    /// Swath heading: `auto` (seed 001's E), `swaths` (fewest), `length` (shortest), or
+    /// Swath heading: `dose` (the default: seed 001's E, then the least double dose among
+    /// near-best headings), `auto` (seed 001's E), `swaths` (fewest), `length` (shortest), or
     /// degrees from east, counter-clockwise.
     #[cfg_attr(
         feature = "cli",
