@@ -18,6 +18,7 @@ pub mod mission;
 pub mod model;
 pub mod numbers;
 pub mod output;
+pub mod parallel;
 pub mod pipeline;
 pub mod plot;
 pub mod preflight;

@@ -214,39 +214,39 @@ pub fn plan_coverage(
     } else {
         settings
     };
-    let fields = farm
-        .fields
-        .iter()
-        .enumerate()
-        .map(|(index, field)| {
-            let sprayable = sprayable_region(
-                field,
-                &farm.obstacles,
-                settings.boundary_margin_m,
-                settings.obstacle_margin_m,
-            );
-            check_something_to_spray(field, &sprayable, vehicle.swath_width_m)?;
-            let coverage = cover_field(
-                index,
-                &field.name,
-                &sprayable,
-                terrain,
-                vehicle.swath_width_m,
-                settings,
-            )?;
-            // A strip narrower than a swath has area but no line to fly.
-            if coverage.swaths.is_empty()
-                && coverage.edges.is_empty()
-                && sprayable.unsigned_area() >= vehicle.swath_width_m.powi(2)
-            {
-                return Err(Fault::Structure(format!(
-                    "field '{}' is narrower than one swath ({} m) wherever it can be sprayed: nothing to lay out",
-                    field.name, vehicle.swath_width_m
-                )));
-            }
-            Ok(coverage)
-        })
-        .collect::<Result<Vec<_>, _>>()?;
+    // Fields are laid out independently (on every core: the demo's five fields took 0.1 s
+    // of its 0.5 s plan on one core with `--heading dose` and the corner cuts); in the
+    // fields' order, so the first fault by field is the one reported.
+    let fields = crate::parallel::map_in_order(&farm.fields, |index, field| {
+        let sprayable = sprayable_region(
+            field,
+            &farm.obstacles,
+            settings.boundary_margin_m,
+            settings.obstacle_margin_m,
+        );
+        check_something_to_spray(field, &sprayable, vehicle.swath_width_m)?;
+        let coverage = cover_field(
+            index,
+            &field.name,
+            &sprayable,
+            terrain,
+            vehicle.swath_width_m,
+            settings,
+        )?;
+        // A strip narrower than a swath has area but no line to fly.
+        if coverage.swaths.is_empty()
+            && coverage.edges.is_empty()
+            && sprayable.unsigned_area() >= vehicle.swath_width_m.powi(2)
+        {
+            return Err(Fault::Structure(format!(
+                "field '{}' is narrower than one swath ({} m) wherever it can be sprayed: nothing to lay out",
+                field.name, vehicle.swath_width_m
+            )));
+        }
+        Ok(coverage)
+    })
+    .into_iter()
+    .collect::<Result<Vec<_>, _>>()?;
     Ok(CoveragePlan {
         settings: *settings,
         swath_width_m: vehicle.swath_width_m,
