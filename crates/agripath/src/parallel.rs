@@ -13,7 +13,7 @@ const WORKER_STACK_BYTES: usize = 8 << 20;
 /// Threads to use: `RAYON_NUM_THREADS` when it is a whole number from 1 (the variable that
 /// sets the swarm runs' pool too, so one knob sets all of the program's threads; 1 measures
 /// one core; anything else is ignored), else the machine's available parallelism; at most
-/// [`MOST_THREADS`].
+/// 64.
 pub fn threads() -> usize {
     std::env::var("RAYON_NUM_THREADS")
         .ok()
