@@ -35,6 +35,18 @@ pub fn try_map_in_order<T: Sync, R: Send, E: Send>(
     try_map_in_order_on(threads(), items, work)
 }
 
+/// `work(item)` for every item on [`threads`] threads, the results in the items' order (as
+/// [`try_map_in_order`], for work that cannot fail).
+pub fn map_in_order<T: Sync, R: Send>(items: &[T], work: impl Fn(&T) -> R + Sync) -> Vec<R> {
+    let outcome = try_map_in_order(items, |_, item| {
+        Ok::<R, std::convert::Infallible>(work(item))
+    });
+    match outcome {
+        Ok(results) => results,
+        Err(never) => match never {},
+    }
+}
+
 /// [`try_map_in_order`] on `threads` threads (the caller's among them).
 fn try_map_in_order_on<T: Sync, R: Send, E: Send>(
     threads: usize,

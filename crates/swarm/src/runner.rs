@@ -256,6 +256,77 @@ impl<'a, P: Problem + ?Sized> Search<'a, P> {
         random::below(&mut self.stream, n)
     }
 
+    /// Work beside this run on the machine's cores (rayon's pool): `work(k, branch)` for
+    /// each of `problems` (copies of this run's problem, which may keep caches of their own),
+    /// each on a search of its own with up to `evaluations` to spend and a stream of its own
+    /// (this run's, long-jumped k + 1 times: apart from every run's stream, and this run's
+    /// is not advanced). The branches share what is left of the run's budget evenly (and
+    /// its time limit), so the budget is honoured exactly. Then their evaluations are added
+    /// to this run's count and their bests offered to this run's best, in branch order (a
+    /// later branch replaces the best only when strictly cheaper): when each branch's work
+    /// fits its share, the run stands where it would have stood had the branches been run
+    /// here one after another, whatever the number of cores. The observer is told each
+    /// branch's best, not its every evaluation. The results come in branch order.
+    pub fn branch_out<R: Send>(
+        &mut self,
+        problems: &[&P],
+        evaluations: u64,
+        work: impl Fn(usize, &mut Search<'_, P>) -> R + Sync,
+    ) -> Vec<R>
+    where
+        P: Sync,
+        SolutionOf<P>: Send,
+    {
+        let branches = problems.len().max(1) as u64;
+        let remaining = self
+            .termination
+            .max_evaluations
+            .map_or(evaluations, |budget| {
+                evaluations.min(budget.saturating_sub(self.evaluations) / branches)
+            });
+        let mut termination = Termination::evaluations(remaining.max(1));
+        if let Some(limit) = self.termination.time_limit {
+            termination = termination.and_time_limit(limit.saturating_sub(self.started.elapsed()));
+        }
+        let streams: Vec<RunStream> = (0..problems.len())
+            .scan(self.stream.clone(), |stream, _| {
+                stream.long_jump();
+                Some(stream.clone())
+            })
+            .collect();
+        let branches: Vec<(R, u64, f64, SolutionOf<P>)> = problems
+            .par_iter()
+            .zip(streams)
+            .enumerate()
+            .map(|(k, (problem, stream))| {
+                let mut quiet = ();
+                let mut branch = Search::new(*problem, &termination, stream, &mut quiet);
+                // With nothing left to spend (a budget cannot be 0) every evaluation of the
+                // branch returns infinity.
+                let already = if remaining == 0 { 1 } else { 0 };
+                branch.evaluations = already;
+                let result = work(k, &mut branch);
+                let spent = branch.evaluations - already;
+                (result, spent, branch.best_cost, branch.best_solution)
+            })
+            .collect();
+        branches
+            .into_iter()
+            .map(|(result, spent, best_cost, best_solution)| {
+                self.evaluations += spent;
+                if spent > 0 {
+                    let best = as_solution::<P>(&best_solution);
+                    self.observer.evaluated(best, best_cost);
+                    if best_cost < self.best_cost {
+                        self.best_cost = best_cost;
+                        best.clone_into(&mut self.best_solution);
+                    }
+                }
+                result
+            })
+            .collect()
+    }
+
     /// Notes the best cost after an iteration, for the history and the observer.
     fn record(&mut self) {
         let point = Record {

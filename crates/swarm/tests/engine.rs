@@ -2,7 +2,7 @@
 
 use swarm::algorithms::Algorithm;
 use swarm::functions::{self, FunctionProblem};
-use swarm::{conformance, Runner, Termination};
+use swarm::{conformance, Problem, Runner, Termination};
 
 #[test]
 fn every_optimizer_passes_the_conformance_suite() {
@@ -133,4 +133,103 @@ fn f3_at_d10_and_d30_matches_numpy() {
     dimensions.dedup();
     assert_eq!(dimensions, vec![10, 30]);
     assert!(function.check_dimension(20).is_err());
+}
+
+/// Random search from branches: `start` spends `per_branch` evaluations on each of three
+/// branches (in series, or through `Search::branch_out`), `step` samples on the main stream.
+struct Branching {
+    parallel: bool,
+    per_branch: usize,
+    seed: u64,
+}
+
+impl<'p> swarm::Optimizer<swarm::Continuous<'p>> for Branching {
+    fn name(&self) -> &'static str {
+        "branching random search (test)"
+    }
+
+    fn start(&mut self, run: &mut swarm::Search<swarm::Continuous<'p>>) {
+        let per_branch = self.per_branch;
+        let sample = |search: &mut swarm::Search<swarm::Continuous<'_>>| {
+            (0..per_branch)
+                .map(|_| {
+                    let x = search.random_solution();
+                    search.evaluate(&x)
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        if self.parallel {
+            let problem = run.problem();
+            let copies = [problem, problem, problem];
+            let bests = run.branch_out(&copies, u64::MAX, |_, branch| sample(branch));
+            assert_eq!(bests.len(), 3);
+        } else {
+            // What the branches do, here one after another: branch k's stream is the run's,
+            // long-jumped k + 1 times.
+            for k in 0..3 {
+                let mut stream = swarm::random::run_stream(self.seed, 0);
+                for _ in 0..=k {
+                    stream.long_jump();
+                }
+                for _ in 0..per_branch {
+                    let x = run.problem().random_solution(&mut stream);
+                    run.evaluate(&x);
+                }
+            }
+        }
+    }
+
+    fn step(&mut self, run: &mut swarm::Search<swarm::Continuous<'p>>) {
+        let x = run.random_solution();
+        run.evaluate(&x);
+    }
+}
+
+/// Work branched out to other cores leaves the run where the same work done in series
+/// leaves it (count, best, history, the stream the steps draw from), on any number of
+/// threads; a budget smaller than the branches' work is shared among them and honoured.
+#[test]
+fn branches_merge_as_if_run_in_series() {
+    let problem = FunctionProblem::new(functions::by_key("f1").unwrap(), 5).unwrap();
+    for budget in [500u64, 100] {
+        let runner = Runner::new(Termination::evaluations(budget), 7).unwrap();
+        let serial = runner.run(
+            &mut Branching {
+                parallel: false,
+                per_branch: 60,
+                seed: 7,
+            },
+            &problem,
+            0,
+        );
+        for threads in [1, 4] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let branched = pool.install(|| {
+                runner.run(
+                    &mut Branching {
+                        parallel: true,
+                        per_branch: 60,
+                        seed: 7,
+                    },
+                    &problem,
+                    0,
+                )
+            });
+            if budget >= 3 * 60 {
+                assert_eq!(branched.best_cost.to_bits(), serial.best_cost.to_bits());
+                assert_eq!(branched.best_solution, serial.best_solution);
+                assert_eq!(branched.evaluations, serial.evaluations);
+                assert_eq!(branched.history, serial.history);
+                assert!(serial.iterations > 0);
+            } else {
+                // Three branches share 100 evaluations: 33 each, the budget honoured.
+                assert_eq!(branched.evaluations, 99 + branched.iterations as u64);
+                assert!(branched.evaluations <= budget);
+            }
+        }
+        assert!(serial.best_cost < problem.evaluate(&problem.first_solution()));
+    }
 }

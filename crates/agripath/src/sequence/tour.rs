@@ -213,10 +213,17 @@ impl<'a> OrderingProblem<'a> {
                 .collect();
         }
         if count <= MATRIX_LIMIT_ENDS {
+            // The lower triangle row by row, rows spread over the cores (eq. 8's polygon test
+            // is most of an ordering problem's build); the same costs on any number of them.
+            let rows: Vec<usize> = (0..count).collect();
+            let lower = crate::parallel::map_in_order(&rows, |&from| {
+                (0..from)
+                    .map(|to| problem.compute(from, to))
+                    .collect::<Vec<f64>>()
+            });
             let mut matrix = vec![0.0; count * count];
-            for from in 0..count {
-                for to in 0..from {
-                    let cost = problem.compute(from, to);
+            for (from, row) in lower.iter().enumerate() {
+                for (to, &cost) in row.iter().enumerate() {
                     matrix[from * count + to] = cost;
                     matrix[to * count + from] = cost;
                 }
@@ -261,16 +268,24 @@ impl<'a> OrderingProblem<'a> {
     }
 
     /// Eq. (8) between two ends (symmetric).
+    ///
+    /// Inlined: the local search asks for costs in its innermost loops, where a call per
+    /// lookup was a third of its time; the path without the matrix stays out of line.
+    #[inline]
     pub fn cost(&self, from: End, to: End) -> f64 {
         match &self.matrix {
             Some(matrix) => matrix[from * 2 * self.ends.len() + to],
-            None => self
-                .field_blocks
-                .as_ref()
-                .zip(self.fields.as_deref())
-                .and_then(|(blocks, fields)| blocks.cost(fields, from, to))
-                .unwrap_or_else(|| self.compute(from, to)),
+            None => self.cost_without_matrix(from, to),
         }
+    }
+
+    #[inline(never)]
+    fn cost_without_matrix(&self, from: End, to: End) -> f64 {
+        self.field_blocks
+            .as_ref()
+            .zip(self.fields.as_deref())
+            .and_then(|(blocks, fields)| blocks.cost(fields, from, to))
+            .unwrap_or_else(|| self.compute(from, to))
     }
 
     /// Whether the transfer from `from` to `to` climbs out of the field: eq. (8) adds 2h to

@@ -219,8 +219,29 @@ fn cross(origin: Coord<f64>, a: Coord<f64>, b: Coord<f64>) -> f64 {
 fn on_boundary(point: Coord<f64>, polygon: &Polygon<f64>) -> bool {
     rings(polygon).any(|ring| {
         ring.windows(2)
-            .any(|edge| distance_to_segment(point, edge[0], edge[1]) <= ON_BOUNDARY_M)
+            .any(|edge| within_boundary_distance(point, edge[0], edge[1]))
     })
+}
+
+/// Margin of the box tests below: a point within [`ON_BOUNDARY_M`] of a segment lies in the
+/// segment's box grown by it; twice that leaves room for rounding.
+const BOX_MARGIN_M: f64 = 2.0 * ON_BOUNDARY_M;
+
+/// Whether the boxes of segments `a`-`b` and `p`-`q`, grown by [`BOX_MARGIN_M`], meet: when
+/// they do not, the segments neither cross nor come within [`ON_BOUNDARY_M`] of each other.
+/// Most edges of a field are far from a given transfer; this spares them the distances
+/// (eq. 8's test is most of the time to build an ordering problem's cost matrix).
+fn boxes_meet(a: Coord<f64>, b: Coord<f64>, p: Coord<f64>, q: Coord<f64>) -> bool {
+    a.x.max(b.x) + BOX_MARGIN_M >= p.x.min(q.x)
+        && p.x.max(q.x) + BOX_MARGIN_M >= a.x.min(b.x)
+        && a.y.max(b.y) + BOX_MARGIN_M >= p.y.min(q.y)
+        && p.y.max(q.y) + BOX_MARGIN_M >= a.y.min(b.y)
+}
+
+/// `distance_to_segment(point, p, q) <= ON_BOUNDARY_M`, with the box test first (the same
+/// answer: a point outside the grown box is farther than that from the segment).
+fn within_boundary_distance(point: Coord<f64>, p: Coord<f64>, q: Coord<f64>) -> bool {
+    boxes_meet(point, point, p, q) && distance_to_segment(point, p, q) <= ON_BOUNDARY_M
 }
 
 /// Strictly inside the polygon (outside its holes), boundary excluded.
@@ -253,6 +274,10 @@ fn boundary_cuts(from: Coord<f64>, to: Coord<f64>, polygon: &Polygon<f64>) -> Op
     for ring in rings(polygon) {
         for edge in ring.windows(2) {
             let (p, q) = (edge[0], edge[1]);
+            if !boxes_meet(from, to, p, q) {
+                // Neither a crossing nor a touch: nothing to cut.
+                continue;
+            }
             let d1 = cross(p, q, from);
             let d2 = cross(p, q, to);
             let d3 = cross(from, to, p);
@@ -270,12 +295,12 @@ fn boundary_cuts(from: Coord<f64>, to: Coord<f64>, polygon: &Polygon<f64>) -> Op
             }
             // Touches: an end of one on the other (including collinear overlaps).
             for point in [p, q] {
-                if distance_to_segment(point, from, to) <= ON_BOUNDARY_M {
+                if within_boundary_distance(point, from, to) {
                     cuts.push(parameter(point));
                 }
             }
             for (point, t) in [(from, 0.0), (to, 1.0)] {
-                if distance_to_segment(point, p, q) <= ON_BOUNDARY_M {
+                if within_boundary_distance(point, p, q) {
                     cuts.push(t);
                 }
             }
@@ -407,6 +432,42 @@ mod tests {
             c(50.0, 60.0),
             &polygon
         ));
+    }
+
+    proptest::proptest! {
+        /// Eq. (8)'s two tests (with their box shortcuts) agree with `geo`'s DE-9IM relate
+        /// (robust predicates), an outside oracle: a segment lies in the closed polygon when
+        /// the polygon covers it, and enters it when their interiors meet. Ends on a 5 m grid
+        /// over the notched field with a hole, so that most segments touch vertices, run
+        /// along edges or end on the boundary, where the shortcuts could go wrong.
+        #[test]
+        fn segment_tests_agree_with_geo_relate(
+            ends in proptest::collection::vec(-2i32..=22, 4),
+            jitter in proptest::collection::vec(-1.0f64..1.0, 4),
+            snapped in proptest::bool::ANY,
+        ) {
+            use geo::algorithm::relate::Relate;
+            use geo::coordinate_position::CoordPos;
+            use geo::dimensions::Dimensions;
+            let shift = |k: usize| if snapped { 0.0 } else { jitter[k] };
+            let (a, b) = (
+                c(5.0 * f64::from(ends[0]) + shift(0), 5.0 * f64::from(ends[1]) + shift(1)),
+                c(5.0 * f64::from(ends[2]) + shift(2), 5.0 * f64::from(ends[3]) + shift(3)),
+            );
+            proptest::prop_assume!(a != b);
+            let polygon = notched();
+            let matrix = polygon.relate(&geo::Line::new(a, b));
+            proptest::prop_assert_eq!(
+                segment_in_closed_polygon(a, b, &polygon),
+                matrix.is_covers(),
+                "in {:?} {:?}", a, b
+            );
+            proptest::prop_assert_eq!(
+                segment_enters_polygon(a, b, &polygon),
+                matrix.get(CoordPos::Inside, CoordPos::Inside) != Dimensions::Empty,
+                "enters {:?} {:?}", a, b
+            );
+        }
     }
 
     #[test]

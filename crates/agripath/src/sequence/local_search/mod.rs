@@ -131,6 +131,39 @@ fn double_bridge<T: Copy>(items: &[T], stream: &mut swarm::RunStream) -> Option<
     Some(kicked)
 }
 
+/// The constructions of step 1, each a start of the local search.
+#[derive(Clone, Copy)]
+enum Construction {
+    Boustrophedon,
+    ExactFieldOrder,
+    /// Block relocation alone and with block reversals end in different local optima; both
+    /// are kept as starts and the local search decides.
+    BlockRelocation,
+    BlockRelocationWithReversals,
+    /// Seed 001's greedy, on instances of at most `GREEDY_LIMIT` passes.
+    Greedy,
+}
+
+impl Construction {
+    /// Its tour, when it applies to the problem.
+    fn build(
+        self,
+        problem: &OrderingProblem,
+        groups: &[Vec<usize>],
+        seed: u64,
+    ) -> Option<Vec<Step>> {
+        match self {
+            Self::Boustrophedon => Some(boustrophedon(problem, groups)),
+            Self::ExactFieldOrder => exact_field_order(problem, groups),
+            Self::BlockRelocation => block_local_search(problem, groups, false, seed),
+            Self::BlockRelocationWithReversals => block_local_search(problem, groups, true, seed),
+            Self::Greedy => {
+                (problem.passes() <= GREEDY_LIMIT).then(|| greedy_with_starts(problem, 8))
+            }
+        }
+    }
+}
+
 /// Our sequencer: construction, local search, iterated kicks, on `swarm`'s Runner (one kick
 /// per iteration, run 0 of `settings.seed`); returns the Runner's best tour.
 pub fn best_tour(
@@ -244,16 +277,24 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
 
     fn start(&mut self, run: &mut swarm::Search<OrderingProblem<'a>>) {
         let problem = run.problem();
-        let (n, groups) = (problem.passes(), self.groups);
-        let mut starts = vec![boustrophedon(problem, groups)];
-        starts.extend(exact_field_order(problem, groups));
-        // Block relocation alone and with block reversals end in different local optima; both
-        // are kept as starts and the local search decides.
-        starts.extend(block_local_search(problem, groups, false, self.seed));
-        starts.extend(block_local_search(problem, groups, true, self.seed));
-        if n <= GREEDY_LIMIT {
-            starts.push(greedy_with_starts(problem, 8));
-        }
+        let (n, groups, seed) = (problem.passes(), self.groups, self.seed);
+        // The constructions, and then each one's descents, are independent: they run on the
+        // machine's cores and are evaluated in this order, so the tours and the run's stream
+        // are the same on any number of cores.
+        let constructions = [
+            Construction::Boustrophedon,
+            Construction::ExactFieldOrder,
+            Construction::BlockRelocation,
+            Construction::BlockRelocationWithReversals,
+            Construction::Greedy,
+        ];
+        let starts: Vec<Vec<Step>> =
+            crate::parallel::map_in_order(&constructions, |construction| {
+                construction.build(problem, groups, seed)
+            })
+            .into_iter()
+            .flatten()
+            .collect();
         self.group_of = vec![0; n];
         for (group, members) in groups.iter().enumerate() {
             for &pass in members {
@@ -279,17 +320,24 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
         }
         self.neighbours = neighbours;
         self.incumbent = Workspace::default();
-        for start in starts {
-            let tour = self.descend(problem, start, 0..n, 50 * n + 10_000);
+        // Each start's run search draws its kicks' seed from this run's stream, in order.
+        let seeded: Vec<(Vec<Step>, u64)> = starts
+            .into_iter()
+            .map(|start| (start, swarm::below(run.stream(), 1 << 30) as u64))
+            .collect();
+        let this = &*self;
+        let tours = crate::parallel::map_in_order(&seeded, |(start, seed)| {
+            let tour = this.descend(problem, start.clone(), 0..n, 50 * n + 10_000);
             // Then the order and corners of its runs, and the pass-level moves again where
-            // the runs now meet (runs.rs), its kicks drawn from this run's stream.
-            let seed = swarm::below(run.stream(), 1 << 30) as u64;
-            let reordered = runs::run_search(problem, &tour, &self.group_of, seed);
-            let tour = if reordered == tour {
+            // the runs now meet (runs.rs).
+            let reordered = runs::run_search(problem, &tour, &this.group_of, *seed);
+            if reordered == tour {
                 tour
             } else {
-                self.descend(problem, reordered, 0..n, 50 * n + 10_000)
-            };
+                this.descend(problem, reordered, 0..n, 50 * n + 10_000)
+            }
+        });
+        for tour in tours {
             run.evaluate(&tour);
         }
         if n < 8 {

@@ -101,6 +101,19 @@ impl<'a> JointProblem<'a> {
         Self::new(ordering, &points, model, speeds)
     }
 
+    /// The same problem with split buffers of its own: for a branch of the search on
+    /// another core ([`swarm::Search::branch_out`]), which would otherwise contend for, and
+    /// overwrite, this one's. Costs are the same to the bit (the buffers only save work).
+    pub fn fork(&self) -> Self {
+        Self {
+            ordering: self.ordering,
+            profiles: self.profiles.clone(),
+            limits: self.limits,
+            speeds: self.speeds,
+            cache: Mutex::new(SplitCache::default()),
+        }
+    }
+
     /// Route points of every tour of the problem (what one split lays out).
     pub fn points(&self) -> usize {
         self.profiles

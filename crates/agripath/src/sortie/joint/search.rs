@@ -371,26 +371,40 @@ impl<'a> Optimizer<JointProblem<'a>> for JointSearch {
         });
         let starts = std::mem::take(&mut self.starts);
         let n = starts[0].len();
-        let racing = starts.len() > 1;
-        // Every start descends for its share of the race; the cheapest (the earliest on
-        // ties) goes on to its local optimum.
-        let mut leader: Option<Descent> = None;
-        for start in starts {
+        let neighbours = &self.neighbours;
+        let mut leader = if starts.len() > 1 {
+            // Every start descends for its share of the race, each on a core of its own with
+            // its own split buffers; the cheapest (the earliest on ties) goes on to its local
+            // optimum. The run stands where the race run here start after start would leave
+            // it (`branch_out`).
+            let race = self.race_evaluations;
+            let copies: Vec<JointProblem<'a>> = starts.iter().map(|_| problem.fork()).collect();
+            let problems: Vec<&JointProblem<'a>> = copies.iter().collect();
+            let descents = run.branch_out(&problems, u64::MAX, |k, branch| {
+                let start = &starts[k];
+                let cost = branch.evaluate(start);
+                let mut descent = Descent::new(start.clone(), cost, 0..n);
+                let until = branch.evaluations() + race;
+                descent.run(branch, neighbours, until);
+                descent
+            });
+            descents
+                .into_iter()
+                .reduce(|kept, descent| {
+                    if descent.cost < kept.cost {
+                        descent
+                    } else {
+                        kept
+                    }
+                })
+                .expect("at least one start")
+        } else {
+            let start = starts.into_iter().next().expect("at least one start");
             let cost = run.evaluate(&start);
-            let mut descent = Descent::new(start, cost, 0..n);
-            let until = if racing {
-                run.evaluations() + self.race_evaluations
-            } else {
-                u64::MAX
-            };
-            descent.run(run, &self.neighbours, until);
-            if leader.as_ref().is_none_or(|kept| descent.cost < kept.cost) {
-                leader = Some(descent);
-            }
-        }
-        let mut leader = leader.expect("at least one start");
+            Descent::new(start, cost, 0..n)
+        };
         if !leader.is_done() {
-            leader.run(run, &self.neighbours, u64::MAX);
+            leader.run(run, neighbours, u64::MAX);
         }
         if n < 8 {
             run.declare_converged();
