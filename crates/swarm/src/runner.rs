@@ -256,17 +256,30 @@ impl<'a, P: Problem + ?Sized> Search<'a, P> {
         random::below(&mut self.stream, n)
     }
 
+    /// Evaluations left in this run's budget (`None` without an evaluation budget).
+    pub fn remaining_evaluations(&self) -> Option<u64> {
+        self.termination
+            .max_evaluations
+            .map(|budget| budget.saturating_sub(self.evaluations))
+    }
+
     /// Work beside this run on the machine's cores (rayon's pool): `work(k, branch)` for
     /// each of `problems` (copies of this run's problem, which may keep caches of their own),
-    /// each on a search of its own with up to `evaluations` to spend and a stream of its own
-    /// (this run's, long-jumped k + 1 times: apart from every run's stream, and this run's
-    /// is not advanced). The branches share what is left of the run's budget evenly (and
-    /// its time limit), so the budget is honoured exactly. Then their evaluations are added
-    /// to this run's count and their bests offered to this run's best, in branch order (a
-    /// later branch replaces the best only when strictly cheaper): when each branch's work
-    /// fits its share, the run stands where it would have stood had the branches been run
-    /// here one after another, whatever the number of cores. The observer is told each
-    /// branch's best, not its every evaluation. The results come in branch order.
+    /// each on a search of its own with a stream of its own (this run's, long-jumped k + 1
+    /// times: apart from every run's stream, and this run's is not advanced).
+    ///
+    /// Budgets: branch k may spend up to `evaluations`, and no more than its share of what is
+    /// left of the run's evaluations (shared evenly, the odd ones to the first branches), so
+    /// the evaluation budget is honoured exactly; every branch stops at the run's own
+    /// deadline when it has a time limit. A branch has no iteration budget or target, its
+    /// `progress` is against its own share, and a `declare_converged` in it is not passed on.
+    ///
+    /// Merge: the branches' evaluations are added to this run's count and their bests offered
+    /// to this run's best in branch order (a later branch replaces it only when strictly
+    /// cheaper). So work that stays within its share, and uses `progress` only to stop at it,
+    /// leaves the run where the same work run here one branch after another would, whatever
+    /// the number of cores. The observer is told each branch's best (when finite), not its
+    /// every evaluation. The results come in branch order.
     pub fn branch_out<R: Send>(
         &mut self,
         problems: &[&P],
@@ -277,33 +290,34 @@ impl<'a, P: Problem + ?Sized> Search<'a, P> {
         P: Sync,
         SolutionOf<P>: Send,
     {
-        let branches = problems.len().max(1) as u64;
-        let remaining = self
-            .termination
-            .max_evaluations
-            .map_or(evaluations, |budget| {
-                evaluations.min(budget.saturating_sub(self.evaluations) / branches)
-            });
-        let mut termination = Termination::evaluations(remaining.max(1));
-        if let Some(limit) = self.termination.time_limit {
-            termination = termination.and_time_limit(limit.saturating_sub(self.started.elapsed()));
-        }
+        let count = problems.len().max(1) as u64;
+        let shares: Vec<u64> = (0..count)
+            .map(|k| match self.remaining_evaluations() {
+                Some(left) => evaluations.min(left / count + u64::from(k < left % count)),
+                None => evaluations,
+            })
+            .collect();
         let streams: Vec<RunStream> = (0..problems.len())
             .scan(self.stream.clone(), |stream, _| {
                 stream.long_jump();
                 Some(stream.clone())
             })
             .collect();
+        let (started, time_limit) = (self.started, self.termination.time_limit);
         let branches: Vec<(R, u64, f64, SolutionOf<P>)> = problems
             .par_iter()
             .zip(streams)
             .enumerate()
             .map(|(k, (problem, stream))| {
+                // A budget cannot be 0: a branch with nothing to spend starts with its one
+                // evaluation spent, so that every evaluation of it returns infinity.
+                let share = shares[k];
+                let mut termination = Termination::evaluations(share.max(1));
+                termination.time_limit = time_limit;
                 let mut quiet = ();
                 let mut branch = Search::new(*problem, &termination, stream, &mut quiet);
-                // With nothing left to spend (a budget cannot be 0) every evaluation of the
-                // branch returns infinity.
-                let already = if remaining == 0 { 1 } else { 0 };
+                branch.started = started;
+                let already = u64::from(share == 0);
                 branch.evaluations = already;
                 let result = work(k, &mut branch);
                 let spent = branch.evaluations - already;
@@ -314,7 +328,7 @@ impl<'a, P: Problem + ?Sized> Search<'a, P> {
             .into_iter()
             .map(|(result, spent, best_cost, best_solution)| {
                 self.evaluations += spent;
-                if spent > 0 {
+                if spent > 0 && best_cost.is_finite() {
                     let best = as_solution::<P>(&best_solution);
                     self.observer.evaluated(best, best_cost);
                     if best_cost < self.best_cost {
@@ -430,7 +444,8 @@ pub struct Record {
 pub trait Observer<Solution: ?Sized = [f64]> {
     /// Called after the start and after every iteration.
     fn observe(&mut self, record: &Record);
-    /// Called for every solution costed, with its cost (by default, nothing).
+    /// Called for every solution costed, with its cost (by default, nothing); for work
+    /// branched out to other cores ([`Search::branch_out`]), for each branch's best only.
     fn evaluated(&mut self, _solution: &Solution, _cost: f64) {}
 }
 

@@ -619,6 +619,18 @@ mod tests {
                 )
                 .unwrap();
                 assert!(starts.len() > 1 && raced.best_cost <= cheapest);
+                // A budget too small to share out among the starts: the race runs start
+                // after start and keeps what it evaluated (not an unevaluated start).
+                let tight = swarm::Runner::new(swarm::Termination::evaluations(2), 5)
+                    .unwrap()
+                    .run_problem(
+                        &mut search::JointSearch::racing(starts.clone(), 60),
+                        &joint,
+                        0,
+                        &mut (),
+                    );
+                assert_eq!(tight.evaluations, 2);
+                assert!(tight.best_cost <= joint.evaluate(&starts[0]));
                 conformed = true;
             }
             match plan_sorties(&work, &sortie_model, SortiePlanner::Exact, 1) {

@@ -359,6 +359,20 @@ impl Descent {
     }
 }
 
+/// The cheapest descent of the race (the earliest on ties).
+fn cheapest(descents: Vec<Descent>) -> Descent {
+    descents
+        .into_iter()
+        .reduce(|kept, descent| {
+            if descent.cost < kept.cost {
+                descent
+            } else {
+                kept
+            }
+        })
+        .expect("at least one start")
+}
+
 impl<'a> Optimizer<JointProblem<'a>> for JointSearch {
     fn name(&self) -> &'static str {
         "joint order and returns (ours)"
@@ -372,12 +386,16 @@ impl<'a> Optimizer<JointProblem<'a>> for JointSearch {
         let starts = std::mem::take(&mut self.starts);
         let n = starts[0].len();
         let neighbours = &self.neighbours;
-        let mut leader = if starts.len() > 1 {
-            // Every start descends for its share of the race, each on a core of its own with
-            // its own split buffers; the cheapest (the earliest on ties) goes on to its local
-            // optimum. The run stands where the race run here start after start would leave
-            // it (`branch_out`).
-            let race = self.race_evaluations;
+        let race = self.race_evaluations;
+        let racing = starts.len() > 1;
+        // A start's descent overruns its share of the race by at most one position's
+        // candidates; while that fits each branch's share of the budget, the race runs on
+        // the cores and ends as it would here, start after start (`branch_out`).
+        let fits_in_branches = run.remaining_evaluations().is_none_or(|left| {
+            race + SCORED_PER_POSITION as u64 <= left / starts.len().max(1) as u64
+        });
+        let mut leader = if racing && fits_in_branches {
+            // Each start on a core of its own with its own split buffers.
             let copies: Vec<JointProblem<'a>> = starts.iter().map(|_| problem.fork()).collect();
             let problems: Vec<&JointProblem<'a>> = copies.iter().collect();
             let descents = run.branch_out(&problems, u64::MAX, |k, branch| {
@@ -388,20 +406,22 @@ impl<'a> Optimizer<JointProblem<'a>> for JointSearch {
                 descent.run(branch, neighbours, until);
                 descent
             });
-            descents
-                .into_iter()
-                .reduce(|kept, descent| {
-                    if descent.cost < kept.cost {
-                        descent
-                    } else {
-                        kept
-                    }
-                })
-                .expect("at least one start")
+            cheapest(descents)
         } else {
-            let start = starts.into_iter().next().expect("at least one start");
-            let cost = run.evaluate(&start);
-            Descent::new(start, cost, 0..n)
+            // Here, start after start (one start, or a budget too small to share out).
+            let mut descents = Vec::new();
+            for start in starts {
+                let cost = run.evaluate(&start);
+                let mut descent = Descent::new(start, cost, 0..n);
+                let until = if racing {
+                    run.evaluations() + race
+                } else {
+                    u64::MAX
+                };
+                descent.run(run, neighbours, until);
+                descents.push(descent);
+            }
+            cheapest(descents)
         };
         if !leader.is_done() {
             leader.run(run, neighbours, u64::MAX);
