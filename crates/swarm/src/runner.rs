@@ -264,22 +264,15 @@ impl<'a, P: Problem + ?Sized> Search<'a, P> {
     }
 
     /// Work beside this run on the machine's cores (rayon's pool): `work(k, branch)` for
-    /// each of `problems` (copies of this run's problem, which may keep caches of their own),
-    /// each on a search of its own with a stream of its own (this run's, long-jumped k + 1
-    /// times: apart from every run's stream, and this run's is not advanced).
-    ///
-    /// Budgets: branch k may spend up to `evaluations`, and no more than its share of what is
-    /// left of the run's evaluations (shared evenly, the odd ones to the first branches), so
-    /// the evaluation budget is honoured exactly; every branch stops at the run's own
-    /// deadline when it has a time limit. A branch has no iteration budget or target, its
-    /// `progress` is against its own share, and a `declare_converged` in it is not passed on.
-    ///
-    /// Merge: the branches' evaluations are added to this run's count and their bests offered
-    /// to this run's best in branch order (a later branch replaces it only when strictly
-    /// cheaper). So work that stays within its share, and uses `progress` only to stop at it,
-    /// leaves the run where the same work run here one branch after another would, whatever
-    /// the number of cores. The observer is told each branch's best (when finite), not its
-    /// every evaluation. The results come in branch order.
+    /// each of `problems` (copies of this run's problem, with caches of their own) on a
+    /// search of its own: a stream of its own (this run's, long-jumped k + 1 times; this
+    /// run's is not advanced), at most `evaluations` and its even share of the evaluations
+    /// left (odd ones to the first branches: the budget is honoured exactly), this run's
+    /// deadline; no iteration budget or target, `progress` against its share, and a
+    /// `declare_converged` in it is not passed on. Then, in branch order, the evaluations are
+    /// added to this run's count and each finite best is offered to this run's best
+    /// (strictly cheaper only) and told to the observer: work that stays within its share
+    /// leaves the run where the same work in series would, on any number of cores.
     pub fn branch_out<R: Send>(
         &mut self,
         problems: &[&P],
@@ -309,8 +302,7 @@ impl<'a, P: Problem + ?Sized> Search<'a, P> {
             .zip(streams)
             .enumerate()
             .map(|(k, (problem, stream))| {
-                // A budget cannot be 0: a branch with nothing to spend starts with its one
-                // evaluation spent, so that every evaluation of it returns infinity.
+                // A budget cannot be 0: with nothing to spend, its one evaluation is spent.
                 let share = shares[k];
                 let mut termination = Termination::evaluations(share.max(1));
                 termination.time_limit = time_limit;
