@@ -81,6 +81,23 @@ impl Start {
     }
 }
 
+/// Where a part of an ordering problem ([`OrderingProblem::part`]) starts and ends, in ends
+/// of the whole problem.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PartBounds {
+    /// Between the end flown just before the part and the end flown just after it.
+    Between {
+        /// The exit of the pass before the part (or the start point's stand-in).
+        before: End,
+        /// The entry of the pass after the part.
+        after: End,
+    },
+    /// From an end (the part's first pass follows it), to a free last pass.
+    From(End),
+    /// Free first and last pass.
+    Open,
+}
+
 /// Pass ends and the transfer cost between them.
 pub struct OrderingProblem<'a> {
     /// For each pass, its two ends (equal for a closed edge pass).
@@ -237,6 +254,60 @@ impl<'a> OrderingProblem<'a> {
             problem.field_blocks = blocks;
         }
         problem
+    }
+
+    /// The problem of flying only `passes` of this one (pass i of the part is `passes[i]`, its
+    /// ends in the same order), with every cost read from this problem's matrix, so a part
+    /// costs no eq. (8) test. Its start, in ends of this problem:
+    ///
+    /// - `Between(before, after)`: the part lies between two ends flown before and after it.
+    ///   The part gets one more pass, the *connector*, whose ends are `after` and `before`,
+    ///   and is a closed tour: flying the connector from `after` to `before` (its length is
+    ///   no transfer, so it costs nothing) closes the part's passes into the cycle `before`
+    ///   → passes → `after`, whose transfers are exactly those the part adds between them;
+    /// - `From(end)`: a path from `end` with a free last pass;
+    /// - `Open`: an open path.
+    ///
+    /// `None` when this problem has no cost matrix (above 2,000 ends).
+    pub fn part(&self, passes: &[usize], bounds: PartBounds) -> Option<OrderingProblem<'a>> {
+        let parent = self.matrix.as_ref()?;
+        let parent_count = 2 * self.ends.len();
+        let mut parent_ends: Vec<End> = passes
+            .iter()
+            .flat_map(|&pass| [2 * pass, 2 * pass + 1])
+            .collect();
+        let start = match bounds {
+            PartBounds::Between { before, after } => {
+                parent_ends.extend([after, before]);
+                Start::Closed
+            }
+            PartBounds::From(end) => Start::From(self.point(end)),
+            PartBounds::Open => Start::Open,
+        };
+        let count = parent_ends.len();
+        let mut matrix = vec![0.0; count * count];
+        for (from, &parent_from) in parent_ends.iter().enumerate() {
+            let row = &parent[parent_from * parent_count..(parent_from + 1) * parent_count];
+            for (to, &parent_to) in parent_ends.iter().enumerate() {
+                matrix[from * count + to] = row[parent_to];
+            }
+        }
+        let start_costs = match bounds {
+            PartBounds::From(end) => parent_ends.iter().map(|&to| self.cost(end, to)).collect(),
+            _ => Vec::new(),
+        };
+        Some(OrderingProblem {
+            ends: parent_ends
+                .chunks(2)
+                .map(|pair| [self.point(pair[0]), self.point(pair[1])])
+                .collect(),
+            fields: None,
+            start,
+            model: self.model,
+            matrix: Some(matrix),
+            field_blocks: None,
+            start_costs,
+        })
     }
 
     fn compute(&self, from: End, to: End) -> f64 {

@@ -1,0 +1,299 @@
+//! Each field's stretch of a tour ordered again as a problem of its own (decision 0018,
+//! seventh step).
+//!
+//! The iterated local search of `best` ends, on some farms, with a field flown in cells that a
+//! better route flies in another order and from other corners (a notched field crossed at
+//! its notch instead of at its top): moving there changes dozens of short transfers inside
+//! the field at once, which no kick of the whole tour makes and its descent undoes. Here the
+//! tour is cut into its *field stretches*, maximal runs of consecutive passes of one field,
+//! and each stretch of at least [`MIN_PASSES`] passes (but not the whole tour) is ordered
+//! again by `best` alone, with the same kick budget spent on its passes only:
+//!
+//! - between the pass end flown before it (or the start point) and the one flown after it
+//!   (or the start point again, on a round trip), the stretch is the closed tour through a
+//!   connector pass between those two ends ([`PartBounds::Between`]), whose transfers are
+//!   exactly those the stretch adds to the tour;
+//! - at a free end of the tour (the first stretch of an open path, the last of an open path
+//!   or of `Start::From`), it is a path from its one neighbour with a free other end
+//!   ([`PartBounds::From`]), flown backwards when the free end is the tour's first.
+//!
+//! The stretches are ordered independently, on the machine's cores, each against the tour as
+//! the search left it; they are then put back first to last, each only when the whole tour
+//! gets cheaper (a neighbour put back before it may have moved the end it was ordered from),
+//! so the tour never gets dearer. Costs come from the whole problem's matrix
+//! ([`OrderingProblem::part`]); without one (above 2,000 ends) the tour is left as it is.
+
+use super::{best_tour, LocalSearchSettings};
+use crate::sequence::tour::{OrderingProblem, PartBounds, Step};
+
+/// Passes a stretch needs to be ordered again (shorter ones the tour's own moves reach).
+pub const MIN_PASSES: usize = 8;
+
+/// `tour` with each of its field stretches ordered again where that makes it cheaper
+/// (`field_of[pass]` is the pass's field).
+pub fn replan_field_stretches(
+    problem: &OrderingProblem,
+    field_of: &[usize],
+    tour: Vec<Step>,
+    settings: &LocalSearchSettings,
+) -> Vec<Step> {
+    let n = tour.len();
+    let stretches = field_stretches(&tour, field_of);
+    if !problem.has_cost_matrix() || stretches.len() < 2 {
+        return tour;
+    }
+    let worth: Vec<(usize, usize)> = stretches
+        .into_iter()
+        .filter(|&(first, last)| last + 1 - first >= MIN_PASSES)
+        .collect();
+    let ordered = crate::parallel::map_in_order(&worth, |&(first, last)| {
+        reorder(problem, &tour, first, last, settings)
+    });
+    let mut tour = tour;
+    let mut cost = problem.tour_cost(&tour);
+    for (&(first, last), stretch) in worth.iter().zip(ordered) {
+        let Some(stretch) = stretch else { continue };
+        let kept = tour[first..=last].to_vec();
+        tour[first..=last].copy_from_slice(&stretch);
+        let changed = problem.tour_cost(&tour);
+        if changed < cost - 1e-9 {
+            cost = changed;
+        } else {
+            tour[first..=last].copy_from_slice(&kept);
+        }
+    }
+    debug_assert_eq!(tour.len(), n);
+    tour
+}
+
+/// The maximal runs `(first, last)` of consecutive positions of `tour` in one field.
+pub fn field_stretches(tour: &[Step], field_of: &[usize]) -> Vec<(usize, usize)> {
+    let mut stretches = Vec::new();
+    let mut first = 0;
+    for position in 1..=tour.len() {
+        let ends_here =
+            position == tour.len() || field_of[tour[position].pass] != field_of[tour[first].pass];
+        if ends_here {
+            stretches.push((first, position - 1));
+            first = position;
+        }
+    }
+    stretches
+}
+
+/// Positions `first..=last` of `tour` ordered again between their neighbours: the stretch's
+/// passes in their new order, or `None` when the stretch has no neighbour (the whole tour).
+fn reorder(
+    problem: &OrderingProblem,
+    tour: &[Step],
+    first: usize,
+    last: usize,
+    settings: &LocalSearchSettings,
+) -> Option<Vec<Step>> {
+    let n = tour.len();
+    let stretch = &tour[first..=last];
+    let passes: Vec<usize> = stretch.iter().map(|step| step.pass).collect();
+    // The ends flown just before and after the stretch; the start point has no end of its
+    // own, so a stretch next to it is bounded by a free end only when the start is free.
+    let before = (first > 0).then(|| tour[first - 1].exit());
+    let after = (last + 1 < n).then(|| tour[last + 1].entry());
+    let fixed_first = !problem.start.free_first();
+    let fixed_last = problem.start.returns_home() || problem.start.is_closed();
+    let bounds = match (before, after) {
+        (Some(before), Some(after)) => PartBounds::Between { before, after },
+        (None, Some(after)) if !fixed_first => PartBounds::From(after),
+        (Some(before), None) if !fixed_last => PartBounds::From(before),
+        // Next to the start point, or on a closed tour's seam: left as it is.
+        _ => return None,
+    };
+    let part = problem.part(&passes, bounds)?;
+    let count = passes.len();
+    // The stretch's passes are one field; the connector is a field of its own.
+    let mut groups = vec![(0..count).collect::<Vec<usize>>()];
+    if part.passes() > count {
+        groups.push(vec![count]);
+    }
+    let solved = best_tour(&part, &groups, settings);
+    let in_flight_order: Vec<Step> = match bounds {
+        PartBounds::Between { .. } => {
+            // The cycle read from the connector's exit (`before`) round to its entry
+            // (`after`); flown the other way round when the connector is.
+            let connector = solved.iter().position(|step| step.pass == count)?;
+            let mut cycle: Vec<Step> = solved[connector + 1..].to_vec();
+            cycle.extend_from_slice(&solved[..connector]);
+            if solved[connector].reversed {
+                backwards(&cycle)
+            } else {
+                cycle
+            }
+        }
+        // A path from `after` is the stretch flown backwards into it.
+        PartBounds::From(_) if before.is_none() => backwards(&solved),
+        _ => solved,
+    };
+    Some(
+        in_flight_order
+            .into_iter()
+            .map(|step| Step {
+                pass: passes[step.pass],
+                reversed: step.reversed,
+            })
+            .collect(),
+    )
+}
+
+/// `steps` flown backwards: the last first, each the other way.
+fn backwards(steps: &[Step]) -> Vec<Step> {
+    steps.iter().rev().map(|step| step.flipped()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::coverage::drape::GroundPoint;
+    use crate::sequence::tour::{is_permutation, Start};
+    use crate::sequence::TransferModel;
+    use proptest::prelude::*;
+
+    fn ground(x: f64, y: f64) -> GroundPoint {
+        GroundPoint {
+            x,
+            y,
+            ground_m: 0.0,
+        }
+    }
+
+    /// Three fields of ten parallel passes 5 m apart, 300 m from each other along a line
+    /// (south of the demo farm, outside its fields, so eq. 8 is the straight line plus 2h):
+    /// pass p is in field p / 10.
+    fn three_fields() -> (Vec<[GroundPoint; 2]>, Vec<usize>) {
+        let mut ends = Vec::new();
+        let mut field_of = Vec::new();
+        for field in 0..3 {
+            for line in 0..10 {
+                let x = 300.0 * field as f64 + 5.0 * line as f64;
+                ends.push([ground(x, -2000.0), ground(x, -1900.0)]);
+                field_of.push(field);
+            }
+        }
+        (ends, field_of)
+    }
+
+    fn steps(passes: impl IntoIterator<Item = (usize, bool)>) -> Vec<Step> {
+        passes
+            .into_iter()
+            .map(|(pass, reversed)| Step { pass, reversed })
+            .collect()
+    }
+
+    #[test]
+    fn the_stretches_are_the_maximal_runs_of_one_field() {
+        let field_of = [0, 0, 1, 1, 2];
+        let tour = steps([(0, false), (2, false), (3, true), (1, false), (4, false)]);
+        assert_eq!(
+            field_stretches(&tour, &field_of),
+            [(0, 0), (1, 2), (3, 3), (4, 4)]
+        );
+        assert_eq!(field_stretches(&tour[..0], &field_of), []);
+    }
+
+    /// A part between two ends costs, through its connector, exactly what its stretch adds to
+    /// the tour: the transfer in, the transfers inside, the transfer out; a part from an end
+    /// costs the transfer from that end and those inside.
+    #[test]
+    fn a_part_costs_what_its_stretch_adds_to_the_tour() {
+        let farm = crate::demo::scenario().unwrap().farm;
+        let model = TransferModel::new(&farm, 10.0);
+        let (ends, _) = three_fields();
+        let problem = OrderingProblem::new(ends, Start::Open, &model);
+        let tour = swarm::Problem::random_solution(&problem, &mut swarm::run_stream(3, 0));
+        let (first, last) = (10, 19);
+        let stretch = &tour[first..=last];
+        let passes: Vec<usize> = stretch.iter().map(|step| step.pass).collect();
+        let (before, after) = (tour[first - 1].exit(), tour[last + 1].entry());
+        let inside: f64 = stretch
+            .windows(2)
+            .map(|pair| problem.cost(pair[0].exit(), pair[1].entry()))
+            .sum();
+        let added = problem.cost(before, stretch[0].entry())
+            + inside
+            + problem.cost(stretch[9].exit(), after);
+        let between = problem
+            .part(&passes, PartBounds::Between { before, after })
+            .unwrap();
+        let mut cycle: Vec<Step> = (0..10)
+            .map(|index| Step {
+                pass: index,
+                reversed: stretch[index].reversed,
+            })
+            .collect();
+        cycle.push(Step {
+            pass: 10,
+            reversed: false,
+        });
+        assert!((between.tour_cost(&cycle) - added).abs() < 1e-9);
+        let from = problem.part(&passes, PartBounds::From(before)).unwrap();
+        let path = &cycle[..10];
+        let expected = problem.cost(before, stretch[0].entry()) + inside;
+        assert!((from.tour_cost(path) - expected).abs() < 1e-9);
+        assert_eq!(from.point(0), problem.point(2 * passes[0]));
+    }
+
+    /// The middle field flown in a scrambled order between two well-flown ones: it comes back
+    /// flown as one boustrophedon, every field still in its place.
+    #[test]
+    fn a_scrambled_field_is_ordered_again() {
+        let farm = crate::demo::scenario().unwrap().farm;
+        let model = TransferModel::new(&farm, 10.0);
+        let (ends, field_of) = three_fields();
+        let problem = OrderingProblem::new(ends, Start::Open, &model);
+        let sweep = |field: usize| (0..10).map(move |line| (10 * field + line, line % 2 == 1));
+        let scrambled = [3, 8, 1, 6, 0, 9, 4, 2, 7, 5].map(|line| (10 + line, line % 3 == 0));
+        let tour = steps(sweep(0).chain(scrambled).chain(sweep(2)));
+        let replanned = replan_field_stretches(
+            &problem,
+            &field_of,
+            tour.clone(),
+            &LocalSearchSettings::default(),
+        );
+        assert!(is_permutation(&replanned, 30));
+        // Each field is still flown in one stretch, in the same place.
+        for (position, step) in replanned.iter().enumerate() {
+            assert_eq!(field_of[step.pass], position / 10);
+        }
+        let transfers_inside: f64 = replanned[10..20]
+            .windows(2)
+            .map(|pair| problem.cost(pair[0].exit(), pair[1].entry()))
+            .sum();
+        // Nine steps of 5 m across the field, a boustrophedon: each 5 m plus eq. 8's 2h = 20 m
+        // (the points lie outside the demo farm's fields, so every transfer climbs).
+        assert!((transfers_inside - 9.0 * 25.0).abs() < 1e-6, "{transfers_inside}");
+        assert!(problem.tour_cost(&replanned) < problem.tour_cost(&tour) - 100.0);
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 16, ..ProptestConfig::default() })]
+        /// Whatever the tour and the start, the re-plan returns every pass once and never a
+        /// dearer tour; a stretch next to a start point stays where it is.
+        #[test]
+        fn the_replan_keeps_every_pass_and_never_costs_more(seed in 0u64..1000, start in 0usize..4) {
+            let farm = crate::demo::scenario().unwrap().farm;
+            let model = TransferModel::new(&farm, 10.0);
+            let (ends, field_of) = three_fields();
+            let point = ground(450.0, -2100.0);
+            let start = [Start::Open, Start::Closed, Start::From(point), Start::Fixed(point)][start];
+            let problem = OrderingProblem::new(ends, start, &model);
+            let mut stream = swarm::run_stream(seed, 0);
+            // A random order of the fields, each flown in a random order of its passes.
+            let mut tour = swarm::Problem::random_solution(&problem, &mut stream);
+            tour.sort_by_key(|step| field_of[step.pass]);
+            let settings = LocalSearchSettings { kicks: 20, seed };
+            let replanned = replan_field_stretches(&problem, &field_of, tour.clone(), &settings);
+            prop_assert!(is_permutation(&replanned, 30));
+            prop_assert!(problem.tour_cost(&replanned) <= problem.tour_cost(&tour) + 1e-9);
+            if start.point().is_some() {
+                prop_assert_eq!(&replanned[..10], &tour[..10]);
+            }
+        }
+    }
+}
