@@ -7,15 +7,18 @@
 //! the field at once, which no kick of the whole tour makes and its descent undoes. Here the
 //! tour is cut into its *field stretches*, maximal runs of consecutive passes of one field,
 //! and each stretch of at least [`MIN_PASSES`] passes (but not the whole tour) is ordered
-//! again by `best` alone, with the same kick budget spent on its passes only:
+//! again by `best`'s steps 1-3 (constructions, descent, kicks) on its passes only, with the
+//! kick budget the caller gives:
 //!
-//! - between the pass end flown before it (or the start point) and the one flown after it
-//!   (or the start point again, on a round trip), the stretch is the closed tour through a
-//!   connector pass between those two ends ([`PartBounds::Between`]), whose transfers are
-//!   exactly those the stretch adds to the tour;
+//! - between the pass end flown before it and the one flown after it, the stretch is the
+//!   closed tour through a connector pass between those two ends ([`PartBounds::Between`]),
+//!   whose transfers are exactly those the stretch adds to the tour;
 //! - at a free end of the tour (the first stretch of an open path, the last of an open path
 //!   or of `Start::From`), it is a path from its one neighbour with a free other end
-//!   ([`PartBounds::From`]), flown backwards when the free end is the tour's first.
+//!   ([`PartBounds::From`]), flown backwards when the free end is the tour's first;
+//! - a stretch next to a start point, or at a closed tour's seam, is left as it is (the
+//!   caller, `best_tour`, re-plans open paths only: on closed tours and round trips it was
+//!   measured no better, decision 0018's seventh step).
 //!
 //! The stretches are ordered independently, on the machine's cores, each against the tour as
 //! the search left it; they are then put back first to last, each only when the whole tour
@@ -23,7 +26,7 @@
 //! so the tour never gets dearer. Costs come from the whole problem's matrix
 //! ([`OrderingProblem::part`]); without one (above 2,000 ends) the tour is left as it is.
 
-use super::{best_tour, LocalSearchSettings};
+use super::{iterated, kick_budget, LocalSearchSettings};
 use crate::sequence::tour::{OrderingProblem, PartBounds, Step};
 
 /// Passes a stretch needs to be ordered again (shorter ones the tour's own moves reach).
@@ -97,8 +100,9 @@ fn reorder(
     // own, so a stretch next to it is bounded by a free end only when the start is free.
     let before = (first > 0).then(|| tour[first - 1].exit());
     let after = (last + 1 < n).then(|| tour[last + 1].entry());
-    let fixed_first = !problem.start.free_first();
-    let fixed_last = problem.start.returns_home() || problem.start.is_closed();
+    let seam = problem.start.is_closed();
+    let fixed_first = !problem.start.free_first() || seam;
+    let fixed_last = problem.start.returns_home() || seam;
     let bounds = match (before, after) {
         (Some(before), Some(after)) => PartBounds::Between { before, after },
         (None, Some(after)) if !fixed_first => PartBounds::From(after),
@@ -113,7 +117,13 @@ fn reorder(
     if part.passes() > count {
         groups.push(vec![count]);
     }
-    let solved = best_tour(&part, &groups, settings);
+    // Steps 1-3 alone: a part is never re-planned in its turn.
+    let solved = iterated(
+        &part,
+        &groups,
+        settings,
+        kick_budget(settings, part.passes()),
+    );
     let in_flight_order: Vec<Step> = match bounds {
         PartBounds::Between { .. } => {
             // The cycle read from the connector's exit (`before`) round to its entry
@@ -267,7 +277,10 @@ mod tests {
             .sum();
         // Nine steps of 5 m across the field, a boustrophedon: each 5 m plus eq. 8's 2h = 20 m
         // (the points lie outside the demo farm's fields, so every transfer climbs).
-        assert!((transfers_inside - 9.0 * 25.0).abs() < 1e-6, "{transfers_inside}");
+        assert!(
+            (transfers_inside - 9.0 * 25.0).abs() < 1e-6,
+            "{transfers_inside}"
+        );
         assert!(problem.tour_cost(&replanned) < problem.tour_cost(&tour) - 100.0);
     }
 
