@@ -135,6 +135,7 @@ fn export(folder: &str, instance: &Instance) {
         "name": instance.name,
         "passes": passes.len(),
         "matrix": matrix,
+        "fields": passes.iter().map(|(pass, _)| match pass { agripath::sequence::Pass::Edge { field, .. } | agripath::sequence::Pass::Swath { field, .. } => *field }).collect::<Vec<_>>(),
         "points": nodes.iter().map(|node| [(node.x * 100.0).round() / 100.0, (node.y * 100.0).round() / 100.0]).collect::<Vec<_>>(),
         "open_m": instance.open.0,
         "open_ms": instance.open.1,

@@ -94,12 +94,25 @@ fn reorder(
     settings: &LocalSearchSettings,
 ) -> Option<Vec<Step>> {
     let n = tour.len();
-    let stretch = &tour[first..=last];
-    let passes: Vec<usize> = stretch.iter().map(|step| step.pass).collect();
-    // The ends flown just before and after the stretch; the start point has no end of its
-    // own, so a stretch next to it is bounded by a free end only when the start is free.
+    let passes: Vec<usize> = tour[first..=last].iter().map(|step| step.pass).collect();
+    // The ends flown just before and after the stretch.
     let before = (first > 0).then(|| tour[first - 1].exit());
     let after = (last + 1 < n).then(|| tour[last + 1].entry());
+    order_between(problem, &passes, before, after, settings)
+}
+
+/// `passes` ordered by steps 1-3 to be flown between the end `before` and the end `after`
+/// (`None`: the tour's own end there), in flight order; `None` when an end is the start
+/// point or a closed tour's seam, or there is no cost matrix.
+fn order_between(
+    problem: &OrderingProblem,
+    passes: &[usize],
+    before: Option<usize>,
+    after: Option<usize>,
+    settings: &LocalSearchSettings,
+) -> Option<Vec<Step>> {
+    // The start point has no end of its own, so a stretch next to it is bounded by a free
+    // end only when the start is free.
     let seam = problem.start.is_closed();
     let fixed_first = !problem.start.free_first() || seam;
     let fixed_last = problem.start.returns_home() || seam;
@@ -110,7 +123,7 @@ fn reorder(
         // Next to the start point, or on a closed tour's seam: left as it is.
         _ => return None,
     };
-    let part = problem.part(&passes, bounds)?;
+    let part = problem.part(passes, bounds)?;
     let count = passes.len();
     // The stretch's passes are one field; the connector is a field of its own.
     let mut groups = vec![(0..count).collect::<Vec<usize>>()];
