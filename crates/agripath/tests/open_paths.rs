@@ -36,7 +36,10 @@ fn open_paths_on_trapped_farms_are_within_one_per_cent_of_lkh() {
     // (seed, swath target, passes, LKH-3's open path in metres)
     for (seed, target, passes, lkh_m) in [(4, 230, 238, 3038.4), (8, 230, 200, 2353.2)] {
         let (counted, ours) = open_path_m(seed, target);
-        assert_eq!(counted, passes, "irregular_{seed:02}'s layout moved: re-run LKH");
+        assert_eq!(
+            counted, passes,
+            "irregular_{seed:02}'s layout moved: re-run LKH"
+        );
         assert!(
             ours <= 1.01 * lkh_m,
             "irregular_{seed:02}: {ours:.1} m against LKH-3's {lkh_m:.1} m"
