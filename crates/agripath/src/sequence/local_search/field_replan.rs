@@ -20,6 +20,11 @@
 //!   caller, `best_tour`, re-plans open paths only: on closed tours and round trips it was
 //!   measured no better, decision 0018's seventh step).
 //!
+//! This is one pass of POPMUSIC's idea (Taillard and Voß 2002, docs/references.md: parts of a
+//! solution optimised as problems of their own), with a field's stretch as the part; it does
+//! not loop over the parts until none improves (measured no better on the farms of decision
+//! 0018, whose second pass found nothing the first had not).
+//!
 //! The stretches are ordered independently, on the machine's cores, each against the tour as
 //! the search left it; they are then put back first to last, each only when the whole tour
 //! gets cheaper (a neighbour put back before it may have moved the end it was ordered from),
