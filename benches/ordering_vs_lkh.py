@@ -5,7 +5,8 @@ The instances come from `cargo run --release -p agripath --example bench_sequenc
 DIR --lkh-only`: the seed 001 farm (Table 7's layout, 130 swaths) and 12 irregular farms of
 about 100-250 swaths; for each, the full eq. (8) cost matrix between pass ends (node 2p is
 pass p's first end, 2p+1 its last) and our open-path and closed-tour costs and times (median
-of 3 runs). A pass is two nodes kept adjacent by adding a large constant to every other arc
+of 3 runs), with each end's position and each pass's field (to draw and compare the
+tours). A pass is two nodes kept adjacent by adding a large constant to every other arc
 (as ../shared/peers/tsp_instances.py does). An open path is a tour through one more node, a
 dummy at cost 0 (plus the constant) from and to every end: cutting the tour there leaves the
 path with free first and last pass. Costs go to LKH as integers twice, in centimetres (pair

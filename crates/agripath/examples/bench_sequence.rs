@@ -21,7 +21,7 @@ use agripath::model::{CoordinateSystem, Farm, Field, Vehicle};
 use agripath::sequence::ant_colony::AntColonySettings;
 use agripath::sequence::local_search::LocalSearchSettings;
 use agripath::sequence::tour::Start;
-use agripath::sequence::{ordering_problem, passes_of, route, Sequencer, TransferModel};
+use agripath::sequence::{ordering_problem, passes_of, route, Pass, Sequencer, TransferModel};
 use agripath::terrain::Flat;
 use geo::{Coord, LineString, Polygon};
 use swarm::random::{run_stream, uniform};
@@ -131,12 +131,28 @@ fn export(folder: &str, instance: &Instance) {
                 .collect()
         })
         .collect();
+    // Each pass's field and each end's position, to draw and compare tours by field.
+    let fields: Vec<usize> = passes
+        .iter()
+        .map(|(pass, _)| match pass {
+            Pass::Edge { field, .. } | Pass::Swath { field, .. } => *field,
+        })
+        .collect();
+    let points: Vec<[f64; 2]> = nodes
+        .iter()
+        .map(|node| {
+            [
+                (node.x * 100.0).round() / 100.0,
+                (node.y * 100.0).round() / 100.0,
+            ]
+        })
+        .collect();
     let value = serde_json::json!({
         "name": instance.name,
         "passes": passes.len(),
         "matrix": matrix,
-        "fields": passes.iter().map(|(pass, _)| match pass { agripath::sequence::Pass::Edge { field, .. } | agripath::sequence::Pass::Swath { field, .. } => *field }).collect::<Vec<_>>(),
-        "points": nodes.iter().map(|node| [(node.x * 100.0).round() / 100.0, (node.y * 100.0).round() / 100.0]).collect::<Vec<_>>(),
+        "fields": fields,
+        "points": points,
         "open_m": instance.open.0,
         "open_ms": instance.open.1,
         "open_ends": instance.open.2,

@@ -87,15 +87,13 @@ impl Start {
 pub enum PartBounds {
     /// Between the end flown just before the part and the end flown just after it.
     Between {
-        /// The exit of the pass before the part (or the start point's stand-in).
+        /// The exit of the pass before the part.
         before: End,
         /// The entry of the pass after the part.
         after: End,
     },
     /// From an end (the part's first pass follows it), to a free last pass.
     From(End),
-    /// Free first and last pass.
-    Open,
 }
 
 /// Pass ends and the transfer cost between them.
@@ -265,8 +263,7 @@ impl<'a> OrderingProblem<'a> {
     ///   and is a closed tour: flying the connector from `after` to `before` (its length is
     ///   no transfer, so it costs nothing) closes the part's passes into the cycle `before`
     ///   → passes → `after`, whose transfers are exactly those the part adds between them;
-    /// - `From(end)`: a path from `end` with a free last pass;
-    /// - `Open`: an open path.
+    /// - `From(end)`: a path from `end` with a free last pass.
     ///
     /// `None` when this problem has no cost matrix (above 2,000 ends).
     pub fn part(&self, passes: &[usize], bounds: PartBounds) -> Option<OrderingProblem<'a>> {
@@ -282,7 +279,6 @@ impl<'a> OrderingProblem<'a> {
                 Start::Closed
             }
             PartBounds::From(end) => Start::From(self.point(end)),
-            PartBounds::Open => Start::Open,
         };
         let count = parent_ends.len();
         let mut matrix = vec![0.0; count * count];
@@ -294,7 +290,7 @@ impl<'a> OrderingProblem<'a> {
         }
         let start_costs = match bounds {
             PartBounds::From(end) => parent_ends.iter().map(|&to| self.cost(end, to)).collect(),
-            _ => Vec::new(),
+            PartBounds::Between { .. } => Vec::new(),
         };
         Some(OrderingProblem {
             ends: parent_ends
