@@ -31,13 +31,17 @@
 //!    benchmark instances of decision 0018, with no allocation per kick). The number of
 //!    kicks is the budget: the iterations of `swarm`'s Runner, which drives
 //!    [`IteratedLocalSearch`] like every other search.
-//! 4. On an open path (`Start::Open`) only: step 3 runs with 5/8 of the kicks, then each field's
-//!    stretch of the path (its consecutive passes of one field, at least 8) is ordered again
-//!    by 1-3 as a problem of its own between the pass ends flown before and after it, with a
-//!    quarter of the kicks, and put back where the path gets cheaper (`field_replan.rs`).
-//!    The kicks of the whole path spread over every field and undo themselves; spent on one
-//!    field's passes they find a field flown from other corners, in another order of its
-//!    cells, that the whole path's moves do not reach.
+//! 4. On an open path (`Start::Open`) only, two chains run side by side and the cheaper path
+//!    is kept (`field_replan::open_path`): step 3 with 5/8 of the kicks, then each field's
+//!    stretch of the path (its consecutive passes of one field, at least 8) ordered again by
+//!    1-3 as a problem of its own between the pass ends flown before and after it, with a
+//!    quarter of the kicks, and put back where the path gets cheaper (`field_replan.rs`); and
+//!    the fields flown once each, as whole blocks in the exact best order, with every field's
+//!    stretch ordered again that way twice. The kicks of the whole path spread over every
+//!    field and undo themselves; spent on one field's passes they find a field flown from
+//!    other corners, in another order of its cells, that the whole path's moves do not reach.
+//!    And a path that has split a field around a smaller one does not find its way back to
+//!    flying each field once, which the second chain never leaves.
 
 use swarm::{Optimizer, Runner, Termination};
 
@@ -195,32 +199,9 @@ pub fn best_tour(
     if problem.start != Start::Open || !field_replan::may_replan(problem, groups) {
         return iterated(problem, groups, settings, kick_budget(settings, n));
     }
-    // An open path: part of the kicks on the whole path, then each field's stretch ordered
-    // again with kicks of its own (step 4 of the module's doc).
-    let whole = LocalSearchSettings {
-        kicks: (settings.kicks * OPEN_PATH_KICKS_EIGHTHS / 8).max(1),
-        ..*settings
-    };
-    let tour = iterated(problem, groups, &whole, kick_budget(&whole, n));
-    let stretch = LocalSearchSettings {
-        kicks: (settings.kicks / STRETCH_KICKS_DIVISOR).max(1),
-        ..*settings
-    };
-    let mut field_of = vec![0; n];
-    for (field, members) in groups.iter().enumerate() {
-        for &pass in members {
-            field_of[pass] = field;
-        }
-    }
-    field_replan::replan_field_stretches(problem, &field_of, tour, &stretch)
+    // An open path: two chains, the cheaper kept (step 4 of the module's doc).
+    field_replan::open_path(problem, groups, settings)
 }
-
-/// On an open path, the share of the kick budget (in eighths) the whole path gets; each field
-/// stretch then gets the budget / [`STRETCH_KICKS_DIVISOR`] (with the default 400: 250 on the
-/// path, 100 per stretch). Measured in decision 0018's seventh step: the same open paths
-/// within 1.01 × LKH as 400 + 100, in 10-25 % less time.
-const OPEN_PATH_KICKS_EIGHTHS: usize = 5;
-const STRETCH_KICKS_DIVISOR: usize = 4;
 
 /// Steps 1-3 on `problem` with `kicks` kicks.
 fn iterated(
