@@ -2,7 +2,7 @@
 //! swaths, Table 7's layout) from C1; `best`'s open path and closed tour, with their times,
 //! on the seed 001 farm and on 12 irregular farms of 100-250 swaths
 //! (`agripath::bench::farms::irregular_farm`); and `best` on random farms up to 5,000
-//! swaths, one core. With `--export DIR` it also writes each open/closed instance (the full
+//! swaths, on the machine's cores (`RAYON_NUM_THREADS=1` for one). With `--export DIR` it also writes each open/closed instance (the full
 //! cost matrix between pass ends) and our costs as JSON, for `benches/ordering_vs_lkh.py`,
 //! which runs this and prints ours / LKH. `--lkh-only` skips the first and last parts. Run:
 //!
@@ -258,7 +258,7 @@ fn main() {
     });
     let swaths: usize = plan.fields.iter().map(|f| f.swaths.len()).sum();
     if !lkh_only {
-        println!("seed 001 farm, {swaths} swaths from C1 (median of 5 runs, one core):");
+        println!("seed 001 farm, {swaths} swaths from C1 (median of 5 runs):");
         for (label, sequencer) in [
             ("greedy", Sequencer::Greedy),
             (
@@ -271,7 +271,7 @@ fn main() {
             println!("  {label:<16} {ms:>9.1} ms   tour {cost:.1} m");
         }
     }
-    println!("best, open path and closed tour (median of 3 runs, one core):");
+    println!("best, open path and closed tour (median of 3 runs):");
     open_and_closed("seed001_t7", &plan, &model, export_to.as_deref());
     // The seed 001 farm as planned by default (headland passes, the layout's own headings).
     let default_plan = plan_coverage(
