@@ -2,9 +2,9 @@
 //! swaths, Table 7's layout) from C1; `best`'s open path and closed tour, with their times,
 //! on the seed 001 farm and on 12 irregular farms of 100-250 swaths
 //! (`agripath::bench::farms::irregular_farm`); and `best` on random farms up to 5,000
-//! swaths, on the machine's cores (`RAYON_NUM_THREADS=1` for one). With `--export DIR` it also writes each open/closed instance (the full
-//! cost matrix between pass ends) and our costs as JSON, for `benches/ordering_vs_lkh.py`,
-//! which runs this and prints ours / LKH. `--lkh-only` skips the first and last parts. Run:
+//! swaths, on the machine's cores (`RAYON_NUM_THREADS=1` for one). With `--export DIR` it
+//! also writes each open/closed instance (the full cost matrix between pass ends) and our
+//! costs as JSON, for `benches/ordering_vs_lkh.py`, which runs this and prints ours / LKH. `--lkh-only` skips the first and last parts. Run:
 //!
 //! ```sh
 //! cargo run --release -p agripath --example bench_sequence [-- --export DIR] [--lkh-only] [--kicks N] [--seed N]

@@ -36,7 +36,9 @@
 //! so the tour never gets dearer. Costs come from the whole problem's matrix
 //! ([`OrderingProblem::part`]); without one (above 2,000 ends) the tour is left as it is.
 
-use super::{block_local_search, exact_field_order, iterated, kick_budget, LocalSearchSettings};
+use super::{
+    block_local_search, exact_field_order, group_of, iterated, kick_budget, LocalSearchSettings,
+};
 use crate::sequence::tour::{OrderingProblem, PartBounds, Step};
 
 /// On an open path, the share of the kick budget (in eighths) the whole path's chain gets;
@@ -48,12 +50,37 @@ const STRETCH_KICKS_DIVISOR: usize = 4;
 
 /// Rounds of stretch re-planning on the chain of whole field blocks: the second re-plans each
 /// field against neighbours that the first has moved (seed 001's farm, decision 0018's eighth
-/// step: 1,686.8 m after one round, 1,342.2 m after two, nothing more after three).
+/// step, measured with a quarter of the kicks per stretch: 1,686.8 m after one round,
+/// 1,342.2 m after two, nothing more after three).
 const FIELD_BLOCK_ROUNDS: usize = 2;
 /// Each stretch of the chain of field blocks gets the budget / this many kicks (50 of the
-/// default 400): the same paths on the 14 instances of decision 0018 as with 100, in 10-15 %
-/// less work on one core.
+/// default 400): the same paths on the 14 instances of decision 0018 as with 100, in 9-17 %
+/// less time on one core.
 const FIELD_BLOCK_KICKS_DIVISOR: usize = 8;
+
+/// The kick budgets of [`open_path`]'s steps, from the caller's.
+struct ChainSettings {
+    /// The whole path's steps 1-3.
+    whole: LocalSearchSettings,
+    /// Each stretch of the whole path's chain.
+    stretch: LocalSearchSettings,
+    /// Each stretch of the chain of field blocks.
+    block_stretch: LocalSearchSettings,
+}
+
+impl ChainSettings {
+    fn of(settings: &LocalSearchSettings) -> Self {
+        let share = |kicks: usize| LocalSearchSettings {
+            kicks: kicks.max(1),
+            ..*settings
+        };
+        Self {
+            whole: share(settings.kicks * OPEN_PATH_KICKS_EIGHTHS / 8),
+            stretch: share(settings.kicks / STRETCH_KICKS_DIVISOR),
+            block_stretch: share(settings.kicks / FIELD_BLOCK_KICKS_DIVISOR),
+        }
+    }
+}
 
 /// The open path over `groups` (the passes by field), when [`may_replan`]: two chains, run on
 /// the machine's cores, and the cheaper path kept (the first on a tie):
@@ -63,9 +90,9 @@ const FIELD_BLOCK_KICKS_DIVISOR: usize = 8;
 /// 2. *Whole field blocks*: the fields flown one after the other, each as one boustrophedon
 ///    block, in the exact best order and corners (or by block relocation above ten fields),
 ///    then every field's stretch re-planned between its neighbours (with an eighth of the
-///    kicks), [`FIELD_BLOCK_ROUNDS`] times (decision 0018's eighth step). The whole path's kicks leave a field split in two
-///    stretches around a smaller one where flying each field once, in other cells and corners,
-///    is cheaper (seed 001's farm: 1,448.2 m against LKH-3's 1,377.7 m); getting there moves
+///    kicks), [`FIELD_BLOCK_ROUNDS`] times (decision 0018's eighth step). The whole path's
+///    kicks leave a field split in two stretches around a smaller one where flying each field
+///    once, in other cells and corners, is cheaper (seed 001's farm: 1,448.2 m against LKH-3's 1,377.7 m); getting there moves
 ///    several fields at once, which the kicks' descents undo. This chain never splits a field,
 ///    and the re-plans find each field's path for the neighbours it actually has.
 pub fn open_path(
@@ -74,24 +101,12 @@ pub fn open_path(
     settings: &LocalSearchSettings,
 ) -> Vec<Step> {
     let n = problem.passes();
-    let whole = LocalSearchSettings {
-        kicks: (settings.kicks * OPEN_PATH_KICKS_EIGHTHS / 8).max(1),
-        ..*settings
-    };
-    let stretch = LocalSearchSettings {
-        kicks: (settings.kicks / STRETCH_KICKS_DIVISOR).max(1),
-        ..*settings
-    };
-    let block_stretch = LocalSearchSettings {
-        kicks: (settings.kicks / FIELD_BLOCK_KICKS_DIVISOR).max(1),
-        ..*settings
-    };
-    let mut field_of = vec![0; n];
-    for (field, members) in groups.iter().enumerate() {
-        for &pass in members {
-            field_of[pass] = field;
-        }
-    }
+    let ChainSettings {
+        whole,
+        stretch,
+        block_stretch,
+    } = ChainSettings::of(settings);
+    let field_of = group_of(groups, n);
     let chains = [false, true];
     let tours = crate::parallel::map_in_order(&chains, |&field_blocks| {
         if field_blocks {
@@ -417,14 +432,7 @@ mod tests {
         let settings = LocalSearchSettings::default();
         let path = open_path(&problem, &groups, &settings);
         assert!(is_permutation(&path, 30));
-        let whole = LocalSearchSettings {
-            kicks: settings.kicks * OPEN_PATH_KICKS_EIGHTHS / 8,
-            ..settings
-        };
-        let stretch = LocalSearchSettings {
-            kicks: settings.kicks / STRETCH_KICKS_DIVISOR,
-            ..settings
-        };
+        let ChainSettings { whole, stretch, .. } = ChainSettings::of(&settings);
         let alone = replan_field_stretches(
             &problem,
             &field_of,

@@ -203,6 +203,17 @@ pub fn best_tour(
     field_replan::open_path(problem, groups, settings)
 }
 
+/// Each of `n` passes' group (its field) in `groups`.
+fn group_of(groups: &[Vec<usize>], n: usize) -> Vec<usize> {
+    let mut group_of = vec![0; n];
+    for (group, members) in groups.iter().enumerate() {
+        for &pass in members {
+            group_of[pass] = group;
+        }
+    }
+    group_of
+}
+
 /// Steps 1-3 on `problem` with `kicks` kicks.
 fn iterated(
     problem: &OrderingProblem,
@@ -322,12 +333,7 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
             .into_iter()
             .flatten()
             .collect();
-        self.group_of = vec![0; n];
-        for (group, members) in groups.iter().enumerate() {
-            for &pass in members {
-                self.group_of[pass] = group;
-            }
-        }
+        self.group_of = group_of(groups, n);
         // Cheap ends of any other pass, and cheap ends in other fields: without the latter, a
         // field's own swath ends (a swath width apart) fill the list and moves between fields
         // are never tried.
