@@ -16,8 +16,9 @@
 //! A set of starts is a word of letters, raced in that order: F the sequencer's order from the
 //! supply point (`Start::Fixed`), B it flown backwards, R its cheapest rotation, S that
 //! backwards, C the sequencer's closed tour (`Start::Closed`, a second sequencer run, timed
-//! and printed) cut at the supply point, D that backwards; a P anywhere in the word turns the
-//! petal moves on (`sortie::joint::petals`).
+//! and printed) cut at the supply point, D that backwards, O the sequencer's open path
+//! (`Start::Open`, another sequencer run, timed and printed), Q that backwards; a P anywhere in
+//! the word turns the petal moves on (`sortie::joint::petals`).
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -152,6 +153,17 @@ fn main() {
             );
             cut_at_supply(&problem, &tour)
         });
+        let needs_open = options.starts.iter().any(|word| word.contains(['O', 'Q']));
+        let open = needs_open.then(|| {
+            let started = Instant::now();
+            let (free, free_groups) = ordering_problem(&coverage, &transfers, Start::Open);
+            let path = Sequencer::default().sequencer().order(&free, &free_groups);
+            println!(
+                "{name}: the open path (its own ordering problem and sequencer run) in {:.3} s",
+                started.elapsed().as_secs_f64()
+            );
+            path
+        });
         let start = |letter: char| -> Vec<Step> {
             let turned = || {
                 cheapest_rotation(&problem, &order)
@@ -164,6 +176,8 @@ fn main() {
                 'S' => backwards(&turned()),
                 'C' => closed.clone().expect("the closed tour"),
                 'D' => backwards(closed.as_ref().expect("the closed tour")),
+                'O' => open.clone().expect("the open path"),
+                'Q' => backwards(open.as_ref().expect("the open path")),
                 _ => usage(),
             }
         };

@@ -19,12 +19,12 @@ use crate::plot::raster::svg_to_png;
 use crate::plot::terrain_map::{terrain_map_png, TerrainPicture};
 use crate::report::Report;
 use crate::scenario::Scenario;
-use crate::sequence::tour::Start;
+use crate::sequence::tour::{Start, Step};
 use crate::sequence::{ordering_problem, route, route_of_tour, start_of, Route, TransferModel};
 use crate::settings::PlanSettings;
-use crate::sortie::joint::{JointProblem, JointSettings};
+use crate::sortie::joint::{starts, JointProblem, JointSettings};
 use crate::sortie::route::{RoutePoint, Speeds, WorkRoute};
-use crate::sortie::{plan_sorties, PlannedSorties, SortieModel, SortiePlanner, SortieSettings};
+use crate::sortie::{plan_sorties, PlannedSorties, SortiePlanner, SortieSettings};
 use crate::supply::evaluator::{plan_cost_s, FixedRouteSplit};
 use crate::supply::{SupplyChoice, SupplyRequest, SupplySource};
 use crate::terrain::hillshade::{hillshade, Shaded};
@@ -103,50 +103,46 @@ pub struct PlannedMission {
     pub settings: PlanSettings,
 }
 
-/// The sortie model the plans of `vehicle` are split with, from `supply` (public for the
-/// benchmarks that build the joint problem as the pipeline does).
-pub fn sortie_model(vehicle: &crate::model::Vehicle, supply: RoutePoint) -> SortieModel {
-    // Returns fly at the safe height, as transfers that leave the field do (decision 0008).
-    let mut model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
-    // The mission climbs and descends at climb speed (takeoff to the cruise height, down to
-    // spray height, up again, landing), which seed 003's eq. 2 charges at transit speed: keep
-    // that time out of the battery the split may use, so that the files fly within it
-    // (the preflight recomputes it from the files; decision 0012).
-    let cruise_m = vehicle.spray_height_m + vehicle.safe_height_m.max(5.0);
-    let vertical_m = 4.0 * cruise_m - 2.0 * vehicle.spray_height_m;
-    let reserve_s = vertical_m / vehicle.climb_speed_mps - vertical_m / vehicle.transit_speed_mps;
-    model.battery_reserve_s = reserve_s.clamp(0.0, 0.5 * model.endurance_s);
-    model
-}
+pub use crate::mission::flight::battery::sortie_model;
+use crate::mission::flight::battery::sortie_model_over;
 
-/// The `joint` planner's route: the sequencer's order from the supply point (the launch
-/// point, else the first point of the route flown without one), improved by the joint search
-/// of order and returns ([`crate::sortie::joint`]).
+/// The `joint` planner's route from the supply point (the launch point, else the first
+/// point of the closed tour flown without one): the joint search of order and returns
+/// ([`crate::sortie::joint`]) from the sequencer's open path and, when the supply search made
+/// one, its closed tour ([`starts::of_paths`], which says why not the order from the supply
+/// point).
 fn joint_route(
     scenario: &Scenario,
     coverage: &CoveragePlan,
     model: &TransferModel,
     start: Option<GroundPoint>,
+    closed_tour: Option<&[Step]>,
     settings: &PlanSettings,
-) -> Route {
+) -> Result<Route, Fault> {
     let supply = start.or_else(|| {
         let free = route(coverage, model, Start::Closed, &settings.sequencer);
         free.visits.first().map(|visit| visit.points[0])
     });
     let Some(supply) = supply else {
-        return route(coverage, model, start_of(start), &settings.sequencer);
+        return Ok(route(coverage, model, start_of(start), &settings.sequencer));
     };
-    let (problem, groups) = ordering_problem(coverage, model, Start::Fixed(supply));
-    let ordered = settings.sequencer.sequencer().order(&problem, &groups);
-    let sorties = sortie_model(&scenario.vehicle, supply.into());
+    let (problem, _) = ordering_problem(coverage, model, Start::Fixed(supply));
+    // The same passes, numbered alike, with no supply point: its open path.
+    let (open_problem, groups) = ordering_problem(coverage, model, Start::Open);
+    let open = settings.sequencer.sequencer().order(&open_problem, &groups);
     let vehicle = &scenario.vehicle;
+    let points = crate::sequence::passes_of(coverage)
+        .into_iter()
+        .flat_map(|(_, points)| points.iter().copied());
+    let sorties = sortie_model_over(vehicle, supply.into(), scenario.terrain.as_ref(), points)?;
     let joint = JointProblem::of_coverage(&problem, coverage, &sorties, Speeds::of(vehicle));
     let joint_settings = JointSettings {
         seed: settings.sorties.seed,
         ..JointSettings::default()
     };
-    let tour = crate::sortie::joint::improve(&joint, ordered, &joint_settings);
-    route_of_tour(coverage, model, &problem, &tour)
+    let starts = starts::of_paths(&problem, &open, closed_tour);
+    let tour = crate::sortie::joint::improve(&joint, starts, &joint_settings);
+    Ok(route_of_tour(coverage, model, &problem, &tour))
 }
 
 /// The supply point of the plan and the rule that chose it ([`crate::supply`]): the point
@@ -160,9 +156,30 @@ pub fn supply_point(
     transfers: &TransferModel,
     given: Option<GroundPoint>,
 ) -> Result<Option<SupplyChoice>, Fault> {
+    Ok(choose_supply(scenario, settings, coverage, transfers, given)?.choice)
+}
+
+/// The supply point [`supply_point`] chooses, and the closed tour its `auto` search was scored
+/// along (a start of the joint search, [`joint_route`]).
+struct SupplyPlan {
+    choice: Option<SupplyChoice>,
+    closed_tour: Option<Vec<Step>>,
+}
+
+fn choose_supply(
+    scenario: &Scenario,
+    settings: &PlanSettings,
+    coverage: &CoveragePlan,
+    transfers: &TransferModel,
+    given: Option<GroundPoint>,
+) -> Result<SupplyPlan, Fault> {
+    let chosen = |choice| SupplyPlan {
+        choice,
+        closed_tour: None,
+    };
     let listed = match (given, settings.supply) {
         (Some(point), _) => {
-            return Ok(Some(SupplyChoice {
+            return Ok(chosen(Some(SupplyChoice {
                 source: if settings.start.is_some() {
                     SupplySource::Given
                 } else {
@@ -170,19 +187,21 @@ pub fn supply_point(
                 },
                 point,
                 auto: None,
-            }))
+            })))
         }
         (None, SupplyRequest::Auto { listed }) => listed,
         (None, SupplyRequest::FromInputs) if settings.sorties.planner.is_some() => 0,
-        (None, SupplyRequest::FromInputs) => return Ok(None),
+        (None, SupplyRequest::FromInputs) => return Ok(chosen(None)),
     };
     let vehicle = &scenario.vehicle;
     // The flight will come back to the point being chosen: the route it is scored along is
     // the closed tour, flown open from and back to each candidate (decision 0018).
-    let free = route(coverage, transfers, Start::Closed, &settings.sequencer);
+    let (problem, groups) = ordering_problem(coverage, transfers, Start::Closed);
+    let closed_tour = settings.sequencer.sequencer().order(&problem, &groups);
+    let free = route_of_tour(coverage, transfers, &problem, &closed_tour);
     let work_route = WorkRoute::from_route(&free, Speeds::of(vehicle));
     let Some(&first) = work_route.points().first() else {
-        return Ok(None);
+        return Ok(chosen(None));
     };
     let ground = |x: f64, y: f64| scenario.terrain.height_m(x, y).ok();
     let evaluator = FixedRouteSplit::new(
@@ -193,15 +212,18 @@ pub fn supply_point(
     );
     let auto = crate::supply::choose_auto(&scenario.farm, &work_route, &evaluator, listed)?;
     let best = auto.best().point;
-    Ok(Some(SupplyChoice {
-        source: SupplySource::Auto,
-        point: GroundPoint {
-            x: best.x,
-            y: best.y,
-            ground_m: scenario.terrain.height_m(best.x, best.y)?,
-        },
-        auto: Some(auto),
-    }))
+    Ok(SupplyPlan {
+        choice: Some(SupplyChoice {
+            source: SupplySource::Auto,
+            point: GroundPoint {
+                x: best.x,
+                y: best.y,
+                ground_m: scenario.terrain.height_m(best.x, best.y)?,
+            },
+            auto: Some(auto),
+        }),
+        closed_tour: Some(closed_tour),
+    })
 }
 
 /// The evaluator's measure (non-spray seconds: the split's E plus the first leg out and the
@@ -242,7 +264,8 @@ fn split_into_sorties(
     let supply = start
         .or(route.launch.map(|leg| leg.from))
         .map_or(first, RoutePoint::from);
-    let model = sortie_model(vehicle, supply);
+    let points = route.visits.iter().flat_map(|visit| visit.points.iter().copied());
+    let model = sortie_model_over(vehicle, supply, scenario.terrain.as_ref(), points)?;
     let plan = plan_sorties(&work_route, &model, planner, settings.seed)?;
     let visit_offsets = route
         .visits
@@ -273,10 +296,20 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
         &settings.coverage,
     )?;
     let model = TransferModel::new(&scenario.farm, scenario.vehicle.safe_height_m);
-    let supply = supply_point(scenario, settings, &coverage, &model, given)?;
+    let SupplyPlan {
+        choice: supply,
+        closed_tour,
+    } = choose_supply(scenario, settings, &coverage, &model, given)?;
     let start = supply.as_ref().map(|choice| choice.point);
     let route = if settings.sorties.planner == Some(SortiePlanner::Joint) {
-        joint_route(scenario, &coverage, &model, start, settings)
+        joint_route(
+            scenario,
+            &coverage,
+            &model,
+            start,
+            closed_tour.as_deref(),
+            settings,
+        )?
     } else {
         // From and back to the supply point, else an open path (decision 0018).
         route(&coverage, &model, start_of(start), &settings.sequencer)

@@ -560,6 +560,7 @@ mod tests {
         spray_mps: 3.0,
         turn_mps: 3.0,
         transit_mps: 6.0,
+        climb_mps: 3.0,
         transfer_climb_s: 0.0,
     };
 

@@ -10,9 +10,11 @@
 //! drone climbs, flies back and lands at the supply point.
 //!
 //! The parts: `settings` (what the files are asked for: altitude reference, sprayer,
-//! terrain tolerance), `geo_frame` (plan metres ↔ longitude, latitude) and
-//! `terrain_following` (the waypoints a spray run keeps over the terrain).
+//! terrain tolerance), `geo_frame` (plan metres ↔ longitude, latitude),
+//! `terrain_following` (the waypoints a spray run keeps over the terrain) and `battery` (the
+//! sortie model the split plans with, charged for the legs as these missions fly them).
 
+pub mod battery;
 mod geo_frame;
 mod settings;
 mod terrain_following;

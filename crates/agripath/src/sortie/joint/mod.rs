@@ -53,12 +53,17 @@ impl<'a> JointProblem<'a> {
             .iter()
             .map(|points| {
                 let mut spray_m = Vec::with_capacity(points.len());
-                let mut total = 0.0;
+                let mut spray_s = Vec::with_capacity(points.len());
+                let (mut metres, mut seconds) = (0.0, 0.0);
                 for (index, point) in points.iter().enumerate() {
                     if index > 0 {
-                        total += distance_3d(&points[index - 1], point);
+                        let before = &points[index - 1];
+                        let length = distance_3d(before, point);
+                        metres += length;
+                        seconds += speeds.spray_s(length, point.ground_m - before.ground_m);
                     }
-                    spray_m.push(total);
+                    spray_m.push(metres);
+                    spray_s.push(seconds);
                 }
                 let leg_s = points
                     .iter()
@@ -66,7 +71,11 @@ impl<'a> JointProblem<'a> {
                         model.leg_m(&super::route::RoutePoint::from(*point)) / model.transit_mps
                     })
                     .collect();
-                PassProfile { spray_m, leg_s }
+                PassProfile {
+                    spray_m,
+                    spray_s,
+                    leg_s,
+                }
             })
             .collect::<Vec<PassProfile>>();
         Self {
@@ -75,7 +84,6 @@ impl<'a> JointProblem<'a> {
             limits: SplitLimits {
                 tank_m: model.spray_per_tank_m.unwrap_or(f64::INFINITY),
                 usable_s: model.usable_s(),
-                spray_mps: speeds.spray_mps,
                 battery_swap_s: model.battery_swap_s,
                 refill_base_s: model.refill_base_s,
                 refill_max_s: model.refill_max_s,
@@ -221,7 +229,8 @@ impl swarm::Problem for JointProblem<'_> {
 pub struct JointSettings {
     /// Evaluations through the split per pass (the budget is this × passes + 2,000).
     pub evaluations_per_pass: u64,
-    /// Start tours raced ([`starts::start_tours`], 1 to [`starts::MOST_STARTS`]).
+    /// Start tours [`search()`] races from one order ([`starts::start_tours`], 1 to
+    /// [`starts::MOST_STARTS`]); the pipeline gives its own ([`starts::of_paths`]).
     pub starts: usize,
     /// Share of the budget the race of the starts uses, split evenly among them.
     pub race_share: f64,
@@ -263,12 +272,12 @@ impl JointSettings {
     }
 }
 
-/// The joint search from `order` (a tour of `problem`'s passes, the sequencer's order from
-/// the supply point) and the other start tours made from it: the cheapest tour found
-/// within the budget.
-pub fn improve(problem: &JointProblem, order: Vec<Step>, settings: &JointSettings) -> Vec<Step> {
-    let budget = settings.budget(problem, problem.split_steps(&order));
-    search(problem, order, settings, budget).tour
+/// The joint search from `starts` (tours of `problem`'s passes, the first preferred on ties;
+/// the pipeline's are [`starts::of_paths`]): the cheapest tour found within the budget.
+pub fn improve(problem: &JointProblem, starts: Vec<Vec<Step>>, settings: &JointSettings) -> Vec<Step> {
+    let first = starts.first().expect("at least one start tour");
+    let budget = settings.budget(problem, problem.split_steps(first));
+    search_from(problem, starts, settings, budget).tour
 }
 
 /// What a run of the joint search found.
@@ -503,6 +512,7 @@ mod tests {
             spray_mps: 3.0,
             turn_mps: 2.0,
             transit_mps: 6.0,
+            climb_mps: 3.0,
             transfer_climb_s: 12.0,
         };
         let (mut split, mut refused, mut conformed) = (0, 0, false);

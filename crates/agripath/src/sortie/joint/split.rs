@@ -35,12 +35,15 @@ use std::collections::VecDeque;
 
 use crate::sequence::tour::Step;
 
-/// One pass's profile: per point (in the pass's own order, A to B) the spray metres from
-/// point A and the one-way return time to the supply point.
+/// One pass's profile: per point (in the pass's own order, A to B) the spray metres and
+/// seconds from point A and the one-way return time to the supply point.
 #[derive(Debug, Clone)]
 pub struct PassProfile {
     /// Cumulative 3D spray metres from the first point.
     pub spray_m: Vec<f64>,
+    /// Cumulative spray seconds from the first point ([`super::Speeds::spray_s`]: spray
+    /// speed, or climb speed where the ground is steep).
+    pub spray_s: Vec<f64>,
     /// One-way leg to the supply point from each point, seconds.
     pub leg_s: Vec<f64>,
 }
@@ -48,6 +51,10 @@ pub struct PassProfile {
 impl PassProfile {
     fn length(&self) -> f64 {
         *self.spray_m.last().expect("a pass has points")
+    }
+
+    fn seconds(&self) -> f64 {
+        *self.spray_s.last().expect("a pass has points")
     }
 }
 
@@ -58,8 +65,6 @@ pub struct SplitLimits {
     pub tank_m: f64,
     /// Usable battery seconds per sortie.
     pub usable_s: f64,
-    /// Spray speed, m/s.
-    pub spray_mps: f64,
     /// T_e: battery swap, seconds.
     pub battery_swap_s: f64,
     /// t_b: refill of an empty sortie, seconds.
@@ -110,9 +115,12 @@ pub struct SplitBuffers {
     /// and the split's state before its first point.
     position_first: Vec<usize>,
     position_spray: Vec<f64>,
+    position_spray_time: Vec<f64>,
     position_transfer: Vec<f64>,
     checkpoints: Vec<Checkpoint>,
     spray: Vec<f64>,
+    /// Cumulative spray seconds at each point.
+    spray_time: Vec<f64>,
     transfer: Vec<f64>,
     leg: Vec<f64>,
     /// Whether the segment after a point is a transfer between passes.
@@ -167,6 +175,7 @@ impl SplitBuffers {
             into.extend_from_slice(&from[range]);
         }
         copy(&mut self.spray, &other.spray, first..last);
+        copy(&mut self.spray_time, &other.spray_time, first..last);
         copy(&mut self.transfer, &other.transfer, first..last);
         copy(&mut self.leg, &other.leg, first..last);
         copy(&mut self.between, &other.between, first..last);
@@ -182,6 +191,11 @@ impl SplitBuffers {
         copy(
             &mut self.position_spray,
             &other.position_spray,
+            from..upto + 1,
+        );
+        copy(
+            &mut self.position_spray_time,
+            &other.position_spray_time,
             from..upto + 1,
         );
         copy(
@@ -263,22 +277,26 @@ impl TourSplit<'_> {
     fn lay_out(&self, tour: &[Step], resume: usize, buffers: &mut SplitBuffers) {
         let SplitBuffers {
             spray,
+            spray_time,
             transfer,
             leg,
             between,
             owner,
             position_first,
             position_spray,
+            position_spray_time,
             position_transfer,
             ..
         } = buffers;
-        let (mut spray_before, mut transfer_before) = if resume == 0 {
-            (0.0, 0.0)
+        let (mut spray_before, mut seconds_before, mut transfer_before) = if resume == 0 {
+            (0.0, 0.0, 0.0)
         } else {
             // The same sums, in the same order, as a layout from the first position.
             let last = tour[resume - 1];
+            let profile = &self.profiles[last.pass];
             (
-                position_spray[resume - 1] + self.profiles[last.pass].length(),
+                position_spray[resume - 1] + profile.length(),
+                position_spray_time[resume - 1] + profile.seconds(),
                 position_transfer[resume - 1] + (self.transfer_s)(last, tour[resume]),
             )
         };
@@ -287,35 +305,43 @@ impl TourSplit<'_> {
         } else {
             position_first[resume]
         };
-        for values in [&mut *spray, &mut *transfer, &mut *leg] {
+        for values in [&mut *spray, &mut *spray_time, &mut *transfer, &mut *leg] {
             values.truncate(first_point);
         }
         between.truncate(first_point);
         owner.truncate(first_point);
         position_first.truncate(resume);
         position_spray.truncate(resume);
+        position_spray_time.truncate(resume);
         position_transfer.truncate(resume);
         for (position, step) in tour.iter().enumerate().skip(resume) {
             position_first.push(spray.len());
             position_spray.push(spray_before);
+            position_spray_time.push(seconds_before);
             position_transfer.push(transfer_before);
             let profile = &self.profiles[step.pass];
-            let length = profile.length();
+            let (length, seconds) = (profile.length(), profile.seconds());
             let count = profile.spray_m.len();
             for index in 0..count {
-                let (along, one_way) = if step.reversed {
+                let (along, along_s, one_way) = if step.reversed {
                     let mirrored = count - 1 - index;
-                    (length - profile.spray_m[mirrored], profile.leg_s[mirrored])
+                    (
+                        length - profile.spray_m[mirrored],
+                        seconds - profile.spray_s[mirrored],
+                        profile.leg_s[mirrored],
+                    )
                 } else {
-                    (profile.spray_m[index], profile.leg_s[index])
+                    (profile.spray_m[index], profile.spray_s[index], profile.leg_s[index])
                 };
                 spray.push(spray_before + along);
+                spray_time.push(seconds_before + along_s);
                 transfer.push(transfer_before);
                 leg.push(one_way);
                 between.push(false);
                 owner.push(position);
             }
             spray_before += length;
+            seconds_before += seconds;
             if let Some(next) = tour.get(position + 1) {
                 transfer_before += (self.transfer_s)(*step, *next);
                 *between.last_mut().expect("a pass has points") = true;
@@ -353,6 +379,7 @@ impl TourSplit<'_> {
     fn label(&self, resume: usize, buffers: &mut SplitBuffers) -> f64 {
         let SplitBuffers {
             spray,
+            spray_time,
             transfer,
             leg,
             between,
@@ -379,7 +406,7 @@ impl TourSplit<'_> {
             f64::INFINITY
         };
         let flight = |s: usize, e: usize| {
-            (spray[e] - spray[s]) / limits.spray_mps + transfer[e] - transfer[s]
+            spray_time[e] - spray_time[s] + transfer[e] - transfer[s]
         };
         let positions = position_first.len();
         checkpoints.resize_with(positions, Checkpoint::default);

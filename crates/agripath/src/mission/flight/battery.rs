@@ -1,0 +1,159 @@
+//! The sortie model the split plans with, charged for what the mission files fly beyond
+//! seed 003's eq. 2: the climbs and descents of the out- and home-legs at climb speed, over
+//! the terrain between the supply point and the route (decision 0012).
+//!
+//! Eq. 2 times each leg between a route point P and the supply point S as
+//! (‖P, S‖ + |H_P − H_S| + 2h) / v_off. A mission flies it as this module's writer does: up
+//! from S's ground to the cruise altitude, max ground under the leg G + c (c = spray height +
+//! max(h, 5 m)), level at transit speed, down to P's spray height, at climb speed w, and the
+//! same way back. Per sortie the two legs climb and descend
+//!
+//!   V = 4c − 2·spray height + e(first) + e(last),  e(P) = 2·G(P) − H_S − H_P ≥ |H_P − H_S|,
+//!
+//! so the battery reserve a sortie keeps beyond eq. 2's time is
+//!
+//!   V₀ / w − 2 · 2h / v_off   (V₀ = 4c − 2·spray height, the flat ground's; the 2h of both legs
+//!                              eq. 2 already charges at transit speed)
+//!   + 2 · max_P (e(P) / w − |H_P − H_S| / v_off)   (the terrain's, over the route's points).
+//!
+//! The second term is the worst leg's, taken for both legs of every sortie: a bound, not the
+//! sortie's own figure, so sorties over rough ground keep a little more battery than they
+//! fly. On the flat it is 0. (The first term was V₀ / w − V₀ / v_off until 2026-12-05: right
+//! when the legs' 2h equals the climb, 12 s short for a survey flown at 60 m, whose sorties
+//! then flew 101.4 % of the battery as written; the preflight refused them.)
+
+use crate::coverage::drape::GroundPoint;
+use crate::error::Fault;
+use crate::model::Vehicle;
+use crate::sortie::route::RoutePoint;
+use crate::sortie::SortieModel;
+use crate::terrain::Terrain;
+
+use super::highest_ground;
+
+/// The sortie model of `vehicle` from `supply` on flat ground: eq. 2's legs with 2h, and the
+/// battery reserve for the climbs at climb speed (the module's first term).
+pub fn sortie_model(vehicle: &Vehicle, supply: RoutePoint) -> SortieModel {
+    // Returns fly at the safe height, as transfers that leave the field do (decision 0008).
+    let mut model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
+    let vertical_m = 4.0 * cruise_m(vehicle) - 2.0 * vehicle.spray_height_m;
+    let charged_m = 2.0 * model.return_climb_m;
+    let reserve_s =
+        vertical_m / vehicle.climb_speed_mps - charged_m / vehicle.transit_speed_mps;
+    model.battery_reserve_s = reserve_s.clamp(0.0, 0.5 * model.endurance_s);
+    model
+}
+
+/// The sortie model of `vehicle` from `supply` over `terrain`, for a route through `points`:
+/// [`sortie_model`] with the terrain's term of the module's doc added to the reserve.
+pub fn sortie_model_over(
+    vehicle: &Vehicle,
+    supply: RoutePoint,
+    terrain: &dyn Terrain,
+    points: impl IntoIterator<Item = GroundPoint>,
+) -> Result<SortieModel, Fault> {
+    let mut model = sortie_model(vehicle, supply);
+    let mut worst_s: f64 = 0.0;
+    for point in points {
+        let highest = highest_ground(terrain, (supply.x, supply.y), (point.x, point.y))?
+            .max(supply.ground_m)
+            .max(point.ground_m);
+        let extra_m = 2.0 * highest - supply.ground_m - point.ground_m;
+        let charged_m = (point.ground_m - supply.ground_m).abs();
+        worst_s = worst_s
+            .max(extra_m / vehicle.climb_speed_mps - charged_m / vehicle.transit_speed_mps);
+    }
+    model.battery_reserve_s =
+        (model.battery_reserve_s + 2.0 * worst_s).clamp(0.0, 0.5 * model.endurance_s);
+    Ok(model)
+}
+
+/// The cruise height above the highest ground under a transit: spray height + max(h, 5 m).
+fn cruise_m(vehicle: &Vehicle) -> f64 {
+    vehicle.spray_height_m + vehicle.safe_height_m.max(5.0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error::TerrainError;
+    use crate::terrain::{Extent, Flat};
+
+    /// A ridge 30 m high at x = 100 (40 m wide at its foot), the ground beyond x = 150 at 10 m.
+    struct Ridge;
+
+    impl Terrain for Ridge {
+        fn height_m(&self, x: f64, _y: f64) -> Result<f64, TerrainError> {
+            let ridge = 30.0 * (1.0 - ((x - 100.0) / 20.0).abs()).max(0.0);
+            Ok(ridge + if x > 150.0 { 10.0 } else { 0.0 })
+        }
+
+        fn extent(&self) -> Option<Extent> {
+            None
+        }
+
+        fn describe(&self) -> String {
+            "a ridge".into()
+        }
+    }
+
+    #[test]
+    fn the_reserve_pays_for_the_climbs_eq_2_does_not_charge() {
+        let vehicle = crate::model::Vehicle::default();
+        let supply = RoutePoint {
+            x: 0.0,
+            y: 0.0,
+            ground_m: 0.0,
+        };
+        let model = sortie_model(&vehicle, supply);
+        // Climbed and descended at climb speed, minus what eq. 2's two legs charge (2h each).
+        let cruise = vehicle.spray_height_m + vehicle.safe_height_m.max(5.0);
+        let climbed = 4.0 * cruise - 2.0 * vehicle.spray_height_m;
+        let expected = climbed / vehicle.climb_speed_mps
+            - 4.0 * vehicle.safe_height_m / vehicle.transit_speed_mps;
+        assert!((model.battery_reserve_s - expected).abs() < 1e-9);
+        // A survey at 60 m: the legs charge 2 × 2h = 80 m, the drone climbs 200 m.
+        let survey = Vehicle {
+            spray_height_m: 60.0,
+            safe_height_m: 20.0,
+            climb_speed_mps: 4.0,
+            transit_speed_mps: 10.0,
+            battery_endurance_s: 600.0,
+            ..vehicle
+        };
+        assert!((sortie_model(&survey, supply).battery_reserve_s - 42.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_hill_between_the_supply_point_and_the_route_adds_its_climbs() {
+        let vehicle = crate::model::Vehicle::default();
+        let supply = RoutePoint {
+            x: 0.0,
+            y: 0.0,
+            ground_m: 0.0,
+        };
+        let point = GroundPoint {
+            x: 200.0,
+            y: 0.0,
+            ground_m: 10.0,
+        };
+        let flat = sortie_model(&vehicle, supply).battery_reserve_s;
+        let over = sortie_model_over(&vehicle, supply, &Ridge, [point])
+            .unwrap()
+            .battery_reserve_s;
+        // e = 2·30 − 0 − 10 = 50 m at climb speed, less the 10 m eq. 2 charges, both legs.
+        let expected = 2.0
+            * (50.0 / vehicle.climb_speed_mps - 10.0 / vehicle.transit_speed_mps);
+        assert!((over - flat - expected).abs() < 1e-6, "{over} {flat} {expected}");
+        // On the flat, nothing is added.
+        let plain = Flat::new(0.0);
+        let level = GroundPoint {
+            ground_m: 0.0,
+            ..point
+        };
+        let same = sortie_model_over(&vehicle, supply, &plain, [level])
+            .unwrap()
+            .battery_reserve_s;
+        assert!((same - flat).abs() < 1e-12);
+    }
+}
