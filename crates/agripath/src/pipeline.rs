@@ -264,7 +264,10 @@ fn split_into_sorties(
     let supply = start
         .or(route.launch.map(|leg| leg.from))
         .map_or(first, RoutePoint::from);
-    let points = route.visits.iter().flat_map(|visit| visit.points.iter().copied());
+    let points = route
+        .visits
+        .iter()
+        .flat_map(|visit| visit.points.iter().copied());
     let model = sortie_model_over(vehicle, supply, scenario.terrain.as_ref(), points)?;
     let plan = plan_sorties(&work_route, &model, planner, settings.seed)?;
     let visit_offsets = route

@@ -38,8 +38,7 @@ pub fn sortie_model(vehicle: &Vehicle, supply: RoutePoint) -> SortieModel {
     let mut model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
     let vertical_m = 4.0 * cruise_m(vehicle) - 2.0 * vehicle.spray_height_m;
     let charged_m = 2.0 * model.return_climb_m;
-    let reserve_s =
-        vertical_m / vehicle.climb_speed_mps - charged_m / vehicle.transit_speed_mps;
+    let reserve_s = vertical_m / vehicle.climb_speed_mps - charged_m / vehicle.transit_speed_mps;
     model.battery_reserve_s = reserve_s.clamp(0.0, 0.5 * model.endurance_s);
     model
 }
@@ -60,8 +59,8 @@ pub fn sortie_model_over(
             .max(point.ground_m);
         let extra_m = 2.0 * highest - supply.ground_m - point.ground_m;
         let charged_m = (point.ground_m - supply.ground_m).abs();
-        worst_s = worst_s
-            .max(extra_m / vehicle.climb_speed_mps - charged_m / vehicle.transit_speed_mps);
+        worst_s =
+            worst_s.max(extra_m / vehicle.climb_speed_mps - charged_m / vehicle.transit_speed_mps);
     }
     model.battery_reserve_s =
         (model.battery_reserve_s + 2.0 * worst_s).clamp(0.0, 0.5 * model.endurance_s);
@@ -142,9 +141,11 @@ mod tests {
             .unwrap()
             .battery_reserve_s;
         // e = 2·30 − 0 − 10 = 50 m at climb speed, less the 10 m eq. 2 charges, both legs.
-        let expected = 2.0
-            * (50.0 / vehicle.climb_speed_mps - 10.0 / vehicle.transit_speed_mps);
-        assert!((over - flat - expected).abs() < 1e-6, "{over} {flat} {expected}");
+        let expected = 2.0 * (50.0 / vehicle.climb_speed_mps - 10.0 / vehicle.transit_speed_mps);
+        assert!(
+            (over - flat - expected).abs() < 1e-6,
+            "{over} {flat} {expected}"
+        );
         // On the flat, nothing is added.
         let plain = Flat::new(0.0);
         let level = GroundPoint {

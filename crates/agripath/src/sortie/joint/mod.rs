@@ -274,7 +274,11 @@ impl JointSettings {
 
 /// The joint search from `starts` (tours of `problem`'s passes, the first preferred on ties;
 /// the pipeline's are [`starts::of_paths`]): the cheapest tour found within the budget.
-pub fn improve(problem: &JointProblem, starts: Vec<Vec<Step>>, settings: &JointSettings) -> Vec<Step> {
+pub fn improve(
+    problem: &JointProblem,
+    starts: Vec<Vec<Step>>,
+    settings: &JointSettings,
+) -> Vec<Step> {
     let first = starts.first().expect("at least one start tour");
     let budget = settings.budget(problem, problem.split_steps(first));
     search_from(problem, starts, settings, budget).tour

@@ -331,7 +331,11 @@ impl TourSplit<'_> {
                         profile.leg_s[mirrored],
                     )
                 } else {
-                    (profile.spray_m[index], profile.spray_s[index], profile.leg_s[index])
+                    (
+                        profile.spray_m[index],
+                        profile.spray_s[index],
+                        profile.leg_s[index],
+                    )
                 };
                 spray.push(spray_before + along);
                 spray_time.push(seconds_before + along_s);
@@ -405,9 +409,7 @@ impl TourSplit<'_> {
         } else {
             f64::INFINITY
         };
-        let flight = |s: usize, e: usize| {
-            spray_time[e] - spray_time[s] + transfer[e] - transfer[s]
-        };
+        let flight = |s: usize, e: usize| spray_time[e] - spray_time[s] + transfer[e] - transfer[s];
         let positions = position_first.len();
         checkpoints.resize_with(positions, Checkpoint::default);
         let (first_point, mut lowest) = if resume == 0 {

@@ -87,7 +87,11 @@ pub fn cut_at_supply(problem: &OrderingProblem, closed: &[Step]) -> Vec<Step> {
 /// The pipeline's start tours, the preferred first: `closed` (the supply search's closed tour,
 /// when it made one) cut at the supply point and that backwards, then `open` (the sequencer's
 /// open path) and that backwards; tours equal to an earlier one are left out.
-pub fn of_paths(problem: &OrderingProblem, open: &[Step], closed: Option<&[Step]>) -> Vec<Vec<Step>> {
+pub fn of_paths(
+    problem: &OrderingProblem,
+    open: &[Step],
+    closed: Option<&[Step]>,
+) -> Vec<Vec<Step>> {
     let mut candidates = Vec::with_capacity(MOST_STARTS);
     if let Some(closed) = closed {
         let cut = cut_at_supply(problem, closed);
