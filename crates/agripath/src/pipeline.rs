@@ -64,11 +64,7 @@ pub fn start_point(
         .map(|[x, y]| {
             // Farther than a farm is wide is not a launch point but a typo (or a swapped
             // lon/lat); the battery check would otherwise blame the vehicle.
-            let bounds = scenario.farm.bounds();
-            let away = (bounds.min().x - x)
-                .max(x - bounds.max().x)
-                .max(0.0)
-                .hypot((bounds.min().y - y).max(y - bounds.max().y).max(0.0));
+            let away = scenario.farm.distance_outside_bounds_m(x, y);
             if away.is_nan() || away > crate::limits::MAX_FARM_EXTENT_M {
                 return Err(Fault::InvalidValue {
                     what: "the launch point".into(),
@@ -187,6 +183,14 @@ fn choose_supply(
                 },
                 point,
                 auto: None,
+                standing_warning: crate::supply::standing::StandingRule::new(&scenario.farm)
+                    .why_not(
+                        &scenario.farm,
+                        geo::Coord {
+                            x: point.x,
+                            y: point.y,
+                        },
+                    ),
             })))
         }
         (None, SupplyRequest::Auto { listed }) => listed,
@@ -221,6 +225,7 @@ fn choose_supply(
                 ground_m: scenario.terrain.height_m(best.x, best.y)?,
             },
             auto: Some(auto),
+            standing_warning: None,
         }),
         closed_tour: Some(closed_tour),
     })

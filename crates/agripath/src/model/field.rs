@@ -287,6 +287,16 @@ impl Farm {
         })
     }
 
+    /// How far the planning-frame point (x, y) lies outside [`Farm::bounds`], metres (0
+    /// inside; NaN for a point that is not finite).
+    pub fn distance_outside_bounds_m(&self, x: f64, y: f64) -> f64 {
+        let bounds = self.bounds();
+        (bounds.min().x - x)
+            .max(x - bounds.max().x)
+            .max(0.0)
+            .hypot((bounds.min().y - y).max(y - bounds.max().y).max(0.0))
+    }
+
     /// Total area of the fields less their holes, m².
     pub fn total_area_m2(&self) -> f64 {
         self.fields.iter().map(Field::area_m2).sum()

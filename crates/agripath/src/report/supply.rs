@@ -93,6 +93,9 @@ pub struct SupplyReport {
     pub planned_cost_s: f64,
     /// For `auto`: the search's figures.
     pub auto: Option<AutoReport>,
+    /// For a point marked or given where `auto` would not stand (in or near a field, hole or
+    /// obstacle, or beyond its reach of the fields): why, in words; `null` otherwise.
+    pub warning: Option<String>,
 }
 
 impl SupplyReport {
@@ -139,6 +142,10 @@ impl SupplyReport {
                 .map(|auto| round(auto.best().cost_s, 1e-3)),
             planned_cost_s: round(planned_cost_s, 1e-3),
             auto,
+            warning: choice
+                .standing_warning
+                .as_ref()
+                .map(|why| format!("a vehicle cannot stand at the supply point: {why}")),
         }
     }
 
@@ -180,8 +187,13 @@ impl SupplyReport {
                 }
             ),
             None => format!(
-                "supply point ({}): {place}; {:.0} s not {working} as planned from it\n",
-                self.rule, self.planned_cost_s
+                "supply point ({}): {place}; {:.0} s not {working} as planned from it\n{}",
+                self.rule,
+                self.planned_cost_s,
+                self.warning
+                    .as_ref()
+                    .map(|warning| format!("warning: {warning}\n"))
+                    .unwrap_or_default()
             ),
         }
     }

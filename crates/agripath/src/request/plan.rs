@@ -212,11 +212,13 @@ impl PlanOptions {
                 .map_err(|fault| InputError::new("--altitude", fault))?;
         let start = match &self.start {
             Some(values) if values.len() == 2 && values.iter().all(|value| value.is_finite()) => {
-                let (x, y) = scenario
-                    .farm
-                    .coordinate_system
-                    .to_plan(values[0], values[1]);
-                Some([x, y])
+                let text = format!("{},{}", values[0], values[1]);
+                Some(typed_point(
+                    "--start",
+                    &text,
+                    [values[0], values[1]],
+                    &scenario.farm,
+                )?)
             }
             Some(values) => {
                 return Err(InputError::new(
@@ -230,7 +232,7 @@ impl PlanOptions {
             }
             None => None,
         };
-        let (start, supply) = self.supply(start, scenario.farm.coordinate_system)?;
+        let (start, supply) = self.supply(start, &scenario.farm)?;
         let settings = PlanSettings {
             coverage: self.coverage_settings()?,
             sequencer: self.sequencer()?,
@@ -255,7 +257,7 @@ impl PlanOptions {
     fn supply(
         &self,
         start: Option<[f64; 2]>,
-        frame: crate::model::CoordinateSystem,
+        farm: &crate::model::Farm,
     ) -> Result<(Option<[f64; 2]>, SupplyRequest), InputError> {
         let Some(text) = &self.supply else {
             return Ok((start, SupplyRequest::FromInputs));
@@ -272,10 +274,10 @@ impl PlanOptions {
         }
         Ok(match value {
             SupplyValue::Auto { listed } => (None, SupplyRequest::Auto { listed }),
-            SupplyValue::Point([x, y]) => {
-                let (x, y) = frame.to_plan(x, y);
-                (Some([x, y]), SupplyRequest::FromInputs)
-            }
+            SupplyValue::Point(typed) => (
+                Some(typed_point("--supply", text, typed, farm)?),
+                SupplyRequest::FromInputs,
+            ),
         })
     }
 
@@ -380,6 +382,62 @@ impl PlanOptions {
     }
 }
 
+/// A point typed after `flag` (`text`, read as `typed` in the field file's coordinates:
+/// longitude first for a lon/lat file), in planning metres. Refused, naming the flag and the
+/// value as typed, when it is off the globe or farther from the fields than a farm is wide
+/// ([`crate::limits::MAX_FARM_EXTENT_M`]): a typo, not a place to fly from (the battery check
+/// would otherwise blame the vehicle). When the two numbers swapped would lie near the fields,
+/// the message says so.
+fn typed_point(
+    flag: &str,
+    text: &str,
+    typed: [f64; 2],
+    farm: &crate::model::Farm,
+) -> Result<[f64; 2], InputError> {
+    let frame = farm.coordinate_system;
+    let geographic = matches!(frame, crate::model::CoordinateSystem::Utm(_));
+    let on_globe = |[lon, lat]: [f64; 2]| {
+        !geographic || ((-180.0..=180.0).contains(&lon) && (-90.0..=90.0).contains(&lat))
+    };
+    let limit_m = crate::limits::MAX_FARM_EXTENT_M;
+    let away_m = |point: [f64; 2]| {
+        let (x, y) = frame.to_plan(point[0], point[1]);
+        farm.distance_outside_bounds_m(x, y)
+    };
+    let [a, b] = typed;
+    let swapped = [b, a];
+    let hint = if on_globe(swapped) && away_m(swapped) <= limit_m {
+        format!(
+            "; swapped, {b},{a} lies {:.1} km from the fields: did you give {} second?",
+            away_m(swapped) / 1000.0,
+            if geographic { "the longitude" } else { "x" }
+        )
+    } else {
+        String::new()
+    };
+    if !on_globe(typed) {
+        return Err(bad_value(
+            flag,
+            text,
+            format!("longitude {a}, latitude {b} is off the globe (longitude first: -180..180, then latitude: -90..90){hint}"),
+        ));
+    }
+    let away = away_m(typed);
+    if !(away <= limit_m) {
+        return Err(bad_value(
+            flag,
+            text,
+            format!(
+                "it lies {:.0} km from the fields (at most {:.0} km){hint}",
+                away / 1000.0,
+                limit_m / 1000.0
+            ),
+        ));
+    }
+    let (x, y) = frame.to_plan(a, b);
+    Ok([x, y])
+}
+
 /// The demo: seed 001's embedded five-field farm planned from the seed's Table 8 start C1
 /// (0, 0), a corner of S1, with the default settings.
 pub fn plan_demo() -> Result<(Scenario, PlannedMission), InputError> {
@@ -442,18 +500,42 @@ pub fn outcome(
 
 /// A planning fault as the user reads it: a fault of the vehicle names the vehicle file
 /// (else the field file), and places are in the input's coordinates (lon/lat for a lon/lat
-/// farm, not the UTM metres it was planned in).
-pub fn planning_error(scenario: &Scenario, fault: Fault) -> InputError {
+/// farm, not the UTM metres it was planned in). A route that cannot be flown on one battery
+/// from a supply point typed on the command line (`settings.start`) farther from the fields
+/// than `auto` would stand ([`crate::supply::standing::REACH_M`]) blames that point.
+pub fn planning_error(scenario: &Scenario, settings: &PlanSettings, fault: Fault) -> InputError {
+    let frame = scenario.farm.coordinate_system;
+    let in_input = |x: f64, y: f64| {
+        let (a, b) = frame.to_input(x, y);
+        match frame {
+            crate::model::CoordinateSystem::Local => format!("({a:.1}, {b:.1})"),
+            crate::model::CoordinateSystem::Utm(_) => format!("lon {a:.6}, lat {b:.6}"),
+        }
+    };
     match fault {
+        Fault::UnreachableOnOneBattery { x, y, .. }
+            if settings.start.is_some_and(|[sx, sy]| {
+                crate::supply::standing::StandingRule::new(&scenario.farm)
+                    .distance_to_fields_m(geo::Coord { x: sx, y: sy })
+                    > crate::supply::standing::REACH_M
+            }) =>
+        {
+            let [sx, sy] = settings.start.unwrap_or_default();
+            let away = crate::supply::standing::StandingRule::new(&scenario.farm)
+                .distance_to_fields_m(geo::Coord { x: sx, y: sy });
+            bad_value(
+                "--supply/--start",
+                in_input(sx, sy),
+                format!(
+                    "it lies {:.1} km from the nearest field, too far for one battery and one tank to reach the route near {} and fly back (--supply auto chooses within {:.0} m)",
+                    away / 1000.0,
+                    in_input(x, y),
+                    crate::supply::standing::REACH_M
+                ),
+            )
+        }
         Fault::UnreachableOnOneBattery { x, y, endurance_s } => {
-            let frame = scenario.farm.coordinate_system;
-            let (a, b) = frame.to_input(x, y);
-            let near = match frame {
-                crate::model::CoordinateSystem::Local => format!("({a:.1}, {b:.1})"),
-                crate::model::CoordinateSystem::Utm(_) => {
-                    format!("lon {a:.6}, lat {b:.6}")
-                }
-            };
+            let near = in_input(x, y);
             let file = scenario
                 .vehicle_file
                 .as_deref()

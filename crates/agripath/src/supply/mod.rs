@@ -200,6 +200,9 @@ pub struct SupplyChoice {
     pub point: GroundPoint,
     /// What the search found, for `auto`.
     pub auto: Option<AutoChoice>,
+    /// For a point marked or given: why a vehicle cannot stand there by the rule `auto`
+    /// keeps to ([`standing::StandingRule::why_not`]); `None` when it can, and for `auto`.
+    pub standing_warning: Option<String>,
 }
 
 /// The `auto` rule on `farm` for `route` (the route planned without a start point) scored by

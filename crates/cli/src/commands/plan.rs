@@ -27,7 +27,7 @@ pub(super) fn plan(
     spinner.set_message(format!("planning {} field(s)", scenario.farm.fields.len()));
     spinner.enable_steady_tick(std::time::Duration::from_millis(120));
     let mission = agripath::pipeline::plan_mission(&scenario, &settings)
-        .map_err(|fault| agripath::request::plan::planning_error(&scenario, fault))?;
+        .map_err(|fault| agripath::request::plan::planning_error(&scenario, &settings, fault))?;
     spinner.set_message("writing mission files, checking them as flown, maps");
     let source = &scenario.farm.source;
     let result = outcome(&scenario, &mission, files, source)

@@ -168,3 +168,76 @@ fn a_bad_supply_value_exits_2_with_one_line_naming_the_fault() {
     }
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+#[test]
+fn a_point_given_where_no_vehicle_stands_is_flown_from_with_a_warning() {
+    let folder = scratch("unstood");
+    let fields = farm_file(&folder, "farm.geojson", "");
+    for (point, why) in [
+        ("80,75", "inside field 'west', on the crop"),
+        ("310,-1000", "1011 m from the nearest field"),
+    ] {
+        let text = stdout(&agripath(
+            &["plan", "--fields", &fields, "--supply", point, "--out", "out"],
+            &folder,
+        ));
+        assert!(
+            text.contains("warning: a vehicle cannot stand at the supply point")
+                && text.contains(why),
+            "{point}: {text}"
+        );
+        let warning = report(&folder, "out")["supply"]["warning"].clone();
+        assert!(warning.as_str().unwrap().contains(why), "{warning}");
+    }
+    // Where auto would stand: no warning.
+    stdout(&agripath(
+        &["plan", "--fields", &fields, "--supply", "310,-20", "--out", "out"],
+        &folder,
+    ));
+    assert!(report(&folder, "out")["supply"]["warning"].is_null());
+    std::fs::remove_dir_all(&folder).unwrap();
+}
+
+#[test]
+fn a_point_given_too_far_or_with_lon_and_lat_swapped_blames_the_flag() {
+    let folder = scratch("typo");
+    let fields = farm_file(&folder, "farm.geojson", "");
+    // 20 km away: no sortie reaches the fields and comes back; the point is at fault, not the
+    // vehicle.
+    let output = agripath(
+        &["plan", "--fields", &fields, "--supply", "310,-20000", "--out", "out"],
+        &folder,
+    );
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("--supply") && stderr.contains("km from the nearest field"),
+        "{stderr}"
+    );
+    assert!(!stderr.contains("battery_endurance_s"), "{stderr}");
+    // A lon/lat farm with the supply point typed latitude first.
+    let lon_lat = r#"{"type":"FeatureCollection","features":[{"type":"Feature","properties":{"name":"paddy"},"geometry":{"type":"Polygon","coordinates":[[[110.3,25.2],[110.302,25.2],[110.302,25.2015],[110.3,25.2015],[110.3,25.2]]]}}]}"#;
+    std::fs::write(folder.join("lonlat.geojson"), lon_lat).unwrap();
+    let output = agripath(
+        &[
+            "plan",
+            "--fields",
+            "lonlat.geojson",
+            "--supply",
+            "25.1995,110.301",
+            "--out",
+            "out",
+        ],
+        &folder,
+    );
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("--supply = 25.1995,110.301")
+            && stderr.contains("did you give the longitude second?"),
+        "{stderr}"
+    );
+    assert!(!folder.join("out").exists(), "nothing written");
+    std::fs::remove_dir_all(&folder).unwrap();
+}
