@@ -1,22 +1,17 @@
 //! The coverage pipeline end to end: scenario → coverage → route → report, and the files that
-//! present it. Computing and rendering are separate; writing is the caller's.
+//! present it. Computing and rendering ([`render`]) are separate; writing is the caller's.
+
+mod render;
+
+pub use render::{
+    is_mission_file, preflight_settings, render, render_flyable, terrain_overlay, Rendered,
+};
 
 use std::time::Instant;
 
 use crate::coverage::drape::GroundPoint;
 use crate::coverage::{plan_coverage, CoveragePlan};
 use crate::error::Fault;
-use crate::mission::csv::waypoints_csv;
-use crate::mission::flight::build_missions;
-use crate::mission::kml::mission_kml;
-use crate::mission::plan_geojson::plan_geojson;
-use crate::mission::{qgc_plan, wpl};
-use crate::model::CoordinateSystem;
-use crate::plot::map_svg::{plan_svg, Underlay};
-use crate::plot::plan_html::{plan_html, Overlay};
-#[cfg(feature = "png")]
-use crate::plot::raster::svg_to_png;
-use crate::plot::terrain_map::{terrain_map_png, TerrainPicture};
 use crate::report::Report;
 use crate::scenario::Scenario;
 use crate::sequence::tour::{Start, Step};
@@ -27,8 +22,6 @@ use crate::sortie::route::{RoutePoint, Speeds, WorkRoute};
 use crate::sortie::{plan_sorties, PlannedSorties, SortiePlanner, SortieSettings};
 use crate::supply::evaluator::{plan_cost_s, FixedRouteSplit};
 use crate::supply::{SupplyChoice, SupplyRequest, SupplySource};
-use crate::terrain::hillshade::{hillshade, Shaded};
-use crate::terrain::Extent;
 
 /// The start point the inputs give: the given one, else the field file's launch marker (a
 /// point named or typed launch, home, takeoff, supply, base or start), else none (the supply
@@ -130,7 +123,8 @@ fn joint_route(
     let points = crate::sequence::passes_of(coverage)
         .into_iter()
         .flat_map(|(_, points)| points.iter().copied());
-    let sorties = sortie_model_over(vehicle, supply.into(), scenario.terrain.as_ref(), points)?;
+    let mut sorties = sortie_model_over(vehicle, supply.into(), scenario.terrain.as_ref(), points)?;
+    sorties.battery_reserve_s += settings.sorties.battery_margin_s;
     let joint = JointProblem::of_coverage(&problem, coverage, &sorties, Speeds::of(vehicle));
     let joint_settings = JointSettings {
         seed: settings.sorties.seed,
@@ -273,7 +267,8 @@ fn split_into_sorties(
         .visits
         .iter()
         .flat_map(|visit| visit.points.iter().copied());
-    let model = sortie_model_over(vehicle, supply, scenario.terrain.as_ref(), points)?;
+    let mut model = sortie_model_over(vehicle, supply, scenario.terrain.as_ref(), points)?;
+    model.battery_reserve_s += settings.battery_margin_s;
     let plan = plan_sorties(&work_route, &model, planner, settings.seed)?;
     let visit_offsets = route
         .visits
@@ -342,261 +337,5 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
         sorties,
         report,
         settings: *settings,
-    })
-}
-
-/// The hillshade under the plan: the farm's box, and the supply point where it stands off
-/// the fields, with a margin; heights exaggerated so that low relief still shows ((50 m /
-/// relief) clamped to 1..10).
-pub fn terrain_overlay(scenario: &Scenario, supply: Option<geo::Coord<f64>>) -> Shaded {
-    let farm_box = scenario.farm.bounds();
-    let (mut low, mut high) = (farm_box.min(), farm_box.max());
-    if let Some(supply) = supply {
-        low = geo::Coord {
-            x: low.x.min(supply.x),
-            y: low.y.min(supply.y),
-        };
-        high = geo::Coord {
-            x: high.x.max(supply.x),
-            y: high.y.max(supply.y),
-        };
-    }
-    let margin = 0.05 * (high.x - low.x).max(high.y - low.y) + 10.0;
-    let extent = Extent {
-        min_x: low.x - margin,
-        min_y: low.y - margin,
-        max_x: high.x + margin,
-        max_y: high.y + margin,
-    };
-    let relief = scenario
-        .terrain
-        .height_range_m(extent)
-        .map_or(0.0, |(low, high)| high - low);
-    let exaggeration = (50.0 / relief.max(1e-9)).clamp(1.0, 10.0);
-    hillshade(scenario.terrain.as_ref(), extent, 1024, exaggeration)
-}
-
-/// Whether a file of a plan folder is one a ground station or autopilot flies (left out when
-/// the preflight fails, unless the operator insists).
-pub fn is_mission_file(name: &str) -> bool {
-    name.ends_with(".plan")
-        || name.ends_with(".waypoints")
-        || name == "mission.kml"
-        || name == "waypoints.csv"
-}
-
-/// A plan folder's files with the preflight verdict on its mission files, and the report
-/// that carries it (as `report.json` holds it).
-pub struct Rendered {
-    /// Every file of the plan folder: its name and its bytes.
-    pub files: Vec<(String, Vec<u8>)>,
-    /// The preflight verdict on the mission files.
-    pub verdict: crate::preflight::Verdict,
-    /// The report, carrying the verdict.
-    pub report: Report,
-}
-
-impl Rendered {
-    /// Keeps the files to write: all of them when the flight is safe or `allow_unsafe`, else
-    /// all but the mission files.
-    pub fn keep_files_to_write(&mut self, allow_unsafe: bool) {
-        if !(self.verdict.safe || allow_unsafe) {
-            self.files.retain(|(name, _)| !is_mission_file(name));
-        }
-    }
-}
-
-/// What the preflight holds a plan to: its mission settings and margins, and the limits
-/// drawn from what its own measure promised ([`crate::preflight::PreflightSettings::new`]).
-pub fn preflight_settings(mission: &PlannedMission) -> crate::preflight::PreflightSettings {
-    let settings = &mission.settings;
-    let promise = crate::preflight::Promise {
-        headland_passes: settings.coverage.headland_passes,
-        covered_fraction: mission
-            .coverage
-            .fields
-            .iter()
-            .map(|field| field.measure.covered_fraction)
-            .collect(),
-        outside_m2: mission
-            .coverage
-            .fields
-            .iter()
-            .map(|field| field.measure.outside_m2)
-            .sum(),
-        sprayed_m2: (mission.report.spray_length_m + mission.report.edge_length_m)
-            * mission.coverage.swath_width_m,
-    };
-    crate::preflight::PreflightSettings::new(
-        &settings.mission,
-        settings.coverage.boundary_margin_m,
-        settings.coverage.obstacle_margin_m,
-        &promise,
-    )
-}
-
-/// The files of a plan folder, by name: the mission files (per sortie `sortie_NN.plan` and
-/// `sortie_NN.waypoints`, `mission.kml`, `waypoints.csv`), checked by the preflight as written,
-/// then the contract files (`plan.geojson`, `report.json` with the verdict) and the maps
-/// (`plan.svg`, `plan.png` with the `png` feature, `plan.html`, `terrain.png`).
-pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered, Fault> {
-    let vehicle = &scenario.vehicle;
-    let settings = &mission.settings.mission;
-    let missions = build_missions(scenario, &mission.route, mission.sorties.as_ref(), settings)?;
-    let mut mission_files = Vec::new();
-    for sortie in &missions {
-        let name = format!("sortie_{:02}", sortie.sortie + 1);
-        mission_files.push((
-            format!("{name}.plan"),
-            qgc_plan::plan_file(
-                sortie,
-                &scenario.farm,
-                settings,
-                vehicle.transit_speed_mps,
-                vehicle.spray_speed_mps,
-            )
-            .into_bytes(),
-        ));
-        mission_files.push((
-            format!("{name}.waypoints"),
-            wpl::waypoints_file(sortie, settings).into_bytes(),
-        ));
-    }
-    mission_files.push((
-        "mission.kml".to_string(),
-        mission_kml(&scenario.name, &scenario.farm, &missions, settings).into_bytes(),
-    ));
-    mission_files.push((
-        "waypoints.csv".to_string(),
-        waypoints_csv(&missions).into_bytes(),
-    ));
-    let world = crate::preflight::World {
-        farm: &scenario.farm,
-        terrain: scenario.terrain.as_ref(),
-        vehicle,
-    };
-    let verdict = crate::preflight::check(&world, &preflight_settings(mission), &mission_files);
-    let mut report = mission.report.clone();
-    report.preflight = Some(verdict.clone());
-    let geojson = plan_geojson(
-        &scenario.farm,
-        &mission.coverage,
-        &mission.route,
-        mission.sorties.as_ref(),
-        vehicle.spray_height_m,
-        vehicle.safe_height_m,
-        &verdict.ground,
-    );
-    let title = format!(
-        "{}{} — {} fields, swath {} m, {:.0} m {}, {:.2}% covered as flown",
-        if verdict.safe { "" } else { "UNSAFE: " },
-        scenario.name,
-        scenario.farm.fields.len(),
-        vehicle.swath_width_m,
-        mission.report.spray_length_m + mission.report.edge_length_m,
-        crate::model::Vehicle::work_words(vehicle.is_survey())[2],
-        100.0 * verdict.covered_fraction()
-    );
-    let json = |value: &serde_json::Value| {
-        (serde_json::to_string_pretty(value).expect("JSON value") + "\n").into_bytes()
-    };
-    let mut files = vec![
-        ("plan.geojson".to_string(), json(&geojson)),
-        (
-            "report.json".to_string(),
-            (serde_json::to_string_pretty(&report).expect("report serialises") + "\n").into_bytes(),
-        ),
-    ];
-    // The viewer draws in plan metres: the same features in the local frame.
-    let mut local_farm = scenario.farm.clone();
-    local_farm.coordinate_system = CoordinateSystem::Local;
-    let local = plan_geojson(
-        &local_farm,
-        &mission.coverage,
-        &mission.route,
-        mission.sorties.as_ref(),
-        vehicle.spray_height_m,
-        vehicle.safe_height_m,
-        &verdict.ground,
-    );
-    let supply = mission
-        .route
-        .launch
-        .map(|leg| geo::Coord {
-            x: leg.from.x,
-            y: leg.from.y,
-        })
-        .or_else(|| {
-            mission.sorties.as_ref().map(|split| geo::Coord {
-                x: split.supply.x,
-                y: split.supply.y,
-            })
-        });
-    let shaded = terrain_overlay(scenario, supply);
-    let (extent, png) = (shaded.extent, shaded.to_png());
-    // The operator's terrain map: tinted, with the fields, the supply point and a legend (the
-    // maps above draw their own fields over the plain hillshade).
-    let terrain_map = terrain_map_png(&TerrainPicture {
-        terrain: scenario.terrain.as_ref(),
-        shaded: &shaded,
-        farm: &scenario.farm,
-        supply,
-    });
-    let underlay = Underlay {
-        png: &png,
-        min_x: extent.min_x,
-        min_y: extent.min_y,
-        max_x: extent.max_x,
-        max_y: extent.max_y,
-    };
-    let map = plan_svg(
-        &scenario.farm,
-        &mission.coverage,
-        &mission.route,
-        mission.sorties.as_ref(),
-        Some(&underlay),
-        &title,
-        &verdict.ground,
-    );
-    let rows = crate::sheet::sortie_rows(
-        &scenario.farm,
-        &mission.route,
-        mission.sorties.as_ref(),
-        &report,
-        &missions,
-    );
-    let sheet = crate::sheet::sheet_html(&crate::sheet::SheetParts {
-        report: &report,
-        rows: &rows,
-        map_svg: &map,
-        lon_lat: scenario.farm.coordinate_system != CoordinateSystem::Local,
-        home_lon_lat: missions
-            .first()
-            .map(|first| [first.home.lon, first.home.lat]),
-    });
-    #[cfg(feature = "png")]
-    files.push((
-        "plan.png".to_string(),
-        svg_to_png(&map, 1600).map_err(Fault::Structure)?,
-    ));
-    files.push(("plan.svg".to_string(), map.into_bytes()));
-    let overlay = Overlay {
-        png: &png,
-        min_x: extent.min_x,
-        min_y: extent.min_y,
-        max_x: extent.max_x,
-        max_y: extent.max_y,
-    };
-    files.push((
-        "plan.html".to_string(),
-        plan_html(&title, &local, Some(&overlay)).into_bytes(),
-    ));
-    files.push(("sheet.html".to_string(), sheet.into_bytes()));
-    files.extend(mission_files);
-    files.push(("terrain.png".to_string(), terrain_map));
-    Ok(Rendered {
-        files,
-        verdict,
-        report,
     })
 }

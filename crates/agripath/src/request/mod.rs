@@ -10,6 +10,7 @@ pub mod bench;
 pub mod grid;
 mod outcome;
 pub mod plan;
+mod plan_faults;
 pub mod repro;
 pub mod terrain;
 pub mod track;

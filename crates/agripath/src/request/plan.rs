@@ -1,6 +1,8 @@
 //! A coverage plan as asked for: the layout, the order of the passes, the sorties and the
 //! mission files, checked into [`PlanSettings`] for a scenario.
 
+pub use super::plan_faults::planning_error;
+use super::plan_faults::typed_point;
 use super::{bad_value, Outcome, ScenarioInputs};
 use crate::coverage::heading::HeadingObjective;
 use crate::coverage::CoverageSettings;
@@ -247,6 +249,7 @@ impl PlanOptions {
                     ),
                 },
                 seed: self.seed,
+                ..SortieSettings::default()
             },
             mission,
         };
@@ -382,62 +385,6 @@ impl PlanOptions {
     }
 }
 
-/// A point typed after `flag` (`text`, read as `typed` in the field file's coordinates:
-/// longitude first for a lon/lat file), in planning metres. Refused, naming the flag and the
-/// value as typed, when it is off the globe or farther from the fields than a farm is wide
-/// ([`crate::limits::MAX_FARM_EXTENT_M`]): a typo, not a place to fly from (the battery check
-/// would otherwise blame the vehicle). When the two numbers swapped would lie near the fields,
-/// the message says so.
-fn typed_point(
-    flag: &str,
-    text: &str,
-    typed: [f64; 2],
-    farm: &crate::model::Farm,
-) -> Result<[f64; 2], InputError> {
-    let frame = farm.coordinate_system;
-    let geographic = matches!(frame, crate::model::CoordinateSystem::Utm(_));
-    let on_globe = |[lon, lat]: [f64; 2]| {
-        !geographic || ((-180.0..=180.0).contains(&lon) && (-90.0..=90.0).contains(&lat))
-    };
-    let limit_m = crate::limits::MAX_FARM_EXTENT_M;
-    let away_m = |point: [f64; 2]| {
-        let (x, y) = frame.to_plan(point[0], point[1]);
-        farm.distance_outside_bounds_m(x, y)
-    };
-    let [a, b] = typed;
-    let swapped = [b, a];
-    let hint = if on_globe(swapped) && away_m(swapped) <= limit_m {
-        format!(
-            "; swapped, {b},{a} lies {:.1} km from the fields: did you give {} second?",
-            away_m(swapped) / 1000.0,
-            if geographic { "the longitude" } else { "x" }
-        )
-    } else {
-        String::new()
-    };
-    if !on_globe(typed) {
-        return Err(bad_value(
-            flag,
-            text,
-            format!("longitude {a}, latitude {b} is off the globe (longitude first: -180..180, then latitude: -90..90){hint}"),
-        ));
-    }
-    let away = away_m(typed);
-    if !(away <= limit_m) {
-        return Err(bad_value(
-            flag,
-            text,
-            format!(
-                "it lies {:.0} km from the fields (at most {:.0} km){hint}",
-                away / 1000.0,
-                limit_m / 1000.0
-            ),
-        ));
-    }
-    let (x, y) = frame.to_plan(a, b);
-    Ok([x, y])
-}
-
 /// The demo: seed 001's embedded five-field farm planned from the seed's Table 8 start C1
 /// (0, 0), a corner of S1, with the default settings.
 pub fn plan_demo() -> Result<(Scenario, PlannedMission), InputError> {
@@ -463,7 +410,7 @@ pub fn outcome(
     files: FolderChoice,
     source: &std::path::Path,
 ) -> Result<Outcome, InputError> {
-    let mut rendered = crate::pipeline::render(scenario, mission)
+    let mut rendered = crate::pipeline::render_flyable(scenario, mission)
         .map_err(|fault| InputError::new(source, fault))?;
     rendered.keep_files_to_write(files.allow_unsafe);
     let pdf_warning = if files.pdf {
@@ -496,63 +443,6 @@ pub fn outcome(
         }
     }
     Ok(outcome)
-}
-
-/// A planning fault as the user reads it: a fault of the vehicle names the vehicle file
-/// (else the field file), and places are in the input's coordinates (lon/lat for a lon/lat
-/// farm, not the UTM metres it was planned in). A route that cannot be flown on one battery
-/// from a supply point typed on the command line (`settings.start`) farther from the fields
-/// than `auto` would stand ([`crate::supply::standing::REACH_M`]) blames that point.
-pub fn planning_error(scenario: &Scenario, settings: &PlanSettings, fault: Fault) -> InputError {
-    let frame = scenario.farm.coordinate_system;
-    let in_input = |x: f64, y: f64| {
-        let (a, b) = frame.to_input(x, y);
-        match frame {
-            crate::model::CoordinateSystem::Local => format!("({a:.1}, {b:.1})"),
-            crate::model::CoordinateSystem::Utm(_) => format!("lon {a:.6}, lat {b:.6}"),
-        }
-    };
-    match fault {
-        Fault::UnreachableOnOneBattery { x, y, .. }
-            if settings.start.is_some_and(|[sx, sy]| {
-                crate::supply::standing::StandingRule::new(&scenario.farm)
-                    .distance_to_fields_m(geo::Coord { x: sx, y: sy })
-                    > crate::supply::standing::REACH_M
-            }) =>
-        {
-            let [sx, sy] = settings.start.unwrap_or_default();
-            let away = crate::supply::standing::StandingRule::new(&scenario.farm)
-                .distance_to_fields_m(geo::Coord { x: sx, y: sy });
-            bad_value(
-                "--supply/--start",
-                in_input(sx, sy),
-                format!(
-                    "it lies {:.1} km from the nearest field, too far for one battery and one tank to reach the route near {} and fly back (--supply auto chooses within {:.0} m)",
-                    away / 1000.0,
-                    in_input(x, y),
-                    crate::supply::standing::REACH_M
-                ),
-            )
-        }
-        Fault::UnreachableOnOneBattery { x, y, endurance_s } => {
-            let near = in_input(x, y);
-            let file = scenario
-                .vehicle_file
-                .as_deref()
-                .unwrap_or(scenario.farm.source.as_path());
-            InputError::new(
-                file,
-                Fault::InvalidValue {
-                    what: "battery_endurance_s".into(),
-                    value: crate::error::figure(endurance_s),
-                    why: format!(
-                        "the route near {near} cannot be reached and flown back on one battery and one tank"
-                    ),
-                },
-            )
-        }
-        other => InputError::new(&scenario.farm.source, other),
-    }
 }
 
 /// What goes into a plan's folder besides what is always there.

@@ -478,6 +478,10 @@ pub struct SortieSettings {
     pub planner: Option<SortiePlanner>,
     /// Random seed of GSA.
     pub seed: u64,
+    /// Battery seconds held back beyond the sortie model's reserve: 0 unless the plan, written
+    /// and flown, had sorties over the battery (the pipeline's `render_flyable` re-plans
+    /// with the overrun held back).
+    pub battery_margin_s: f64,
 }
 
 impl Default for SortieSettings {
@@ -485,6 +489,7 @@ impl Default for SortieSettings {
         Self {
             planner: Some(SortiePlanner::Joint),
             seed: 1,
+            battery_margin_s: 0.0,
         }
     }
 }

@@ -236,21 +236,21 @@ impl StandingRule {
             && self.distance_to_fields_m(p) <= self.reach_m
     }
 
-    /// Why a vehicle cannot stand at `p` by this rule, in words for the operator (the
-    /// field, hole or obstacle it is in or too near, or how far from the fields it is);
-    /// `None` when it can. For a supply point the operator marked or gave: `auto` never
-    /// chooses such a place, and the plan says so instead of refusing the operator's choice.
+    /// Why a vehicle cannot stand at `p`, in words for the operator: the field, hole or
+    /// obstacle it lies in, off the file's access features, or how far from the fields it
+    /// is; `None` when none of these holds. For a supply point the operator marked or gave:
+    /// `auto` never chooses such a place, and the plan says so instead of refusing the
+    /// operator's choice. The margin `auto` keeps from edges is not a reason here: a point
+    /// on a field's edge or corner (seed 001's C1) is where a truck parks.
     pub fn why_not(&self, farm: &Farm, p: Coord<f64>) -> Option<String> {
         use geo::Contains;
-        if self.allows(p) {
-            return None;
-        }
         if !(p.x.is_finite() && p.y.is_finite()) {
             return Some("it is not a finite point".into());
         }
         let point = geo::Point::from(p);
         for (index, ring) in self.blocked.iter().enumerate() {
-            if !ring.index.contains(p) {
+            // On the outline is not inside (the ring index counts its boundary in).
+            if !ring.index.contains(p) || nearest_on_polyline(p, &ring.points).1 < 1e-6 {
                 continue;
             }
             return Some(if index < self.fields {
@@ -268,42 +268,17 @@ impl StandingRule {
             });
         }
         if self.on_access() {
-            return Some(
-                "it is not on the field file's access features (roads, tracks, yards)".into(),
-            );
-        }
-        let holes = farm.fields.iter().flat_map(|field| {
-            field
-                .polygon
-                .interiors()
-                .iter()
-                .map(move |hole| (format!("a hole of field '{}'", field.name), hole))
-        });
-        let outlines = farm
-            .fields
-            .iter()
-            .map(|field| (format!("field '{}'", field.name), field.polygon.exterior()))
-            .chain(holes)
-            .chain(farm.obstacles.iter().map(|obstacle| {
-                (
-                    format!("obstacle '{}'", obstacle.name),
-                    obstacle.polygon.exterior(),
-                )
-            }));
-        for (name, ring) in outlines {
-            let distance = nearest_on_polyline(p, &ring.0).1;
-            if distance < self.margin_m {
-                return Some(format!(
-                    "it is {distance:.1} m from the edge of {name} (a supply point keeps {:.0} m)",
-                    self.margin_m
-                ));
-            }
+            return (!self.allows(p)).then(|| {
+                "it is not on the field file's access features (roads, tracks, yards)".into()
+            });
         }
         let distance = self.distance_to_fields_m(p);
-        Some(format!(
-            "it is {distance:.0} m from the nearest field (a supply point stands within {:.0} m)",
-            self.reach_m
-        ))
+        (distance > self.reach_m).then(|| {
+            format!(
+                "it is {distance:.0} m from the nearest field (a supply point stands within {:.0} m)",
+                self.reach_m
+            )
+        })
     }
 
     /// A place near `p` where a vehicle can stand (the module's documentation says how it is
@@ -421,22 +396,21 @@ mod tests {
     }
 
     #[test]
-    fn why_a_vehicle_cannot_stand_names_the_field_hole_obstacle_or_distance() {
+    fn why_a_vehicle_cannot_stand_names_the_field_hole_obstacle_or_the_distance() {
         let farm = farm();
         let rule = StandingRule::new(&farm);
         let why = |x, y| rule.why_not(&farm, Coord { x, y });
         assert_eq!(why(-6.0, 50.0), None);
-        assert_eq!(why(10.0, 10.0).unwrap(), "it lies inside field 'F', on the crop");
+        assert_eq!(
+            why(10.0, 10.0).unwrap(),
+            "it lies inside field 'F', on the crop"
+        );
         assert_eq!(why(50.0, 50.0).unwrap(), "it lies in a hole of field 'F'");
         assert_eq!(why(125.0, 5.0).unwrap(), "it lies inside obstacle 'shed'");
-        assert_eq!(
-            why(-3.0, 50.0).unwrap(),
-            "it is 3.0 m from the edge of field 'F' (a supply point keeps 5 m)"
-        );
-        assert_eq!(
-            why(118.0, 5.0).unwrap(),
-            "it is 2.0 m from the edge of obstacle 'shed' (a supply point keeps 5 m)"
-        );
+        // Within the margin auto keeps, and on the corner, is not a reason.
+        assert_eq!(why(-3.0, 50.0), None);
+        assert_eq!(why(0.0, 0.0), None);
+        assert_eq!(why(118.0, 5.0), None);
         assert_eq!(
             why(-3000.0, 50.0).unwrap(),
             "it is 3000 m from the nearest field (a supply point stands within 200 m)"

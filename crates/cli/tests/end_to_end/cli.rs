@@ -39,15 +39,17 @@ fn demo_writes_its_folder_and_is_byte_identical_when_run_again() {
     assert!(report["covered_fraction"].as_f64().unwrap() >= 0.99);
     // Each sortie flies, as the preflight reads it back from its file, what the split
     // planned plus the reserve for the takeoff, spray-height and landing climbs (default
-    // vehicle: h 18 m, spray 2 m, climb 2 m/s, transit 6 m/s: 76 m at 2 m/s instead of
-    // 6 m/s, 25.3 s), not 12 s more for every transfer between fields (decision 0012).
+    // vehicle: h 18 m, spray 2 m, climb 2 m/s, transit 6 m/s: 76 m at 2 m/s less the 2 × 2h
+    // = 72 m eq. 2's legs charge at 6 m/s, 26.0 s; on this farm's plateau the reserve adds 6 s
+    // more, a bound the sorties do not all fly), not 12 s more for every transfer between
+    // fields (decision 0012).
     let planned = report["sortie_details"].as_array().unwrap();
     let flown = report["preflight"]["sorties"].as_array().unwrap();
     assert_eq!(planned.len(), flown.len());
     for (plan, file) in planned.iter().zip(flown) {
         let gap = file["flight_time_s"].as_f64().unwrap() - plan["flight_time_s"].as_f64().unwrap();
         assert!(
-            (gap - 25.3).abs() < 3.0,
+            (gap - 26.0).abs() < 3.0,
             "sortie {}: {gap} s",
             plan["sortie"]
         );

@@ -178,7 +178,9 @@ fn a_point_given_where_no_vehicle_stands_is_flown_from_with_a_warning() {
         ("310,-1000", "1011 m from the nearest field"),
     ] {
         let text = stdout(&agripath(
-            &["plan", "--fields", &fields, "--supply", point, "--out", "out"],
+            &[
+                "plan", "--fields", &fields, "--supply", point, "--out", "out",
+            ],
             &folder,
         ));
         assert!(
@@ -191,7 +193,9 @@ fn a_point_given_where_no_vehicle_stands_is_flown_from_with_a_warning() {
     }
     // Where auto would stand: no warning.
     stdout(&agripath(
-        &["plan", "--fields", &fields, "--supply", "310,-20", "--out", "out"],
+        &[
+            "plan", "--fields", &fields, "--supply", "310,-20", "--out", "out",
+        ],
         &folder,
     ));
     assert!(report(&folder, "out")["supply"]["warning"].is_null());
@@ -205,7 +209,15 @@ fn a_point_given_too_far_or_with_lon_and_lat_swapped_blames_the_flag() {
     // 20 km away: no sortie reaches the fields and comes back; the point is at fault, not the
     // vehicle.
     let output = agripath(
-        &["plan", "--fields", &fields, "--supply", "310,-20000", "--out", "out"],
+        &[
+            "plan",
+            "--fields",
+            &fields,
+            "--supply",
+            "310,-20000",
+            "--out",
+            "out",
+        ],
         &folder,
     );
     assert_eq!(output.status.code(), Some(2));

@@ -39,7 +39,10 @@ pub fn sortie_model(vehicle: &Vehicle, supply: RoutePoint) -> SortieModel {
     let vertical_m = 4.0 * cruise_m(vehicle) - 2.0 * vehicle.spray_height_m;
     let charged_m = 2.0 * model.return_climb_m;
     let reserve_s = vertical_m / vehicle.climb_speed_mps - charged_m / vehicle.transit_speed_mps;
-    model.battery_reserve_s = reserve_s.clamp(0.0, 0.5 * model.endurance_s);
+    // No cap: a reserve the battery cannot hold leaves no usable time, and the split says
+    // which route point cannot be reached (an input error), rather than plan sorties that
+    // fly over the battery as written.
+    model.battery_reserve_s = reserve_s.max(0.0);
     model
 }
 
@@ -62,8 +65,7 @@ pub fn sortie_model_over(
         worst_s =
             worst_s.max(extra_m / vehicle.climb_speed_mps - charged_m / vehicle.transit_speed_mps);
     }
-    model.battery_reserve_s =
-        (model.battery_reserve_s + 2.0 * worst_s).clamp(0.0, 0.5 * model.endurance_s);
+    model.battery_reserve_s = (model.battery_reserve_s + 2.0 * worst_s).max(0.0);
     Ok(model)
 }
 

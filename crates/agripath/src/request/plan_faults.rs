@@ -1,0 +1,120 @@
+//! The faults of `plan` as the user reads them: points typed on the command line checked
+//! and refused naming the flag, planning faults named after their cause.
+
+use super::bad_value;
+use crate::error::{Fault, InputError};
+use crate::scenario::Scenario;
+use crate::settings::PlanSettings;
+
+/// A point typed after `flag` (`text`, read as `typed` in the field file's coordinates:
+/// longitude first for a lon/lat file), in planning metres. Refused, naming the flag and the
+/// value as typed, when it is off the globe or farther from the fields than a farm is wide
+/// ([`crate::limits::MAX_FARM_EXTENT_M`]): a typo, not a place to fly from (the battery check
+/// would otherwise blame the vehicle). When the two numbers swapped would lie near the fields,
+/// the message says so.
+pub(super) fn typed_point(
+    flag: &str,
+    text: &str,
+    typed: [f64; 2],
+    farm: &crate::model::Farm,
+) -> Result<[f64; 2], InputError> {
+    let frame = farm.coordinate_system;
+    let geographic = matches!(frame, crate::model::CoordinateSystem::Utm(_));
+    let on_globe = |[lon, lat]: [f64; 2]| {
+        !geographic || ((-180.0..=180.0).contains(&lon) && (-90.0..=90.0).contains(&lat))
+    };
+    let limit_m = crate::limits::MAX_FARM_EXTENT_M;
+    let away_m = |point: [f64; 2]| {
+        let (x, y) = frame.to_plan(point[0], point[1]);
+        farm.distance_outside_bounds_m(x, y)
+    };
+    let [a, b] = typed;
+    let swapped = [b, a];
+    let hint = if on_globe(swapped) && away_m(swapped) <= limit_m {
+        format!(
+            "; swapped, {b},{a} lies {:.1} km from the fields: did you give {} second?",
+            away_m(swapped) / 1000.0,
+            if geographic { "the longitude" } else { "x" }
+        )
+    } else {
+        String::new()
+    };
+    if !on_globe(typed) {
+        return Err(bad_value(
+            flag,
+            text,
+            format!("longitude {a}, latitude {b} is off the globe (longitude first: -180..180, then latitude: -90..90){hint}"),
+        ));
+    }
+    let away = away_m(typed);
+    if away.is_nan() || away > limit_m {
+        return Err(bad_value(
+            flag,
+            text,
+            format!(
+                "it lies {:.0} km from the fields (at most {:.0} km){hint}",
+                away / 1000.0,
+                limit_m / 1000.0
+            ),
+        ));
+    }
+    let (x, y) = frame.to_plan(a, b);
+    Ok([x, y])
+}
+
+/// A planning fault as the user reads it: a fault of the vehicle names the vehicle file
+/// (else the field file), and places are in the input's coordinates (lon/lat for a lon/lat
+/// farm, not the UTM metres it was planned in). A route that cannot be flown on one battery
+/// from a supply point typed on the command line (`settings.start`) farther from the fields
+/// than `auto` would stand ([`crate::supply::standing::REACH_M`]) blames that point.
+pub fn planning_error(scenario: &Scenario, settings: &PlanSettings, fault: Fault) -> InputError {
+    let frame = scenario.farm.coordinate_system;
+    let in_input = |x: f64, y: f64| {
+        let (a, b) = frame.to_input(x, y);
+        match frame {
+            crate::model::CoordinateSystem::Local => format!("({a:.1}, {b:.1})"),
+            crate::model::CoordinateSystem::Utm(_) => format!("lon {a:.6}, lat {b:.6}"),
+        }
+    };
+    match fault {
+        Fault::UnreachableOnOneBattery { x, y, .. }
+            if settings.start.is_some_and(|[sx, sy]| {
+                crate::supply::standing::StandingRule::new(&scenario.farm)
+                    .distance_to_fields_m(geo::Coord { x: sx, y: sy })
+                    > crate::supply::standing::REACH_M
+            }) =>
+        {
+            let [sx, sy] = settings.start.unwrap_or_default();
+            let away = crate::supply::standing::StandingRule::new(&scenario.farm)
+                .distance_to_fields_m(geo::Coord { x: sx, y: sy });
+            bad_value(
+                "--supply/--start",
+                in_input(sx, sy),
+                format!(
+                    "it lies {:.1} km from the nearest field, too far for one battery and one tank to reach the route near {} and fly back (--supply auto chooses within {:.0} m)",
+                    away / 1000.0,
+                    in_input(x, y),
+                    crate::supply::standing::REACH_M
+                ),
+            )
+        }
+        Fault::UnreachableOnOneBattery { x, y, endurance_s } => {
+            let near = in_input(x, y);
+            let file = scenario
+                .vehicle_file
+                .as_deref()
+                .unwrap_or(scenario.farm.source.as_path());
+            InputError::new(
+                file,
+                Fault::InvalidValue {
+                    what: "battery_endurance_s".into(),
+                    value: crate::error::figure(endurance_s),
+                    why: format!(
+                        "the route near {near} cannot be reached and flown back on one battery and one tank"
+                    ),
+                },
+            )
+        }
+        other => InputError::new(&scenario.farm.source, other),
+    }
+}
