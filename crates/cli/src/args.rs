@@ -58,7 +58,8 @@ pub enum Command {
         /// (`chromium` on PATH, or the browser named by AGRIPATH_BROWSER).
         #[arg(long)]
         pdf: bool,
-        /// Output folder (replaced as a whole when planning succeeds).
+        /// Output folder, replaced as a whole (without mission files when the preflight
+        /// refuses them, exit 3; left untouched on bad input, exit 2).
         #[arg(long)]
         out: PathBuf,
     },
