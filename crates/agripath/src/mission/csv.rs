@@ -1,13 +1,18 @@
 //! Every mission item of every sortie as CSV, for spreadsheets and other tools:
 //! `sortie,index,action,value,lon,lat,ground_m,above_ground_m,sea_level_m`. Sorties are
-//! numbered from 1, as the `sortie_NN` files, the KML and the sheet number them.
+//! numbered from 1, as the `sortie_NN` files, the KML and the sheet number them. Without
+//! heights above sea level (no DEM, no stated ground height) `sea_level_m` is left empty:
+//! `ground_m` is then the terrain model's (flat 0 m, the field file's or a formula's), and
+//! a sea-level column over it would read as true altitudes (decision 0012: never sea level
+//! over an assumed ground).
 
 use std::fmt::Write;
 
 use super::flight::{Action, SortieMission};
 
-/// The CSV text, a header line then one line per mission item of each sortie in order.
-pub fn waypoints_csv(missions: &[SortieMission]) -> String {
+/// The CSV text, a header line then one line per mission item of each sortie in order;
+/// `sea_level_known`: whether the terrain's heights are above sea level.
+pub fn waypoints_csv(missions: &[SortieMission], sea_level_known: bool) -> String {
     let mut text =
         String::from("sortie,index,action,value,lon,lat,ground_m,above_ground_m,sea_level_m\n");
     for mission in missions {
@@ -20,9 +25,14 @@ pub fn waypoints_csv(missions: &[SortieMission]) -> String {
                 Action::Spray { on } => ("spray", if on { "on".into() } else { "off".into() }),
                 Action::CameraTrigger { distance_m } => ("camera", format!("{distance_m}")),
             };
+            let sea_level = if sea_level_known {
+                format!("{:.3}", item.sea_level_m())
+            } else {
+                String::new()
+            };
             let _ = writeln!(
                 text,
-                "{},{},{},{},{:.9},{:.9},{:.3},{:.3},{:.3}",
+                "{},{},{},{},{:.9},{:.9},{:.3},{:.3},{sea_level}",
                 mission.sortie + 1,
                 index,
                 action,
@@ -31,7 +41,6 @@ pub fn waypoints_csv(missions: &[SortieMission]) -> String {
                 item.lat,
                 item.ground_m,
                 item.above_ground_m,
-                item.sea_level_m()
             );
         }
     }

@@ -181,7 +181,14 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
     ));
     mission_files.push((
         "waypoints.csv".to_string(),
-        waypoints_csv(&missions).into_bytes(),
+        waypoints_csv(
+            &missions,
+            crate::mission::flight::sea_level_known(
+                &scenario.terrain_spec,
+                scenario.terrain_stated,
+            ),
+        )
+        .into_bytes(),
     ));
     let world = crate::preflight::World {
         farm: &scenario.farm,

@@ -1308,6 +1308,21 @@ fn altitudes_are_relative_without_a_dem_and_sea_level_over_one() {
         let fence = plan["geoFence"]["polygons"].as_array().unwrap();
         assert_eq!(fence.iter().filter(|p| p["inclusion"] == true).count(), 1);
         assert_eq!(plan["rallyPoints"]["points"].as_array().unwrap().len(), 1);
+        // waypoints.csv gives sea-level heights only where the terrain has them.
+        let csv = std::fs::read_to_string(out.join("waypoints.csv")).unwrap();
+        let sea_level: Vec<&str> = csv
+            .lines()
+            .skip(1)
+            .map(|line| line.rsplit(',').next().unwrap())
+            .collect();
+        if name == "flat" {
+            assert!(sea_level.iter().all(|cell| cell.is_empty()), "{name}");
+        } else {
+            assert!(
+                sea_level.iter().all(|cell| cell.parse::<f64>().is_ok()),
+                "{name}"
+            );
+        }
         if name == "flat" {
             assert_eq!(report["altitude_reference"], "relative");
             // A spray waypoint sits at the spray height over the launch ground.

@@ -19,6 +19,13 @@ pub enum AltitudeReference {
     Terrain,
 }
 
+/// Whether the terrain gives heights above sea level: a DEM, or a flat ground whose height
+/// was stated (`--terrain flat:H`, a scenario's `[terrain]`), not assumed at 0 m.
+pub fn sea_level_known(terrain: &crate::terrain::TerrainSpec, stated: bool) -> bool {
+    matches!(terrain, crate::terrain::TerrainSpec::File { .. })
+        || (stated && matches!(terrain, crate::terrain::TerrainSpec::Flat { .. }))
+}
+
 impl AltitudeReference {
     /// Every reference's key, in the order of the variants: the names `--altitude` accepts.
     pub const KEYS: [&'static str; 3] = ["relative", "sea-level", "terrain"];
@@ -41,8 +48,7 @@ impl AltitudeReference {
         stated: bool,
     ) -> Result<Self, Fault> {
         let dem = matches!(terrain, crate::terrain::TerrainSpec::File { .. });
-        let sea_level_known =
-            dem || (stated && matches!(terrain, crate::terrain::TerrainSpec::Flat { .. }));
+        let sea_level_known = sea_level_known(terrain, stated);
         match requested {
             None if dem => Ok(Self::SeaLevel),
             None => Ok(Self::Relative),
