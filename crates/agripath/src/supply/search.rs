@@ -22,8 +22,10 @@
 //!    the point found.
 //! 5. **Polish.** The max([`POLISHED`], N) best by C: a pattern search on the surrogate around
 //!    the point, then C at the point found, kept when lower, for at most [`ROUNDS`] rounds.
-//! 6. **Rank.** By C (ties by position), points within [`SAME_PLACE_M`] of a better one
-//!    dropped. Only C is ever reported, so the result is scored by the evaluator itself.
+//! 6. **Rank.** By C (ties by position), points within [`MIN_SEPARATION_M`] of a better one
+//!    dropped, so that `auto:N` lists places an operator can tell apart (until 2026-12-06
+//!    [`SAME_PLACE_M`], and a newcomer's `auto:3` listed three points 14-21 m apart). Only C
+//!    is ever reported, so the result is scored by the evaluator itself.
 //!
 //! Everything is deterministic: no randomness, total orders on ties. About 15-20
 //! evaluations of C per search.
@@ -301,7 +303,10 @@ pub fn search(
         });
     }
     ranked.sort_by(by_cost_then_place);
-    let mut points = distinct(ranked, SAME_PLACE_M);
+    // The best first, then alternatives an operator can tell apart on the ground (another
+    // gate, the other side of a field), not the same place polished twice: at least the
+    // starts' separation from every point listed before.
+    let mut points = distinct(ranked, MIN_SEPARATION_M);
     points.truncate(listed.max(1));
     (!points.is_empty()).then_some(Ranked {
         points,
