@@ -150,14 +150,22 @@ impl SupplyReport {
     }
 
     /// The summary's line; `working` is "spraying" or "surveying" ([`crate::model::Vehicle::work_words`]).
+    /// For `auto`: the point and what chose it, the two estimates and the saving; the plan's
+    /// own time not working is the summary's `total` line (the estimates are made on the
+    /// route planned without a start point, so they differ from it: `planned_cost_s`).
     pub fn to_text(&self, working: &str) -> String {
         let place = match self.at.lon_lat {
             Some([lon, lat]) => format!("{lon:.6}, {lat:.6}"),
             None => format!("{:.1}, {:.1} m", self.at.point_m[0], self.at.point_m[1]),
         };
+        let warning = self
+            .warning
+            .as_ref()
+            .map(|warning| format!("warning: {warning}\n"))
+            .unwrap_or_default();
         match &self.auto {
             Some(auto) => format!(
-                "supply point (auto{}): {place}; {:.0} s not {working} by the split of the route planned without a start, against {:.0} s from the route's first point (the old rule{}): {}; {:.0} s as planned from it{}\n",
+                "supply point (auto{}): {place}, where the least time is spent not {working}: estimated {:.0} s, against {:.0} s from the route's first point (the old rule{}), {}{}\n",
                 if auto.on_access { ", on access features" } else { "" },
                 self.cost_s.unwrap_or(f64::NAN),
                 auto.first_point.cost_s,
@@ -179,22 +187,13 @@ impl SupplyReport {
                         -auto.saving_s, -auto.saving_percent
                     )
                 },
-                self.planned_cost_s,
                 if !auto.candidates.is_empty() {
                     format!("; {} candidates in report.json", auto.candidates.len())
                 } else {
                     String::new()
                 }
             ),
-            None => format!(
-                "supply point ({}): {place}; {:.0} s not {working} as planned from it\n{}",
-                self.rule,
-                self.planned_cost_s,
-                self.warning
-                    .as_ref()
-                    .map(|warning| format!("warning: {warning}\n"))
-                    .unwrap_or_default()
-            ),
+            None => format!("supply point ({}): {place}\n{warning}", self.rule),
         }
     }
 }
