@@ -458,7 +458,7 @@ fn a_survey_vehicle_triggers_its_camera_on_each_swath_and_has_no_tank() {
     );
     assert!(!printed.contains("spray m"), "{printed}");
     assert!(
-        !printed.contains("spraying") && printed.contains("s not surveying"),
+        !printed.contains("spraying") && printed.contains("min not surveying)"),
         "{printed}"
     );
     let validated = stdout(&agripath_without_browser(&[
