@@ -57,7 +57,7 @@ pub const SWATH_WIDTH_RANGE_M: (f64, f64) = (0.5, 200.0);
 /// Plausible ranges of a vehicle's figures (`Vehicle::validate`): beyond them a value is a
 /// typo or an attack (`1e308`), not an aircraft, and planning with it would overflow or run
 /// without end.
-pub const VEHICLE_RANGES: [(&str, f64, f64); 13] = [
+pub const VEHICLE_RANGES: [(&str, f64, f64); 14] = [
     (
         "swath_width_m",
         SWATH_WIDTH_RANGE_M.0,
@@ -70,6 +70,8 @@ pub const VEHICLE_RANGES: [(&str, f64, f64); 13] = [
     ("transit_speed_mps", 0.1, 100.0),
     ("climb_speed_mps", 0.1, 50.0),
     ("battery_endurance_s", 1.0, 86_400.0),
+    // Above 90 % held back a battery flies almost nothing: a typo for 9 or 0.9.
+    ("battery_reserve_percent", 0.0, 90.0),
     ("battery_swap_s", 0.0, 86_400.0),
     ("refill_base_s", 0.0, 86_400.0),
     ("refill_max_s", 0.0, 86_400.0),

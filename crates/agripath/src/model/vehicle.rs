@@ -43,6 +43,9 @@ pub struct Vehicle {
     pub tank_spray_time_s: Option<f64>,
     /// Flight time one battery gives, seconds.
     pub battery_endurance_s: f64,
+    /// Share of the battery to land with, percent: every sortie, as written and flown, keeps
+    /// it unused (0: `battery_endurance_s` is the flight time to plan with, the seeds' reading).
+    pub battery_reserve_percent: f64,
     /// Time to swap a battery at the supply point, seconds.
     pub battery_swap_s: f64,
     /// Seed 003 eq. (5): refill time t_b for an empty request…
@@ -163,6 +166,7 @@ impl Default for Vehicle {
             application_rate_l_per_ha: None,
             tank_spray_time_s: Some(15.0 * 60.0),
             battery_endurance_s: 25.0 * 60.0,
+            battery_reserve_percent: 0.0,
             battery_swap_s: 60.0,
             refill_base_s: 20.0,
             refill_max_s: 120.0,
@@ -172,6 +176,22 @@ impl Default for Vehicle {
 }
 
 impl Vehicle {
+    /// How far above the spray height a transit flies: h, at least 5 m (decision 0012: a
+    /// transit over the highest ground under it, never at crop height even when h is 0).
+    pub fn transit_rise_m(&self) -> f64 {
+        self.safe_height_m.max(5.0)
+    }
+
+    /// The height of a transit above the highest ground under it: spray height + max(h, 5 m).
+    pub fn cruise_height_m(&self) -> f64 {
+        self.spray_height_m + self.transit_rise_m()
+    }
+
+    /// The flight time a sortie may use: the endurance less the share to land with.
+    pub fn usable_battery_s(&self) -> f64 {
+        self.battery_endurance_s * (1.0 - self.battery_reserve_percent / 100.0)
+    }
+
     /// Reads and validates a vehicle file.
     pub fn from_file(path: &Path) -> Result<Self, InputError> {
         let text = read_text(path)?;
@@ -277,6 +297,7 @@ impl Vehicle {
             ("spray_height_m", self.spray_height_m),
             ("safe_height_m", self.safe_height_m),
             ("battery_swap_s", self.battery_swap_s),
+            ("battery_reserve_percent", self.battery_reserve_percent),
             ("refill_base_s", self.refill_base_s),
             ("refill_max_s", self.refill_max_s),
         ];
@@ -307,6 +328,7 @@ impl Vehicle {
                 "transit_speed_mps" => Some(self.transit_speed_mps),
                 "climb_speed_mps" => Some(self.climb_speed_mps),
                 "battery_endurance_s" => Some(self.battery_endurance_s),
+                "battery_reserve_percent" => Some(self.battery_reserve_percent),
                 "battery_swap_s" => Some(self.battery_swap_s),
                 "refill_base_s" => Some(self.refill_base_s),
                 "refill_max_s" => Some(self.refill_max_s),

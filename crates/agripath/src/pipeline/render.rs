@@ -126,7 +126,7 @@ const MOST_BATTERY_REPLANS: usize = 3;
 /// the first render is safe and nothing is re-planned. A re-plan that fails (no battery left
 /// to hold back) keeps the last render, which the preflight refuses.
 pub fn render_flyable(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered, Fault> {
-    let endurance_s = scenario.vehicle.battery_endurance_s;
+    let endurance_s = scenario.vehicle.usable_battery_s();
     let mut rendered = render(scenario, mission)?;
     let mut settings = mission.settings;
     for _ in 0..MOST_BATTERY_REPLANS {
@@ -158,7 +158,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
     let missions = build_missions(scenario, &mission.route, mission.sorties.as_ref(), settings)?;
     let mut mission_files = Vec::new();
     for sortie in &missions {
-        let name = format!("sortie_{:02}", sortie.sortie + 1);
+        let name = crate::mission::sortie_file_stem(sortie.sortie);
         mission_files.push((
             format!("{name}.plan"),
             qgc_plan::plan_file(

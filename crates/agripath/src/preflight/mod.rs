@@ -105,12 +105,14 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         "ground clearance",
         "≥",
         vehicle.spray_height_m - settings.terrain_tolerance_m,
-        "m above the ground",
+        "m above the ground on legs that do not spray",
     );
     let mut no_go = Tally::new("holes and obstacles", "≤", 0.0, "samples inside");
     let mut fence = Tally::new("fence", "≤", 0.0, "samples outside");
     let mut tank = Tally::new("tank", "≤", 1.0, "tanks");
-    let mut battery = Tally::new("battery", "≤", 1.0, "batteries");
+    // A sortie may not fly into the share of the battery the operator lands with.
+    let usable_battery = vehicle.usable_battery_s() / vehicle.battery_endurance_s;
+    let mut battery = Tally::new("battery", "≤", usable_battery, "batteries");
     let place = |x: f64, y: f64| frame.describe(x, y);
     let low_limit = low_legs.limit;
 
@@ -440,13 +442,14 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         figures.battery_fraction = figures.flight_time_s / vehicle.battery_endurance_s;
         battery.record(
             figures.battery_fraction,
-            figures.flight_time_s > vehicle.battery_endurance_s * 1.001,
+            figures.flight_time_s > vehicle.usable_battery_s() * 1.001,
             || {
                 format!(
-                    "sortie {sortie}: flies {:.0} s as written, {:.1}% of the battery ({} s)",
+                    "sortie {sortie}: flies {:.0} s as written, {:.1}% of the battery ({} s, {:.0} s usable)",
                     figures.flight_time_s,
                     100.0 * figures.battery_fraction,
-                    vehicle.battery_endurance_s
+                    vehicle.battery_endurance_s,
+                    vehicle.usable_battery_s()
                 )
             },
         );

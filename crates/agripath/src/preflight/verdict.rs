@@ -151,7 +151,7 @@ impl Verdict {
             String::new()
         };
         format!(
-            "preflight ({} altitudes, read back from {} mission file(s)): {}; least coverage {:.2}%{unreachable}, sprayed outside {:.3}%, lowest clearance {:.2} m",
+            "preflight ({} altitudes, read back from {} mission file(s)): {}; least coverage {:.2}%{unreachable}, sprayed outside {:.3}%, lowest clearance {:.2} m (spray legs included)",
             self.altitude_reference.key(),
             self.sorties.len(),
             if self.safe {

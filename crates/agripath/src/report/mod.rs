@@ -110,6 +110,10 @@ pub struct Report {
     /// Return round trips plus max(battery swap, refill) at each return (seed 003 Table 4's
     /// non-spraying time), seconds.
     pub return_time_s: f64,
+    /// Battery time each sortie keeps back, seconds (`null`: not split): the climbs to spray
+    /// and safe height and the descents eq. 2 does not charge, the worst climb over the
+    /// terrain between the supply point and any pass, and `--battery-margin`.
+    pub battery_reserve_s: Option<f64>,
     /// Per sortie: spray metres, litres, flight time, tank and battery used (seed 003 Table 5).
     pub sortie_details: Vec<SortieReport>,
     /// Sprayable area of all fields, m².
@@ -158,8 +162,11 @@ pub struct SurveyReport {
 /// One sortie in `report.json`.
 #[derive(Debug, Clone, Serialize)]
 pub struct SortieReport {
-    /// Number of the sortie, from 0.
+    /// Number of the sortie, from 1, as in `preflight.sorties` and the file names
+    /// (`plan.geojson`'s features count sorties from 0).
     pub sortie: usize,
+    /// The sortie's mission file (`sortie_NN.plan`, with `.waypoints` beside it).
+    pub file: String,
     /// Spray metres flown.
     pub spray_m: f64,
     /// Litres sprayed (`null` when the application rate is not known).
@@ -265,7 +272,8 @@ impl Report {
                 .iter()
                 .enumerate()
                 .map(|(index, sortie)| SortieReport {
-                    sortie: index,
+                    sortie: index + 1,
+                    file: format!("{}.plan", crate::mission::sortie_file_stem(index)),
                     spray_m: round(sortie.spray_m, 1e-4),
                     litres: sortie.litres.map(|l| round(l, 1e-3)),
                     tank_percent: sortie.tank_fraction.map(|f| round(100.0 * f, 1e-3)),
@@ -337,6 +345,7 @@ impl Report {
                 1e-4,
             ),
             return_time_s: round(return_time_s, 1e-3),
+            battery_reserve_s: sorties.map(|split| round(split.model.battery_reserve_s, 1e-3)),
             sortie_details,
             sprayable_area_m2: round(sprayable, 1e-4),
             covered_fraction: round(

@@ -104,7 +104,7 @@ impl Speeds {
 /// (the demo's sorties flew 12 s longer for every such transfer; the preflight refused a
 /// survey's sortie at 101.9 % of its battery).
 fn transfer_climb_s(vehicle: &crate::model::Vehicle) -> f64 {
-    let rise_m = vehicle.safe_height_m.max(5.0);
+    let rise_m = vehicle.transit_rise_m();
     (2.0 * rise_m / vehicle.climb_speed_mps
         - 2.0 * vehicle.safe_height_m / vehicle.transit_speed_mps)
         .max(0.0)

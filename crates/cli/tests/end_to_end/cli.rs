@@ -47,6 +47,9 @@ fn demo_writes_its_folder_and_is_byte_identical_when_run_again() {
     let flown = report["preflight"]["sorties"].as_array().unwrap();
     assert_eq!(planned.len(), flown.len());
     for (plan, file) in planned.iter().zip(flown) {
+        // One numbering for the sortie in the report: the planned figures and the files'.
+        assert_eq!(plan["sortie"], file["sortie"]);
+        assert_eq!(plan["file"], file["file"]);
         let gap = file["flight_time_s"].as_f64().unwrap() - plan["flight_time_s"].as_f64().unwrap();
         assert!(
             (gap - 26.0).abs() < 3.0,

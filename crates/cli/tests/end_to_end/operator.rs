@@ -303,6 +303,43 @@ fn skipped_and_repaired_features_are_named_not_dropped() {
 }
 
 #[test]
+fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
+    let folder = scratch("landing-share");
+    let careful = folder.join("careful.toml");
+    let vehicle = std::fs::read_to_string(data("vehicles/dji_t16.toml")).unwrap();
+    let vehicle: String = vehicle
+        .lines()
+        .filter(|line| !line.starts_with("battery_reserve_percent"))
+        .chain(["battery_reserve_percent = 35"])
+        .collect::<Vec<_>>()
+        .join("\n");
+    std::fs::write(&careful, vehicle).unwrap();
+    let fields = data("christmas_island_fields.kml");
+    let out = folder.join("out");
+    let output = agripath_without_browser(&[
+        "plan",
+        "--fields",
+        fields.to_str().unwrap(),
+        "--vehicle",
+        careful.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(0), "{output:?}");
+    let report = report(&out);
+    assert_eq!(report["preflight"]["safe"], true);
+    // The files, flown, leave 35 % of the 600 s battery: the preflight's own figures.
+    let flown = report["preflight"]["sorties"].as_array().unwrap();
+    assert!(flown.len() > 1);
+    for sortie in flown {
+        let share = sortie["battery_fraction"].as_f64().unwrap();
+        assert!(share <= 0.65 * 1.001, "{sortie}");
+    }
+    assert!(report["battery_reserve_s"].as_f64().unwrap() >= 0.35 * 600.0);
+    let _ = std::fs::remove_dir_all(&folder);
+}
+
+#[test]
 fn a_vehicle_too_weak_for_the_farm_is_blamed_on_its_file_with_a_lon_lat_place() {
     let folder = scratch("weak");
     let weak = folder.join("weak.toml");

@@ -16,7 +16,8 @@
 //!                              eq. 2 already charges at transit speed)
 //!   + 2 · max_P (e(P) / w − |H_P − H_S| / v_off)   (the terrain's, over the route's points).
 //!
-//! The second term is the worst leg's, taken for both legs of every sortie: a bound, not the
+//! plus the share of the endurance the vehicle file says to land with
+//! (`battery_reserve_percent`). The second term is the worst leg's, taken for both legs of every sortie: a bound, not the
 //! sortie's own figure, so sorties over rough ground keep a little more battery than they
 //! fly. On the flat it is 0. (The first term was V₀ / w − V₀ / v_off until 2026-12-05: right
 //! when the legs' 2h equals the climb, 12 s short for a survey flown at 60 m, whose sorties
@@ -36,13 +37,15 @@ use super::highest_ground;
 pub fn sortie_model(vehicle: &Vehicle, supply: RoutePoint) -> SortieModel {
     // Returns fly at the safe height, as transfers that leave the field do (decision 0008).
     let mut model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
-    let vertical_m = 4.0 * cruise_m(vehicle) - 2.0 * vehicle.spray_height_m;
+    let vertical_m = 4.0 * vehicle.cruise_height_m() - 2.0 * vehicle.spray_height_m;
     let charged_m = 2.0 * model.return_climb_m;
     let reserve_s = vertical_m / vehicle.climb_speed_mps - charged_m / vehicle.transit_speed_mps;
     // No cap: a reserve the battery cannot hold leaves no usable time, and the split says
     // which route point cannot be reached (an input error), rather than plan sorties that
     // fly over the battery as written.
-    model.battery_reserve_s = reserve_s.max(0.0);
+    // The share the operator lands with is held back from every sortie as well.
+    let landing_s = vehicle.battery_endurance_s - vehicle.usable_battery_s();
+    model.battery_reserve_s = reserve_s.max(0.0) + landing_s;
     model
 }
 
@@ -70,13 +73,8 @@ pub fn sortie_model_over(
     for extra in extras {
         worst_s = worst_s.max(extra?);
     }
-    model.battery_reserve_s = (model.battery_reserve_s + 2.0 * worst_s).max(0.0);
+    model.battery_reserve_s += (2.0 * worst_s).max(0.0);
     Ok(model)
-}
-
-/// The cruise height above the highest ground under a transit: spray height + max(h, 5 m).
-fn cruise_m(vehicle: &Vehicle) -> f64 {
-    vehicle.spray_height_m + vehicle.safe_height_m.max(5.0)
 }
 
 #[cfg(test)]
@@ -128,6 +126,12 @@ mod tests {
             ..vehicle
         };
         assert!((sortie_model(&survey, supply).battery_reserve_s - 42.0).abs() < 1e-9);
+        // Landing with a fifth of a 600 s battery holds back 120 s more.
+        let careful = Vehicle {
+            battery_reserve_percent: 20.0,
+            ..survey.clone()
+        };
+        assert!((sortie_model(&careful, supply).battery_reserve_s - 162.0).abs() < 1e-9);
     }
 
     #[test]

@@ -256,7 +256,7 @@ pub fn build_missions(
         return Ok(vec![]);
     }
     let spray_height = vehicle.spray_height_m;
-    let cruise = spray_height + vehicle.safe_height_m.max(5.0);
+    let cruise = vehicle.cruise_height_m();
     // An item at `point`, `above` metres over its ground.
     let item = |action: Action, point: &RoutePoint, above: f64| {
         let (lon, lat) = frame.lon_lat(point.x, point.y);
