@@ -305,26 +305,9 @@ fn skipped_and_repaired_features_are_named_not_dropped() {
 #[test]
 fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
     let folder = scratch("landing-share");
-    let careful = folder.join("careful.toml");
-    let vehicle = std::fs::read_to_string(data("vehicles/dji_t16.toml")).unwrap();
-    let vehicle: String = vehicle
-        .lines()
-        .filter(|line| !line.starts_with("battery_reserve_percent"))
-        .chain(["battery_reserve_percent = 35"])
-        .collect::<Vec<_>>()
-        .join("\n");
-    std::fs::write(&careful, vehicle).unwrap();
-    let fields = data("christmas_island_fields.kml");
+    let careful = t16_with(&folder, "careful.toml", "battery_reserve_percent", "35");
     let out = folder.join("out");
-    let output = agripath_without_browser(&[
-        "plan",
-        "--fields",
-        fields.to_str().unwrap(),
-        "--vehicle",
-        careful.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let output = plan_island_fields(&careful, &out, &[]);
     assert_eq!(output.status.code(), Some(0), "{output:?}");
     let report = report(&out);
     assert_eq!(report["preflight"]["safe"], true);
@@ -342,32 +325,12 @@ fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
 #[test]
 fn a_vehicle_too_weak_for_the_farm_is_blamed_on_its_file_with_a_lon_lat_place() {
     let folder = scratch("weak");
-    let weak = folder.join("weak.toml");
-    let vehicle = std::fs::read_to_string(data("vehicles/dji_t16.toml")).unwrap();
-    let vehicle: String = vehicle
-        .lines()
-        .map(|line| {
-            if line.starts_with("battery_endurance_s") {
-                "battery_endurance_s = 30.0".to_string()
-            } else {
-                line.to_string()
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("\n");
-    std::fs::write(&weak, vehicle).unwrap();
-    let fields = data("christmas_island_fields.kml");
-    let output = agripath_without_browser(&[
-        "plan",
-        "--fields",
-        fields.to_str().unwrap(),
-        "--vehicle",
-        weak.to_str().unwrap(),
-        "--supply",
-        "105.6216,-10.4953",
-        "--out",
-        folder.join("out").to_str().unwrap(),
-    ]);
+    let weak = t16_with(&folder, "weak.toml", "battery_endurance_s", "30.0");
+    let output = plan_island_fields(
+        &weak,
+        &folder.join("out"),
+        &["--supply", "105.6216,-10.4953"],
+    );
     assert_eq!(output.status.code(), Some(2));
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(
@@ -377,6 +340,37 @@ fn a_vehicle_too_weak_for_the_farm_is_blamed_on_its_file_with_a_lon_lat_place() 
     assert!(message.contains("near lon 105.6"), "{message}");
     assert_eq!(message.lines().count(), 1, "{message}");
     let _ = std::fs::remove_dir_all(&folder);
+}
+
+/// The DJI T16-class example vehicle with `key = value` in place of its own line, written
+/// to `folder/name`.
+fn t16_with(folder: &Path, name: &str, key: &str, value: &str) -> PathBuf {
+    let vehicle = std::fs::read_to_string(data("vehicles/dji_t16.toml")).unwrap();
+    let stated = format!("{key} = {value}");
+    let vehicle: Vec<&str> = vehicle
+        .lines()
+        .filter(|line| line.split('=').next().map(str::trim) != Some(key))
+        .chain([stated.as_str()])
+        .collect();
+    let path = folder.join(name);
+    std::fs::write(&path, vehicle.join("\n")).unwrap();
+    path
+}
+
+/// `agripath plan` of the Christmas Island fields (KML) with `vehicle`, into `out`.
+fn plan_island_fields(vehicle: &Path, out: &Path, extra: &[&str]) -> Output {
+    let fields = data("christmas_island_fields.kml");
+    let mut arguments = vec![
+        "plan",
+        "--fields",
+        fields.to_str().unwrap(),
+        "--vehicle",
+        vehicle.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    arguments.extend_from_slice(extra);
+    agripath_without_browser(&arguments)
 }
 
 /// A PNG's size and RGBA pixels.
@@ -437,17 +431,8 @@ fn a_broken_vehicle_toml_is_reported_at_file_line_column_in_one_line() {
         "name = \"broken\"\n# swath below\nswath_width_m = = 6.5\n",
     )
     .unwrap();
-    let fields = data("christmas_island_fields.kml");
     let out = folder.join("out");
-    let output = agripath_without_browser(&[
-        "plan",
-        "--fields",
-        fields.to_str().unwrap(),
-        "--vehicle",
-        broken.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let output = plan_island_fields(&broken, &out, &[]);
     assert_eq!(output.status.code(), Some(2));
     let message = String::from_utf8_lossy(&output.stderr);
     assert_eq!(message.lines().count(), 1, "{message}");
