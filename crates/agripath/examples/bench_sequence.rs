@@ -17,7 +17,7 @@ use std::time::Instant;
 
 use agripath::coverage::drape::GroundPoint;
 use agripath::coverage::{plan_coverage, CoveragePlan, CoverageSettings};
-use agripath::model::{CoordinateSystem, Farm, Field, Vehicle};
+use agripath::model::{Farm, Field, Vehicle};
 use agripath::sequence::ant_colony::AntColonySettings;
 use agripath::sequence::local_search::LocalSearchSettings;
 use agripath::sequence::tour::Start;
@@ -62,17 +62,7 @@ fn random_farm(fields: usize, swaths: usize, seed: u64) -> Farm {
             )
         })
         .collect();
-    Farm {
-        source: "random".into(),
-        coordinate_system: CoordinateSystem::Local,
-        fields: polygons,
-        obstacles: vec![],
-        markers: vec![],
-        access: vec![],
-        embedded_terrain: None,
-        stated_swath_width_m: None,
-        notes: Vec::new(),
-    }
+    Farm::local("random", polygons)
 }
 
 fn layout(farm: &Farm) -> CoveragePlan {

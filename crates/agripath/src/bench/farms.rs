@@ -8,7 +8,7 @@ use geo::{Contains, Coord, Intersects, LineString, Polygon};
 use swarm::random::{below, run_stream, uniform};
 use swarm::RunStream;
 
-use crate::model::{CoordinateSystem, Farm, Field};
+use crate::model::{Farm, Field};
 
 fn between(stream: &mut RunStream, low: f64, high: f64) -> f64 {
     low + (high - low) * uniform(stream)
@@ -125,17 +125,7 @@ pub fn irregular_farm(seed: u64, swaths: usize, swath_width_m: f64) -> Farm {
             radius,
         ));
     }
-    Farm {
-        source: format!("random irregular farm {seed}").into(),
-        coordinate_system: CoordinateSystem::Local,
-        fields,
-        obstacles: vec![],
-        markers: vec![],
-        access: vec![],
-        embedded_terrain: None,
-        stated_swath_width_m: None,
-        notes: Vec::new(),
-    }
+    Farm::local(format!("random irregular farm {seed}"), fields)
 }
 
 /// Swath counts asked of [`irregular_farm`] in turn by the routing benchmarks (`bench_joint`,

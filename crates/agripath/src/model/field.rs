@@ -180,6 +180,22 @@ pub struct Farm {
 }
 
 impl Farm {
+    /// A farm of `fields` in local metres and nothing else (no obstacles, markers, access
+    /// features or terrain): what benchmarks and tests build.
+    pub fn local(source: impl Into<PathBuf>, fields: Vec<Field>) -> Self {
+        Self {
+            source: source.into(),
+            coordinate_system: CoordinateSystem::Local,
+            fields,
+            obstacles: vec![],
+            markers: vec![],
+            access: vec![],
+            embedded_terrain: None,
+            stated_swath_width_m: None,
+            notes: Vec::new(),
+        }
+    }
+
     /// Pairs of fields that overlap by more than [`OVERLAP_TOLERANCE_M2`]: (earlier, later,
     /// shared area m²), at most `most` of them (the search stops there). Bounding boxes are
     /// swept in x first, so a farm of thousands of fields is checked in milliseconds; a farm

@@ -198,15 +198,18 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
     let verdict = crate::preflight::check(&world, &preflight_settings(mission), &mission_files);
     let mut report = mission.report.clone();
     report.preflight = Some(verdict.clone());
-    let geojson = plan_geojson(
-        &scenario.farm,
-        &mission.coverage,
-        &mission.route,
-        mission.sorties.as_ref(),
-        vehicle.spray_height_m,
-        vehicle.safe_height_m,
-        &verdict.ground,
-    );
+    let geojson_of = |farm: &crate::model::Farm| {
+        plan_geojson(
+            farm,
+            &mission.coverage,
+            &mission.route,
+            mission.sorties.as_ref(),
+            vehicle.spray_height_m,
+            vehicle.safe_height_m,
+            &verdict.ground,
+        )
+    };
+    let geojson = geojson_of(&scenario.farm);
     let title = format!(
         "{}{} — {} fields, swath {} m, {:.0} m {}, {:.2}% covered as flown",
         if verdict.safe { "" } else { "UNSAFE: " },
@@ -230,15 +233,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
     // The viewer draws in plan metres: the same features in the local frame.
     let mut local_farm = scenario.farm.clone();
     local_farm.coordinate_system = CoordinateSystem::Local;
-    let local = plan_geojson(
-        &local_farm,
-        &mission.coverage,
-        &mission.route,
-        mission.sorties.as_ref(),
-        vehicle.spray_height_m,
-        vehicle.safe_height_m,
-        &verdict.ground,
-    );
+    let local = geojson_of(&local_farm);
     let supply = mission
         .route
         .launch
@@ -363,20 +358,13 @@ mod tests {
     /// passes the preflight.
     #[test]
     fn sorties_over_the_battery_as_written_are_planned_again_until_they_fly() {
-        let farm = Farm {
-            fields: vec![
+        let farm = Farm::local(
+            "ridge test",
+            vec![
                 Field::new("west", rectangle(0.0, 160.0)),
                 Field::new("east", rectangle(460.0, 160.0)),
             ],
-            source: "ridge test".into(),
-            coordinate_system: crate::model::CoordinateSystem::Local,
-            obstacles: vec![],
-            markers: vec![],
-            access: vec![],
-            embedded_terrain: None,
-            stated_swath_width_m: None,
-            notes: Vec::new(),
-        };
+        );
         let mut scenario =
             Scenario::with_farm(farm, crate::scenario::ScenarioParts::default()).unwrap();
         scenario.terrain = Box::new(Ridge);

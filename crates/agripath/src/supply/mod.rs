@@ -291,7 +291,7 @@ mod tests {
     use super::evaluator::FixedRouteSplit;
     use super::*;
     use crate::coverage::{plan_coverage, CoverageSettings};
-    use crate::model::{Access, AccessShape, CoordinateSystem, Field, Obstacle, Vehicle};
+    use crate::model::{Access, AccessShape, Field, Obstacle, Vehicle};
     use crate::sequence::{route, Sequencer, TransferModel};
     use crate::sortie::route::Speeds;
     use crate::sortie::SortieModel;
@@ -309,17 +309,7 @@ mod tests {
     }
 
     fn farm_of(fields: Vec<Field>) -> Farm {
-        Farm {
-            source: "test".into(),
-            coordinate_system: CoordinateSystem::Local,
-            fields,
-            obstacles: vec![],
-            markers: vec![],
-            access: vec![],
-            embedded_terrain: None,
-            stated_swath_width_m: None,
-            notes: Vec::new(),
-        }
+        Farm::local("test", fields)
     }
 
     /// The route planned without a start point (greedy: quick in a debug build).
