@@ -335,6 +335,10 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "climb_speed_mps = 500 is invalid",
         ),
         on_vehicle("vehicle_huge_rate.toml", "application_rate_l_per_ha"),
+        on_vehicle(
+            "vehicle_reserve_95.toml",
+            "battery_reserve_percent = 95 is invalid",
+        ),
         // Scenario files.
         (
             vec!["validate".into(), bad("scenario_overlap_type.toml")],

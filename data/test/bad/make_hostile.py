@@ -101,6 +101,7 @@ for name, key, value in [
     ("vehicle_negative_swap.toml", "battery_swap_s", -1.0),
     ("vehicle_huge_swath.toml", "swath_width_m", 1e308),
     ("vehicle_fast_climb.toml", "climb_speed_mps", 500.0),
+    ("vehicle_reserve_95.toml", "battery_reserve_percent", 95.0),
 ]:
     write_text(name, f'name = "hostile"\nswath_width_m = 5.0\n{key} = {value!r}\n'.replace(
         "swath_width_m = 5.0\nswath_width_m", "swath_width_m"))

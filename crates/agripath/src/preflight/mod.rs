@@ -798,6 +798,30 @@ mod tests {
     }
 
     #[test]
+    fn a_sortie_into_the_share_to_land_with_fails() {
+        let (mut scenario, settings, files) = planned();
+        let flown = verdict(&scenario, &settings, &files);
+        assert!(!failed(&flown).contains(&"battery"));
+        let worst = flown
+            .sorties
+            .iter()
+            .map(|sortie| sortie.battery_fraction)
+            .fold(0.0, f64::max);
+        // The whole battery covers the worst sortie; the battery less the share does not.
+        scenario.vehicle.battery_reserve_percent = 100.0 * (1.0 - worst) + 1.0;
+        let careful = verdict(&scenario, &settings, &files);
+        assert!(
+            failed(&careful).contains(&"battery"),
+            "{:?}",
+            careful.failures
+        );
+        assert!(careful
+            .failures
+            .iter()
+            .any(|line| line.contains("s usable")));
+    }
+
+    #[test]
     fn a_waypoints_file_that_disagrees_with_its_plan_fails() {
         let (scenario, settings, mut files) = planned();
         let twin = files

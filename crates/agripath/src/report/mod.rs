@@ -110,10 +110,15 @@ pub struct Report {
     /// Return round trips plus max(battery swap, refill) at each return (seed 003 Table 4's
     /// non-spraying time), seconds.
     pub return_time_s: f64,
-    /// Battery time each sortie keeps back, seconds (`null`: not split): the climbs to spray
-    /// and safe height and the descents eq. 2 does not charge, the worst climb over the
-    /// terrain between the supply point and any pass, and `--battery-margin`.
+    /// Battery time each sortie keeps back, seconds (`null`: not split): the landing share
+    /// (the vehicle's `battery_reserve_percent`), the climbs to spray and safe height and the
+    /// descents eq. 2 does not charge, the worst climb over the terrain between the supply
+    /// point and any pass, and `battery_replan_s`.
     pub battery_reserve_s: Option<f64>,
+    /// Battery seconds held back because the plan as first written flew a sortie over the
+    /// usable battery and was made again (`pipeline::render_flyable`); 0 when the first plan
+    /// flew.
+    pub battery_replan_s: f64,
     /// Per sortie: spray metres, litres, flight time, tank and battery used (seed 003 Table 5).
     pub sortie_details: Vec<SortieReport>,
     /// Sprayable area of all fields, m².
@@ -346,6 +351,7 @@ impl Report {
             ),
             return_time_s: round(return_time_s, 1e-3),
             battery_reserve_s: sorties.map(|split| round(split.model.battery_reserve_s, 1e-3)),
+            battery_replan_s: round(settings.sorties.battery_margin_s, 1e-3),
             sortie_details,
             sprayable_area_m2: round(sprayable, 1e-4),
             covered_fraction: round(
@@ -382,6 +388,40 @@ impl Report {
             total_time_s: round(spray_time_s + non_spray_time_s, 1e-3),
             runtime_s,
         }
+    }
+
+    /// Each sortie's share of the battery: as its file flies, when the preflight has read the
+    /// files back (what the operator will see on the remote), else as planned; then the
+    /// usable share, when the vehicle lands with some left.
+    fn battery_words(&self) -> String {
+        let flown = self
+            .preflight
+            .as_ref()
+            .filter(|verdict| verdict.sorties.len() == self.sortie_details.len());
+        let shares: Vec<String> = match flown {
+            Some(verdict) => verdict
+                .sorties
+                .iter()
+                .map(|sortie| format!("{:.0}%", 100.0 * sortie.battery_fraction))
+                .collect(),
+            None => self
+                .sortie_details
+                .iter()
+                .map(|sortie| format!("{:.0}%", sortie.battery_percent))
+                .collect(),
+        };
+        let usable = flown
+            .and_then(|verdict| verdict.checks.iter().find(|check| check.name == "battery"))
+            .filter(|check| check.limit < 1.0)
+            .map_or(String::new(), |check| {
+                format!(" (usable {:.0}%)", 100.0 * check.limit)
+            });
+        let measure = if flown.is_some() {
+            "as flown"
+        } else {
+            "as planned"
+        };
+        format!("{measure} {}{usable}", shares.join(" "))
     }
 
     /// How the heading objective reads in the CLI's table.
@@ -473,11 +513,7 @@ impl Report {
                 self.sorties,
                 self.return_length_m,
                 self.return_time_s / 60.0,
-                self.sortie_details
-                    .iter()
-                    .map(|sortie| format!("{:.0}%", sortie.battery_percent))
-                    .collect::<Vec<_>>()
-                    .join(" ")
+                self.battery_words()
             ));
         }
         text.push_str(&format!(

@@ -104,13 +104,33 @@ pub fn planning_error(scenario: &Scenario, settings: &PlanSettings, fault: Fault
                 .vehicle_file
                 .as_deref()
                 .unwrap_or(scenario.farm.source.as_path());
+            let share = scenario.vehicle.battery_reserve_percent;
+            // With a share to land with, the battery left may be what is short: name both.
+            let (what, value, usable) = if share > 0.0 {
+                (
+                    "battery_reserve_percent",
+                    crate::error::figure(share),
+                    format!(
+                        " (battery_endurance_s = {} less {}% leaves {:.0} s)",
+                        crate::error::figure(endurance_s),
+                        crate::error::figure(share),
+                        scenario.vehicle.usable_battery_s()
+                    ),
+                )
+            } else {
+                (
+                    "battery_endurance_s",
+                    crate::error::figure(endurance_s),
+                    String::new(),
+                )
+            };
             InputError::new(
                 file,
                 Fault::InvalidValue {
-                    what: "battery_endurance_s".into(),
-                    value: crate::error::figure(endurance_s),
+                    what: what.into(),
+                    value,
                     why: format!(
-                        "the route near {near} cannot be reached and flown back on one battery and one tank"
+                        "the route near {near} cannot be reached and flown back on one battery and one tank{usable}"
                     ),
                 },
             )

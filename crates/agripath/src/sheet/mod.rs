@@ -6,8 +6,9 @@
 //! point), the totals, the preflight verdict of the mission files as read back, and the map.
 //! `sheet.pdf` is the same page printed by headless Chromium ([`pdf`]), when one is found.
 //!
-//! Figures come from the plan's report (litres, flight time, battery: seed 003 Table 5's
-//! per-sortie figures), the route (which passes each sortie begins), and the mission items
+//! Figures come from the plan's report (litres: seed 003 Table 5's per-sortie figures; flight
+//! time and battery as the preflight flew each file, else as planned), the route (which passes
+//! each sortie begins), and the mission items
 //! (distance over the ground, item to item). The sprayed area of a sortie is its spray
 //! length times the swath width. For a survey vehicle (decision 0022) the sheet says survey:
 //! the camera's trigger distance and photos (survey metres / trigger distance) where a
@@ -62,6 +63,13 @@ pub fn sortie_rows(
         .map(|mission| {
             let index = mission.sortie;
             let detail = report.sortie_details.get(index);
+            // The file as the preflight flew it: what the remote will show.
+            let flown = report.preflight.as_ref().and_then(|verdict| {
+                verdict
+                    .sorties
+                    .iter()
+                    .find(|sortie| sortie.sortie == index + 1)
+            });
             let mut fields: Vec<(String, usize)> = Vec::new();
             for (visit_index, visit) in route.visits.iter().enumerate() {
                 let begun_in =
@@ -89,8 +97,14 @@ pub fn sortie_rows(
                     Some(detail) => detail.photos_estimate,
                     None => report.survey.as_ref().map(|survey| survey.photos_estimate),
                 },
-                flight_time_s: detail.map_or(report.total_time_s, |d| d.flight_time_s),
-                battery_percent: detail.map(|d| d.battery_percent),
+                flight_time_s: flown.map_or_else(
+                    || detail.map_or(report.total_time_s, |d| d.flight_time_s),
+                    |sortie| sortie.flight_time_s,
+                ),
+                battery_percent: flown
+                    .filter(|_| detail.is_some())
+                    .map(|sortie| 100.0 * sortie.battery_fraction)
+                    .or(detail.map(|d| d.battery_percent)),
                 distance_m: ground_distance_m(mission),
                 return_point: detail.and_then(|d| d.return_point),
             }
@@ -312,7 +326,7 @@ pub fn sheet_html(parts: &SheetParts) -> String {
 fn sortie_table(html: &mut String, rows: &[SortieRow], lon_lat: bool, survey: bool) {
     let _ = writeln!(
         html,
-        "<h2>Sorties</h2>\n<table>\n<tr><th>#</th><th>fields (passes begun)</th><th class=\"number\">area ha</th><th class=\"number\">{}</th><th class=\"number\">time</th><th class=\"number\">battery</th><th class=\"number\">distance km</th><th>return point</th></tr>",
+        "<h2>Sorties</h2>\n<table>\n<tr><th>#</th><th>fields (passes begun)</th><th class=\"number\">area ha</th><th class=\"number\">{}</th><th class=\"number\">time</th><th class=\"number\">battery as flown</th><th class=\"number\">distance km</th><th>return point</th></tr>",
         if survey { "photos" } else { "litres" }
     );
     // A survey's column is its photos; a sprayer's its litres.

@@ -305,7 +305,11 @@ fn skipped_and_repaired_features_are_named_not_dropped() {
 #[test]
 fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
     let folder = scratch("landing-share");
-    let careful = t16_with(&folder, "careful.toml", "battery_reserve_percent", "35");
+    let careful = t16_with(
+        &folder,
+        "careful.toml",
+        &[("battery_reserve_percent", "35")],
+    );
     let out = folder.join("out");
     let output = plan_island_fields(&careful, &out, &[]);
     assert_eq!(output.status.code(), Some(0), "{output:?}");
@@ -319,13 +323,36 @@ fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
         assert!(share <= 0.65 * 1.001, "{sortie}");
     }
     assert!(report["battery_reserve_s"].as_f64().unwrap() >= 0.35 * 600.0);
+    // Held back by the split itself, not by a re-plan after the preflight found overruns.
+    assert_eq!(report["battery_replan_s"].as_f64(), Some(0.0));
+    // A share that leaves too little to reach the far end is blamed on the share.
+    let greedy = t16_with(&folder, "greedy.toml", &[("battery_reserve_percent", "90")]);
+    let output = plan_island_fields(
+        &greedy,
+        &folder.join("none"),
+        &["--supply", "105.6216,-10.4953"],
+    );
+    assert_eq!(output.status.code(), Some(2));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("greedy.toml: battery_reserve_percent = 90 is invalid")
+            && message.contains("600 less 90% leaves 60 s"),
+        "{message}"
+    );
     let _ = std::fs::remove_dir_all(&folder);
 }
 
 #[test]
 fn a_vehicle_too_weak_for_the_farm_is_blamed_on_its_file_with_a_lon_lat_place() {
     let folder = scratch("weak");
-    let weak = t16_with(&folder, "weak.toml", "battery_endurance_s", "30.0");
+    let weak = t16_with(
+        &folder,
+        "weak.toml",
+        &[
+            ("battery_endurance_s", "30.0"),
+            ("battery_reserve_percent", "0"),
+        ],
+    );
     let output = plan_island_fields(
         &weak,
         &folder.join("out"),
@@ -342,15 +369,21 @@ fn a_vehicle_too_weak_for_the_farm_is_blamed_on_its_file_with_a_lon_lat_place() 
     let _ = std::fs::remove_dir_all(&folder);
 }
 
-/// The DJI T16-class example vehicle with `key = value` in place of its own line, written
-/// to `folder/name`.
-fn t16_with(folder: &Path, name: &str, key: &str, value: &str) -> PathBuf {
+/// The DJI T16-class example vehicle with each `(key, value)` in place of its own line,
+/// written to `folder/name`.
+fn t16_with(folder: &Path, name: &str, figures: &[(&str, &str)]) -> PathBuf {
     let vehicle = std::fs::read_to_string(data("vehicles/dji_t16.toml")).unwrap();
-    let stated = format!("{key} = {value}");
+    let stated: Vec<String> = figures
+        .iter()
+        .map(|(key, value)| format!("{key} = {value}"))
+        .collect();
     let vehicle: Vec<&str> = vehicle
         .lines()
-        .filter(|line| line.split('=').next().map(str::trim) != Some(key))
-        .chain([stated.as_str()])
+        .filter(|line| {
+            let key = line.split('=').next().map(str::trim);
+            !figures.iter().any(|(figure, _)| key == Some(figure))
+        })
+        .chain(stated.iter().map(String::as_str))
         .collect();
     let path = folder.join(name);
     std::fs::write(&path, vehicle.join("\n")).unwrap();

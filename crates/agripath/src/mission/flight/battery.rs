@@ -61,18 +61,15 @@ pub fn sortie_model_over(
     let points: Vec<GroundPoint> = points.into_iter().collect();
     // Each point's leg sampled every metre as the writer samples it: thousands of terrain
     // queries per point, so the points are shared among the machine's cores.
-    let extras = crate::parallel::map_in_order(&points, |point| {
+    let extras = crate::parallel::try_map_in_order(&points, |_, point| {
         let highest = highest_ground(terrain, (supply.x, supply.y), (point.x, point.y))?
             .max(supply.ground_m)
             .max(point.ground_m);
         let extra_m = 2.0 * highest - supply.ground_m - point.ground_m;
         let charged_m = (point.ground_m - supply.ground_m).abs();
         Ok::<f64, Fault>(extra_m / vehicle.climb_speed_mps - charged_m / vehicle.transit_speed_mps)
-    });
-    let mut worst_s: f64 = 0.0;
-    for extra in extras {
-        worst_s = worst_s.max(extra?);
-    }
+    })?;
+    let worst_s = extras.into_iter().fold(0.0, f64::max);
     model.battery_reserve_s += (2.0 * worst_s).max(0.0);
     Ok(model)
 }
