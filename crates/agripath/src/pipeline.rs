@@ -208,7 +208,19 @@ fn choose_supply(
         settings.sorties.planner.is_some(),
         &ground,
     );
-    let auto = crate::supply::choose_auto(&scenario.farm, &work_route, &evaluator, listed)?;
+    let auto = crate::supply::choose_auto(&scenario.farm, &work_route, &evaluator, listed)
+        .map_err(|fault| match fault {
+            // No point serves the route: a share of the battery kept for landing may be why.
+            Fault::Structure(why) if vehicle.battery_reserve_percent > 0.0 => {
+                Fault::Structure(format!(
+                    "{why} (the vehicle lands with {}% of its battery, battery_reserve_percent: {:.0} s of {} s usable)",
+                    crate::error::figure(vehicle.battery_reserve_percent),
+                    vehicle.usable_battery_s(),
+                    crate::error::figure(vehicle.battery_endurance_s)
+                ))
+            }
+            other => other,
+        })?;
     let best = auto.best().point;
     Ok(SupplyPlan {
         choice: Some(SupplyChoice {

@@ -130,7 +130,8 @@ impl SortieModel {
     /// The model of `vehicle` with supply point `supply`; `return_climb_m` is 2h when return
     /// legs climb to the safe height, else 0. Seed 003's model as written: no battery reserve
     /// (not even the vehicle's `battery_reserve_percent`); missions to fly are planned with
-    /// [`crate::mission::flight::battery::sortie_model`], which adds every reserve.
+    /// the mission writer's `sortie_model` (`mission/flight/battery.rs`), which adds every
+    /// reserve.
     pub fn new(vehicle: &Vehicle, supply: RoutePoint, return_climb_m: f64) -> Self {
         Self {
             supply,

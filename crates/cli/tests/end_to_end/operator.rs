@@ -339,6 +339,14 @@ fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
             && message.contains("600 less 90% leaves 60 s"),
         "{message}"
     );
+    // And with the supply point to choose, the error says what the share leaves.
+    let output = plan_island_fields(&greedy, &folder.join("none"), &[]);
+    assert_eq!(output.status.code(), Some(2));
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("battery_reserve_percent: 60 s of 600 s usable"),
+        "{message}"
+    );
     let _ = std::fs::remove_dir_all(&folder);
 }
 
