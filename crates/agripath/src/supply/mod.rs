@@ -509,6 +509,45 @@ mod tests {
         }
     }
 
+    /// A cost whose surrogate is blind beyond a metre of its point, as the split's is where
+    /// every sortie is at the battery's limit.
+    struct Blind(Coord<f64>);
+
+    impl SupplyCost for Blind {
+        fn cost_s(&self, point: Coord<f64>) -> f64 {
+            (point.x - self.0.x).hypot(point.y - self.0.y)
+        }
+
+        fn cost_and_surrogate(&self, around: Coord<f64>) -> (f64, Surrogate<'_>) {
+            let cost = self.cost_s(around);
+            let near = move |point: Coord<f64>| {
+                if (point.x - around.x).hypot(point.y - around.y) <= 1.0 {
+                    cost
+                } else {
+                    f64::INFINITY
+                }
+            };
+            (cost, Box::new(near))
+        }
+    }
+
+    #[test]
+    fn a_blind_surrogate_still_finds_a_place_on_the_far_side() {
+        // The best place is west of the field, far from every reference; the anchors'
+        // surrogates see nothing beyond a metre, so only the spread anchors can find it
+        // (a 30 L tank on the Christmas Island fields found no place before them).
+        let farm = farm_of(vec![Field::new(
+            "F",
+            Polygon::new(rectangle(0.0, 0.0, 100.0, 100.0), vec![]),
+        )]);
+        let work_route = free_route(&farm);
+        let target = Coord { x: -40.0, y: 50.0 };
+        let choice = choose_auto(&farm, &work_route, &Blind(target), 0).unwrap();
+        let best = choice.best();
+        assert!(best.point.x < 0.0, "{best:?}");
+        assert!(best.cost_s < 60.0, "{best:?}");
+    }
+
     #[test]
     fn any_function_of_the_point_is_an_evaluator() {
         // A cost that only wants to be near (20, 50), inside the field: the nearest place a

@@ -9,7 +9,12 @@
 //!    settled onto a place a vehicle can stand: the screen is then tight near the centre,
 //!    the route's ends and every field.
 //! 2. **Screen.** Every candidate P is scored by S(P) = min over the anchors A of S_A(P), in
-//!    O(anchors × sorties).
+//!    O(anchors × sorties). When S is infinite at more than half the candidates (the
+//!    anchors' sorties, at the battery's limit, fly from nowhere else as they are), the
+//!    settled references and [`FALLBACK_ANCHORS`] candidates spread over the list are
+//!    anchors too, scored by C, and the screen is made again. Until 2026-12-06 a 30 L tank on
+//!    the Christmas Island fields found no supply point at all (S infinite everywhere), and
+//!    the T16's 16 L found one 14 % dearer than a place on the other side of the hole.
 //! 3. **Starts.** The references settled onto places a vehicle can stand, the fields'
 //!    anchors, each field's best screened candidate among those nearest to it (so that every
 //!    field's side is tried), then the best screened candidates; each at least
@@ -49,6 +54,9 @@ pub const MIN_STEP_M: f64 = 1.0;
 pub const ROUNDS: usize = 3;
 /// Refined points closer than this are one place, metres.
 pub const SAME_PLACE_M: f64 = 5.0;
+/// Candidates scored by the evaluator itself when the anchors' surrogates are infinite at
+/// most candidates (the fallback of step 2).
+pub const FALLBACK_ANCHORS: usize = 8;
 /// Moves of one pattern search at most (a bound on the work, never reached on real farms).
 const MAX_MOVES: usize = 400;
 
@@ -246,16 +254,39 @@ pub fn search(
         .filter_map(|&point| standing.settle(point))
         .map(|point| scored.score(point))
         .collect();
-    let screen = scored.screen();
+    let mut screen = scored.screen();
+    let screened_by = |screen: &dyn Fn(Coord<f64>) -> f64| -> Vec<ScoredPoint> {
+        candidates
+            .iter()
+            .map(|&point| ScoredPoint {
+                point,
+                cost_s: screen(point),
+            })
+            .filter(|scored| scored.cost_s.is_finite())
+            .collect()
+    };
+    let mut screened = screened_by(&screen);
+    if 2 * screened.len() < candidates.len() {
+        // The anchors' sorties fly from few candidates as they are (sorties at the battery's
+        // limit, anchors inside the fields), so the screen is blind over most of the farm:
+        // anchor at places a vehicle can stand too, the settled references and candidates
+        // spread over the list, scored by C itself.
+        let stride = candidates.len().div_ceil(FALLBACK_ANCHORS).max(1);
+        let places: Vec<Coord<f64>> = references
+            .iter()
+            .filter_map(|&reference| standing.settle(reference))
+            .chain(candidates.iter().step_by(stride).copied())
+            .collect();
+        for place in places {
+            scored.score(place);
+        }
+        screen = scored.screen();
+        screened = screened_by(&screen);
+    }
     let at = |point: Coord<f64>| ScoredPoint {
         point,
         cost_s: screen(point),
     };
-    let mut screened: Vec<ScoredPoint> = candidates
-        .iter()
-        .map(|&point| at(point))
-        .filter(|scored| scored.cost_s.is_finite())
-        .collect();
     screened.sort_by(by_cost_then_place);
     let mut per_field: Vec<Option<ScoredPoint>> = vec![None; standing.field_count()];
     for candidate in &screened {
