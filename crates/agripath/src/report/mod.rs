@@ -145,6 +145,10 @@ pub struct Report {
     pub altitude_reference: crate::mission::flight::AltitudeReference,
     /// …and what that assumes about the ground.
     pub altitude_assumption: String,
+    /// Why the plan's terrain may not be the ground it will fly over (`null` when it is a DEM,
+    /// or a farm in local metres, the papers' flat ground): printed as a `warning:` line.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub terrain_warning: Option<String>,
     /// What the mission files were asked for (altitude reference, sprayer, terrain tolerance,
     /// origin of a local frame, fence margin): what `agripath check` holds them to.
     pub mission: crate::mission::flight::MissionSettings,
@@ -188,6 +192,18 @@ pub struct SortieReport {
     pub battery_percent: f64,
     /// Where it ends with a return (`null` for the last), in the input's coordinates.
     pub return_point: Option<[f64; 3]>,
+}
+
+/// The warning for a farm on the globe planned over flat ground: the preflight flew the
+/// missions over that flat ground, not over the hills the fields may lie on.
+fn terrain_warning(scenario: &Scenario) -> Option<String> {
+    let on_the_globe = scenario.farm.coordinate_system != crate::model::CoordinateSystem::Local;
+    match scenario.terrain_spec {
+        crate::terrain::TerrainSpec::Flat { height_m } if on_the_globe => Some(format!(
+            "no terrain model: the missions were planned and checked over flat ground at {height_m} m; over real slopes they may fly into the ground or too high to spray (give --terrain DEM)"
+        )),
+        _ => None,
+    }
 }
 
 /// Flight time of the transfers: legs inside a field at turn speed; climbing legs at transit
@@ -302,6 +318,7 @@ impl Report {
         Self {
             altitude_reference: settings.mission.altitude,
             altitude_assumption: settings.mission.altitude.assumption(&scenario.terrain_spec),
+            terrain_warning: terrain_warning(scenario),
             preflight: None,
             mission: settings.mission,
             scenario: scenario.name.clone(),
@@ -508,7 +525,7 @@ impl Report {
         }
         if let Some(planner) = self.sortie_planner {
             text.push_str(&format!(
-                "sorties ({}): {}, returns {:.1} m round trip, {:.1} min at the supply point and flying to it; battery per sortie {}\n",
+                "sorties ({}): {}, returns {:.1} m round trip, {:.1} min at the supply point and flying to it; battery used per sortie {}\n",
                 planner,
                 self.sorties,
                 self.return_length_m,
@@ -536,6 +553,9 @@ impl Report {
             ));
         }
         text.push_str(&format!("altitudes: {}\n", self.altitude_assumption));
+        if let Some(warning) = &self.terrain_warning {
+            text.push_str(&format!("warning: {warning}\n"));
+        }
         if let Some(verdict) = &self.preflight {
             text.push_str(&verdict.summary());
             text.push('\n');

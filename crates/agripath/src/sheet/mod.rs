@@ -326,7 +326,7 @@ pub fn sheet_html(parts: &SheetParts) -> String {
 fn sortie_table(html: &mut String, rows: &[SortieRow], lon_lat: bool, survey: bool) {
     let _ = writeln!(
         html,
-        "<h2>Sorties</h2>\n<table>\n<tr><th>#</th><th>fields (passes begun)</th><th class=\"number\">area ha</th><th class=\"number\">{}</th><th class=\"number\">time</th><th class=\"number\">battery as flown</th><th class=\"number\">distance km</th><th>return point</th></tr>",
+        "<h2>Sorties</h2>\n<table>\n<tr><th>#</th><th>fields (passes begun)</th><th class=\"number\">area ha</th><th class=\"number\">{}</th><th class=\"number\">time</th><th class=\"number\">battery used as flown</th><th class=\"number\">distance km</th><th>return point</th></tr>",
         if survey { "photos" } else { "litres" }
     );
     // A survey's column is its photos; a sprayer's its litres.

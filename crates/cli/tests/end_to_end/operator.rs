@@ -313,6 +313,13 @@ fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
     let out = folder.join("out");
     let output = plan_island_fields(&careful, &out, &[]);
     assert_eq!(output.status.code(), Some(0), "{output:?}");
+    // Lon/lat fields with no DEM: the summary says the check was over flat ground.
+    let printed = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        printed.contains("warning: no terrain model: the missions were planned and checked over flat ground at 0 m"),
+        "{printed}"
+    );
+    assert!(printed.contains("(usable 65%)"), "{printed}");
     let report = report(&out);
     assert_eq!(report["preflight"]["safe"], true);
     // The files, flown, leave 35 % of the 600 s battery: the preflight's own figures.
@@ -514,6 +521,8 @@ fn a_survey_vehicle_triggers_its_camera_on_each_swath_and_has_no_tank() {
         out.to_str().unwrap(),
     ]));
     assert!(printed.contains("survey: camera every 12 m"), "{printed}");
+    // Over its DEM, no flat-ground warning.
+    assert!(!printed.contains("no terrain model"), "{printed}");
     // The summary speaks of surveying, not spraying.
     assert!(
         printed.contains("survey m") && printed.contains("total: survey "),
