@@ -128,9 +128,16 @@ pub enum Fault {
     /// The file is not a GeoTIFF agripath can read; the reason.
     #[error("not a readable GeoTIFF: {0}")]
     Tiff(String),
-    /// The file's extension (lower case) chooses no reader.
-    #[error("unsupported file type '{0}' (expected .geojson, .json, .kml or .kmz for fields; .tif, .tiff, .asc, .xyz or .csv for terrain)")]
-    UnknownExtension(String),
+    /// The file's extension (lower case) chooses no reader for what the file was given as.
+    #[error("unsupported file type '{extension}' for {role} (expected {expected})")]
+    UnknownExtension {
+        /// The extension, lower case.
+        extension: String,
+        /// What the file was given as: "fields" or "terrain".
+        role: &'static str,
+        /// The extensions read for that role, in words.
+        expected: &'static str,
+    },
     /// The file parses but its structure is not what the format requires.
     #[error("{0}")]
     Structure(String),

@@ -748,7 +748,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             fields("fields.shp"),
             bad("fields.shp"),
-            "unsupported file type 'shp'",
+            "unsupported file type 'shp' for fields (expected .geojson",
         ),
         (
             fields("does_not_exist.geojson"),

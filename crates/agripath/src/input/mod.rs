@@ -35,7 +35,11 @@ pub fn read_farm(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputErr
         "kmz" => kml::read_kmz(path, choice),
         other => Err(InputError::new(
             path,
-            Fault::UnknownExtension(other.to_string()),
+            Fault::UnknownExtension {
+                extension: other.to_string(),
+                role: "fields",
+                expected: ".geojson, .json, .kml or .kmz",
+            },
         )),
     }
 }

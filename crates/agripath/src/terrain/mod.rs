@@ -171,7 +171,11 @@ pub fn load_grid(path: &Path, cell_m: Option<f64>) -> Result<Grid, InputError> {
         "xyz" | "csv" | "txt" => xyz::read(path, cell_m),
         other => Err(InputError::new(
             path,
-            Fault::UnknownExtension(other.to_string()),
+            Fault::UnknownExtension {
+                extension: other.to_string(),
+                role: "terrain",
+                expected: ".tif, .tiff, .asc, .xyz, .csv or .txt",
+            },
         )),
     }?;
     grid.check_plausible()
