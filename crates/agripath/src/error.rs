@@ -79,9 +79,56 @@ impl InputError {
     }
 }
 
-/// The TOML parser's message in one line (it may span several).
+/// The TOML parser's message in one line (it may span several). A misspelt key, which serde
+/// reports as "unknown field `x`, expected one of …", is said in the operator's words: the
+/// key, the nearest valid one, and the valid keys.
 pub(crate) fn toml_message(error: &toml::de::Error) -> String {
-    error.message().trim().replace('\n', " ")
+    let message = error.message().trim().replace('\n', " ");
+    unknown_key_message(&message).unwrap_or(format!("not valid TOML: {message}"))
+}
+
+/// "unknown key `tanc_l` (did you mean `tank_l`?); the keys are name, …" from serde's
+/// "unknown field `tanc_l`, expected one of `name`, …" (or "expected `name`" for one key).
+fn unknown_key_message(message: &str) -> Option<String> {
+    let rest = message.strip_prefix("unknown field `")?;
+    let (key, expected) = rest.split_once('`')?;
+    let keys: Vec<&str> = expected
+        .split('`')
+        .skip(1)
+        .step_by(2)
+        .filter(|name| !name.is_empty())
+        .collect();
+    if keys.is_empty() {
+        return None;
+    }
+    let nearest = keys
+        .iter()
+        .map(|name| (edit_distance(key, name), *name))
+        .min()
+        .filter(|(distance, _)| *distance <= key.chars().count().div_ceil(3).max(2))
+        .map(|(_, name)| format!(" (did you mean `{name}`?)"))
+        .unwrap_or_default();
+    Some(format!(
+        "unknown key `{key}`{nearest}; the keys are {}",
+        keys.join(", ")
+    ))
+}
+
+/// Levenshtein distance between two words, in characters.
+fn edit_distance(first: &str, second: &str) -> usize {
+    let second: Vec<char> = second.chars().collect();
+    let mut previous: Vec<usize> = (0..=second.len()).collect();
+    for (row, letter) in first.chars().enumerate() {
+        let mut current = vec![row + 1; second.len() + 1];
+        for (column, other) in second.iter().enumerate() {
+            let replace = previous[column] + usize::from(letter != *other);
+            current[column + 1] = replace
+                .min(previous[column + 1] + 1)
+                .min(current[column] + 1);
+        }
+        previous = current;
+    }
+    previous[second.len()]
 }
 
 /// Line and column, both counted from 1 (columns in characters), of byte `offset` of
@@ -114,9 +161,9 @@ pub enum Fault {
     #[error("not valid JSON: {0}")]
     Json(String),
     /// The text is not TOML (or a value has the wrong type); the parser's message in one line.
-    #[error("not valid TOML: {message}")]
+    #[error("{message}")]
     Toml {
-        /// What the parser says.
+        /// What the parser says, in one line: "not valid TOML: …", or "unknown key …".
         message: String,
         /// Line and column in the file, both from 1 (columns in characters), when the parser
         /// gives a place: [`InputError`] prints them `file:line:column`.
@@ -272,5 +319,33 @@ mod tests {
         // Columns count characters, not bytes.
         assert_eq!(line_column("é = 1\nab", 8), (2, 2));
         assert_eq!(line_column("é", 1), (1, 1));
+    }
+
+    #[test]
+    fn a_misspelt_key_is_named_with_the_nearest_valid_one() {
+        #[derive(Debug, serde::Deserialize)]
+        #[serde(deny_unknown_fields)]
+        #[allow(dead_code)]
+        struct Tank {
+            tank_l: f64,
+            swath_width_m: f64,
+        }
+        let text = "swath_width_m = 3\ntanc_l = 16\n";
+        let error = toml::from_str::<Tank>(text).unwrap_err();
+        let message = InputError::toml("vehicle.toml", &error, text).to_string();
+        assert_eq!(
+            message,
+            "vehicle.toml:2:1: unknown key `tanc_l` (did you mean `tank_l`?); the keys are tank_l, swath_width_m"
+        );
+        // Nothing near: no guess.
+        let text = "colour = 3\n";
+        let error = toml::from_str::<Tank>(text).unwrap_err();
+        let message = InputError::toml("vehicle.toml", &error, text).to_string();
+        assert!(
+            message.ends_with(": unknown key `colour`; the keys are tank_l, swath_width_m"),
+            "{message}"
+        );
+        assert_eq!(edit_distance("kitten", "sitting"), 3);
+        assert_eq!(edit_distance("", "ab"), 2);
     }
 }

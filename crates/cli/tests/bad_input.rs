@@ -838,7 +838,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             vehicle("vehicle_unknown_key.toml"),
             bad("vehicle_unknown_key.toml"),
-            "vehicle_unknown_key.toml:1:1: not valid TOML: unknown field `swath_widht_m`",
+            "vehicle_unknown_key.toml:1:1: unknown key `swath_widht_m` (did you mean `swath_width_m`?); the keys are name, swath_width_m,",
         ),
         (
             vehicle("vehicle_nan.toml"),
@@ -868,7 +868,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             scenario("scenario_unknown_key.toml"),
             bad("scenario_unknown_key.toml"),
-            "unknown field `speed`",
+            "unknown key `speed`",
         ),
         (
             scenario("scenario_bad_terrain.toml"),

@@ -199,9 +199,17 @@ pub struct SortieReport {
 fn terrain_warning(scenario: &Scenario) -> Option<String> {
     let on_the_globe = scenario.farm.coordinate_system != crate::model::CoordinateSystem::Local;
     match scenario.terrain_spec {
-        crate::terrain::TerrainSpec::Flat { height_m } if on_the_globe => Some(format!(
-            "no terrain model: the missions were planned and checked over flat ground at {height_m} m; over real slopes they may fly into the ground or too high to spray (give --terrain DEM)"
-        )),
+        crate::terrain::TerrainSpec::Flat { height_m } if on_the_globe => {
+            // A flat ground the operator typed is a choice, not an omission: say which.
+            let ground = if scenario.terrain_stated {
+                format!("flat ground at {height_m} m, as given")
+            } else {
+                format!("no terrain model: flat ground at {height_m} m assumed")
+            };
+            Some(format!(
+                "{ground}: the missions were planned and checked over it; over real slopes they may fly into the ground or too high to spray (give --terrain DEM)"
+            ))
+        }
         _ => None,
     }
 }

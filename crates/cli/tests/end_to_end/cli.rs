@@ -1352,6 +1352,26 @@ fn altitudes_are_relative_without_a_dem_and_sea_level_over_one() {
     );
     assert_eq!(refused.status.code(), Some(2));
     assert!(!folder.join("x").exists());
+    // A stated flat ground gives them, and the warning says the flat ground was given.
+    let stated = stdout(&agripath(
+        &[
+            "plan",
+            "--fields",
+            fields,
+            "--terrain",
+            "flat:150",
+            "--altitude",
+            "sea-level",
+            "--out",
+            "stated",
+        ],
+        &folder,
+    ));
+    assert!(
+        stated.contains("warning: flat ground at 150 m, as given: the missions were planned"),
+        "{stated}"
+    );
+    assert!(!stated.contains("no terrain model"), "{stated}");
     std::fs::remove_dir_all(&folder).unwrap();
 }
 

@@ -316,7 +316,7 @@ fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
     // Lon/lat fields with no DEM: the summary says the check was over flat ground.
     let printed = String::from_utf8_lossy(&output.stdout);
     assert!(
-        printed.contains("warning: no terrain model: the missions were planned and checked over flat ground at 0 m"),
+        printed.contains("warning: no terrain model: flat ground at 0 m assumed: the missions were planned and checked over it"),
         "{printed}"
     );
     assert!(printed.contains("(usable 65%)"), "{printed}");
