@@ -211,10 +211,15 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
     };
     let geojson = geojson_of(&scenario.farm);
     let title = format!(
-        "{}{} — {} fields, swath {} m, {:.0} m {}, {:.2}% covered as flown",
+        "{}{} — {} field{}, swath {} m, {:.0} m {}, {:.2}% covered as flown",
         if verdict.safe { "" } else { "UNSAFE: " },
         scenario.name,
         scenario.farm.fields.len(),
+        if scenario.farm.fields.len() == 1 {
+            ""
+        } else {
+            "s"
+        },
         vehicle.swath_width_m,
         mission.report.spray_length_m + mission.report.edge_length_m,
         crate::model::Vehicle::work_words(vehicle.is_survey())[2],

@@ -266,29 +266,6 @@ pub fn plan_svg(
         }
         let _ = writeln!(svg, "</g></g>");
     }
-    // The sortie numbers, at the first pass each sortie begins, over every line.
-    if sortie_count > 1 {
-        let _ = writeln!(
-            svg,
-            r##"<g id="sortie-numbers" font-size="11" font-weight="bold" text-anchor="middle">"##
-        );
-        for sortie in 0..sortie_count {
-            let Some(first) = (0..route.visits.len()).find(|&index| sortie_of(index) == sortie)
-            else {
-                continue;
-            };
-            let point = route.visits[first].points[0];
-            let (x, y) = (canvas.x(point.x), canvas.y(point.y));
-            let _ = writeln!(
-                svg,
-                r##"<circle cx="{x:.2}" cy="{y:.2}" r="8" fill="white" stroke="{}" stroke-width="2"/><text x="{x:.2}" y="{:.2}" fill="#111">{}</text>"##,
-                sortie_colour(sortie, sortie_count),
-                y + 4.0,
-                sortie + 1
-            );
-        }
-        let _ = writeln!(svg, "</g>");
-    }
     let _ = writeln!(
         svg,
         r##"<g id="transfers" fill="none" stroke-width="1.1" stroke-dasharray="4 3">"##
@@ -334,6 +311,42 @@ pub fn plan_svg(
             y = canvas.y(supply.y)
         );
     }
+    // The sortie numbers, at the first pass each sortie begins, over every line and return.
+    if sortie_count > 1 {
+        let _ = writeln!(
+            svg,
+            r##"<g id="sortie-numbers" font-size="11" font-weight="bold" text-anchor="middle">"##
+        );
+        // Each sortie's passes in pixels, in flying order.
+        let sortie_passes: Vec<(usize, Vec<Vec<(f64, f64)>>)> = (0..sortie_count)
+            .map(|sortie| {
+                let passes = (0..route.visits.len())
+                    .filter(|&index| sortie_of(index) == sortie)
+                    .map(|index| {
+                        route.visits[index]
+                            .points
+                            .iter()
+                            .map(|point| (canvas.x(point.x), canvas.y(point.y)))
+                            .collect()
+                    })
+                    .collect();
+                (sortie, passes)
+            })
+            .filter(|(_, passes): &(usize, Vec<Vec<(f64, f64)>>)| !passes.is_empty())
+            .collect();
+        let places = label_places(sortie_passes.iter().map(|(_, passes)| passes.as_slice()));
+        for ((sortie, _), (x, y)) in sortie_passes.iter().zip(places) {
+            let sortie = *sortie;
+            let _ = writeln!(
+                svg,
+                r##"<circle cx="{x:.2}" cy="{y:.2}" r="8" fill="white" stroke="{}" stroke-width="2"/><text x="{x:.2}" y="{:.2}" fill="#111">{}</text>"##,
+                sortie_colour(sortie, sortie_count),
+                y + 4.0,
+                sortie + 1
+            );
+        }
+        let _ = writeln!(svg, "</g>");
+    }
     let _ = writeln!(
         svg,
         r##"<g id="labels" font-size="13" fill="#111" text-anchor="middle">"##
@@ -375,43 +388,60 @@ pub fn plan_svg(
         PAD_PX + 66.0 + sortie_count.min(LEGEND_PER_ROW) as f64 * 18.0,
         base - 27.0,
     );
-    let items = [
+    // The bottom row: each entry's swatch (a dashed line or a filled box), then its words;
+    // entries sit one after another by the length of their words, so the row stays clear
+    // of the scale bar.
+    let mut swatches: Vec<(String, &str)> = [
         ("#ef6c00", "transfer", "4 3"),
         ("#d32f2f", "transfer climbing h", "4 3"),
         ("#6a1b9a", "return to supply", "7 4"),
-    ];
-    for (index, (colour, label, dash)) in items.iter().enumerate() {
-        let x = PAD_PX + index as f64 * 170.0;
-        let _ = writeln!(
-            svg,
-            r##"<line x1="{x:.0}" y1="{base:.0}" x2="{:.0}" y2="{base:.0}" stroke="{colour}" stroke-width="3" stroke-dasharray="{dash}"/><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">{label}</text>"##,
-            x + 28.0,
-            x + 34.0,
-            base + 4.0
-        );
-    }
+    ]
+    .into_iter()
+    .map(|(colour, label, dash)| {
+        (
+            format!(
+                r##"<line x1="0" y1="0" x2="28" y2="0" stroke="{colour}" stroke-width="3" stroke-dasharray="{dash}"/>"##
+            ),
+            label,
+        )
+    })
+    .collect();
+    let boxed = |style: &str| format!(r##"<rect x="0" y="-4.5" width="28" height="9" {style}/>"##);
     if any_unreachable {
-        let x = PAD_PX + items.len() as f64 * 170.0;
-        let _ = writeln!(
-            svg,
-            r##"<rect x="{x:.0}" y="{:.0}" width="28" height="9" fill="{UNREACHABLE_COLOUR}" fill-opacity="0.8"/><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">no swath reaches</text>"##,
-            base - 4.5,
-            x + 34.0,
-            base + 4.0
-        );
+        swatches.push((
+            boxed(&format!(
+                r##"fill="{UNREACHABLE_COLOUR}" fill-opacity="0.8""##
+            )),
+            "no swath reaches",
+        ));
     }
     if any_missed {
-        let x = PAD_PX + (items.len() + usize::from(any_unreachable)) as f64 * 170.0;
-        let _ = writeln!(
-            svg,
-            r##"<rect x="{x:.0}" y="{:.0}" width="28" height="9" fill="{MISSED_COLOUR}"/><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">missed as flown</text>"##,
-            base - 4.5,
-            x + 34.0,
-            base + 4.0
-        );
+        swatches.push((
+            boxed(&format!(r##"fill="{MISSED_COLOUR}""##)),
+            "missed as flown",
+        ));
+    }
+    if !farm.obstacles.is_empty() {
+        swatches.push((
+            boxed(r##"fill="#c62828" fill-opacity="0.35" stroke="#8e0000" stroke-width="1""##),
+            "obstacle, not sprayed",
+        ));
     }
     let bar_m = scale_bar_m(span_x);
     let bar_x = WIDTH_PX - PAD_PX - bar_m * scale - 60.0;
+    // An entry that would run into the scale bar starts a second row below the first.
+    let (mut x, mut y) = (PAD_PX, base);
+    for (swatch, label) in swatches {
+        let width = 34.0 + LEGEND_CHARACTER_PX * label.chars().count() as f64;
+        if x + width > bar_x - LEGEND_GAP_PX && x > PAD_PX {
+            (x, y) = (PAD_PX, base + 20.0);
+        }
+        let _ = writeln!(
+            svg,
+            r##"<g transform="translate({x:.0},{y:.0})">{swatch}<text x="34" y="4" font-size="12" fill="#222">{label}</text></g>"##
+        );
+        x += width + LEGEND_GAP_PX;
+    }
     let _ = writeln!(
         svg,
         r##"<g id="scale"><rect x="{bar_x:.2}" y="{:.0}" width="{:.2}" height="5" fill="#222"/><text x="{:.2}" y="{:.0}" font-size="12" text-anchor="middle" fill="#222">{bar_m} m</text></g>"##,
@@ -429,4 +459,113 @@ pub fn plan_svg(
     );
     svg.push_str("</svg>\n");
     svg
+}
+
+/// A sortie number's diameter on the map, px, and the step by which a number slides along
+/// its pass when another number is in the way.
+const LABEL_PX: f64 = 18.0;
+
+/// The legend's words at 12 px: a generous mean width of a character, px, and the gap
+/// after each entry's words.
+const LEGEND_CHARACTER_PX: f64 = 6.8;
+const LEGEND_GAP_PX: f64 = 22.0;
+
+/// Where each sortie's number goes, given each sortie's passes in pixels in flying order: at
+/// the start of its first pass, or, when a number already placed is closer than a label, at
+/// the first point further along its passes that is clear (sorties that begin along the same
+/// headland would otherwise stack their numbers into one blot). When no point is clear, the
+/// one farthest from the others.
+fn label_places<'a>(sorties: impl Iterator<Item = &'a [Vec<(f64, f64)>]>) -> Vec<(f64, f64)> {
+    let mut placed: Vec<(f64, f64)> = Vec::new();
+    for passes in sorties {
+        let clearance = |point: (f64, f64)| {
+            placed
+                .iter()
+                .map(|other| (point.0 - other.0).hypot(point.1 - other.1))
+                .fold(f64::INFINITY, f64::min)
+        };
+        let candidates: Vec<(f64, f64)> = passes
+            .iter()
+            .flat_map(|pass| points_along(pass, LABEL_PX))
+            .collect();
+        let place = candidates
+            .iter()
+            .copied()
+            .find(|&point| clearance(point) >= LABEL_PX)
+            .or_else(|| {
+                candidates
+                    .iter()
+                    .copied()
+                    .max_by(|a, b| clearance(*a).total_cmp(&clearance(*b)))
+            })
+            .unwrap_or((0.0, 0.0));
+        placed.push(place);
+    }
+    placed
+}
+
+/// Points every `step` along a polyline from its start (the start itself first; the
+/// polyline's first point alone when it has no length).
+fn points_along(line: &[(f64, f64)], step: f64) -> Vec<(f64, f64)> {
+    let Some(&start) = line.first() else {
+        return Vec::new();
+    };
+    let mut points = vec![start];
+    let mut to_next = step;
+    for pair in line.windows(2) {
+        let (from, to) = (pair[0], pair[1]);
+        let length = (to.0 - from.0).hypot(to.1 - from.1);
+        let mut along = to_next;
+        while along <= length {
+            let share = along / length;
+            points.push((
+                from.0 + share * (to.0 - from.0),
+                from.1 + share * (to.1 - from.1),
+            ));
+            along += step;
+        }
+        to_next = along - length;
+    }
+    points
+}
+
+#[cfg(test)]
+mod label_tests {
+    use super::*;
+
+    #[test]
+    fn numbers_that_would_stack_slide_along_their_passes() {
+        // Three sorties starting 5 px apart on the same edge, flying east 100 px.
+        let sorties: Vec<Vec<Vec<(f64, f64)>>> = (0..3)
+            .map(|row| vec![vec![(0.0, 5.0 * row as f64), (100.0, 5.0 * row as f64)]])
+            .collect();
+        let places = label_places(sorties.iter().map(Vec::as_slice));
+        assert_eq!(places[0], (0.0, 0.0));
+        for (index, place) in places.iter().enumerate() {
+            for other in &places[..index] {
+                assert!((place.0 - other.0).hypot(place.1 - other.1) >= LABEL_PX);
+            }
+        }
+        // A pass shorter than a label: it stays at its start, the best it can do.
+        let short = [
+            vec![vec![(0.0, 0.0), (5.0, 0.0)]],
+            vec![vec![(1.0, 0.0), (4.0, 0.0)]],
+        ];
+        let places = label_places(short.iter().map(Vec::as_slice));
+        assert_eq!(places[1], (1.0, 0.0));
+        // A short first pass: the number moves on to the sortie's next pass.
+        let sorties = [
+            vec![vec![(0.0, 0.0), (0.0, 4.0)]],
+            vec![
+                vec![(0.0, 2.0), (0.0, 6.0)],
+                vec![(0.0, 30.0), (80.0, 30.0)],
+            ],
+        ];
+        let places = label_places(sorties.iter().map(Vec::as_slice));
+        assert_eq!(places[1], (0.0, 30.0));
+        assert_eq!(
+            points_along(&[(0.0, 0.0), (10.0, 0.0), (10.0, 30.0)], 18.0),
+            vec![(0.0, 0.0), (10.0, 8.0), (10.0, 26.0)]
+        );
+    }
 }

@@ -19,8 +19,11 @@ use crate::model::Farm;
 use crate::terrain::hillshade::Shaded;
 use crate::terrain::Terrain;
 
-/// Field boundaries and their holes: a blue no height tint takes.
+/// Field boundaries: a blue no height tint takes.
 pub const FIELD_COLOUR: [u8; 3] = [21, 101, 192];
+/// The edges of holes in fields (ground inside a boundary that is not sprayed): a purple no
+/// height tint takes, so a hole does not read as a second field.
+pub const HOLE_COLOUR: [u8; 3] = [123, 31, 162];
 /// No-spray zones.
 pub const OBSTACLE_COLOUR: [u8; 3] = [198, 40, 40];
 /// The supply point's fill (inside a dark ring).
@@ -248,8 +251,9 @@ pub fn terrain_map_png(picture: &TerrainPicture) -> Vec<u8> {
         }
     };
     for field in &picture.farm.fields {
-        for line in std::iter::once(field.polygon.exterior()).chain(field.polygon.interiors()) {
-            ring(&mut canvas, line, FIELD_COLOUR);
+        ring(&mut canvas, field.polygon.exterior(), FIELD_COLOUR);
+        for hole in field.polygon.interiors() {
+            ring(&mut canvas, hole, HOLE_COLOUR);
         }
     }
     for obstacle in &picture.farm.obstacles {
@@ -266,6 +270,11 @@ pub fn terrain_map_png(picture: &TerrainPicture) -> Vec<u8> {
     let legend = Legend {
         lowest: height_label(lowest.min(highest), relief),
         highest: height_label(highest.max(lowest), relief),
+        holes: picture
+            .farm
+            .fields
+            .iter()
+            .any(|field| !field.polygon.interiors().is_empty()),
         obstacles: !picture.farm.obstacles.is_empty(),
         supply: picture.supply.is_some(),
         scale_bar_m: super::map_svg::scale_bar_m(extent.width()),
@@ -281,6 +290,7 @@ pub fn terrain_map_png(picture: &TerrainPicture) -> Vec<u8> {
 struct Legend {
     lowest: String,
     highest: String,
+    holes: bool,
     obstacles: bool,
     supply: bool,
     scale_bar_m: f64,
@@ -299,6 +309,9 @@ impl Legend {
         let bar_label = format!("{} m", self.scale_bar_m);
         let symbol = 16 * unit;
         let mut keys = vec![(FIELD_COLOUR, "field")];
+        if self.holes {
+            keys.push((HOLE_COLOUR, "hole"));
+        }
         if self.obstacles {
             keys.push((OBSTACLE_COLOUR, "obstacle"));
         }
@@ -335,7 +348,7 @@ impl Legend {
             (margin, margin),
             (width - margin - panel_width, margin),
         ];
-        let drawn = [FIELD_COLOUR, OBSTACLE_COLOUR, SUPPLY_COLOUR];
+        let drawn = [FIELD_COLOUR, HOLE_COLOUR, OBSTACLE_COLOUR, SUPPLY_COLOUR];
         // The first corner hiding fewest symbol pixels (ties keep the order above).
         let (left, top) = corners
             .into_iter()
@@ -456,7 +469,10 @@ mod tests {
         assert_eq!(ramp(-1.0), ramp(0.0));
         assert_eq!(height_tint(0.175), [148.0, 177.0, 106.0]);
         // No tint is the field blue: the outline cannot be mistaken for ground.
-        assert!((0..=100).all(|step| ramp(f64::from(step) / 100.0) != FIELD_COLOUR));
+        assert!((0..=100).all(|step| {
+            let tint = ramp(f64::from(step) / 100.0);
+            tint != FIELD_COLOUR && tint != HOLE_COLOUR
+        }));
     }
 
     #[test]
@@ -498,11 +514,11 @@ mod tests {
             }
             found
         };
-        // The boundary (1400 m long, 2 m pixels) and the hole's edge are in field blue.
+        // The boundary (1400 m long, 2 m pixels) is in field blue, the hole's edge in purple.
         let boundary = count(FIELD_COLOUR, (190.0, 190.0), (610.0, 510.0));
         assert!(boundary > 2 * 700, "{boundary} field pixels");
         assert_eq!(at(200.0, 350.0), FIELD_COLOUR, "the west edge");
-        assert_eq!(at(400.0, 300.0), FIELD_COLOUR, "the hole's south edge");
+        assert_eq!(at(400.0, 300.0), HOLE_COLOUR, "the hole's south edge");
         assert_ne!(
             at(400.0, 250.0),
             FIELD_COLOUR,

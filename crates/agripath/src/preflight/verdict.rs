@@ -144,14 +144,22 @@ impl Verdict {
             .iter()
             .map(|field| field.covered_fraction)
             .fold(f64::INFINITY, f64::min);
+        // Two different areas, both named: the reachable ground the files miss as flown (what
+        // the coverage figure counts) and the ground no swath could reach (left out of it).
+        let missed: f64 = self.fields.iter().map(|field| field.missed_m2).sum();
         let unreachable: f64 = self.fields.iter().map(|field| field.unreachable_m2).sum();
+        let missed = if missed >= 0.05 {
+            format!(", {missed:.1} m² missed as flown")
+        } else {
+            String::new()
+        };
         let unreachable = if unreachable >= 0.05 {
             format!(" ({unreachable:.1} m² of tips, corners and necks no swath reaches left out)")
         } else {
             String::new()
         };
         format!(
-            "preflight ({} altitudes, read back from {} mission file(s)): {}; least coverage {:.2}%{unreachable}, sprayed outside {:.3}%, lowest clearance {:.2} m (spray legs included)",
+            "preflight ({} altitudes, read back from {} mission file(s)): {}; least coverage {:.2}%{missed}{unreachable}, sprayed outside {:.3}%, lowest clearance {:.2} m (spray legs included)",
             self.altitude_reference.key(),
             self.sorties.len(),
             if self.safe {

@@ -41,6 +41,24 @@ fn application_rate(vehicle: &Path) -> f64 {
         .unwrap()
 }
 
+/// The centres of the sortie numbers' circles on plan.svg, px.
+fn sortie_number_centres(map: &str) -> Vec<(f64, f64)> {
+    let start = map
+        .find("<g id=\"sortie-numbers\"")
+        .expect("a sortie-numbers layer");
+    let layer = &map[start..];
+    let layer = &layer[..layer.find("</g>").unwrap()];
+    layer
+        .split("<circle cx=\"")
+        .skip(1)
+        .map(|circle| {
+            let (x, rest) = circle.split_once("\" cy=\"").unwrap();
+            let y = rest.split('"').next().unwrap();
+            (x.parse().unwrap(), y.parse().unwrap())
+        })
+        .collect()
+}
+
 /// Sortie rows of the sheet's table: `<tr>` lines whose first cell is a number.
 fn sortie_rows(sheet: &str) -> Vec<&str> {
     sheet
@@ -87,6 +105,20 @@ fn every_example_scenario_has_a_map_layer_and_a_sheet_row_per_sortie() {
             sorties,
             "{scenario:?}: map layers"
         );
+        if sorties > 1 {
+            let numbers = sortie_number_centres(&map);
+            assert_eq!(numbers.len(), sorties, "{scenario:?}: sortie numbers");
+            for (index, one) in numbers.iter().enumerate() {
+                for other in &numbers[..index] {
+                    let apart = (one.0 - other.0).hypot(one.1 - other.1);
+                    // Circles of radius 8 px: closer than 16 px they overlap.
+                    assert!(
+                        apart >= 16.0,
+                        "{scenario:?}: sortie numbers {apart:.1} px apart"
+                    );
+                }
+            }
+        }
         let plan: serde_json::Value =
             serde_json::from_slice(&std::fs::read(out.join("plan.geojson")).unwrap()).unwrap();
         let mut numbers: Vec<u64> = plan["features"]
@@ -320,6 +352,8 @@ fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
         "{printed}"
     );
     assert!(printed.contains("(usable 65%)"), "{printed}");
+    // The coverage line names the ground missed as flown, the area report.json counts.
+    assert!(printed.contains(" m² missed as flown"), "{printed}");
     let report = report(&out);
     assert_eq!(report["preflight"]["safe"], true);
     // The files, flown, leave 35 % of the 600 s battery: the preflight's own figures.
