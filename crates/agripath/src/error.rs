@@ -250,6 +250,9 @@ pub enum Fault {
         y: f64,
         /// The vehicle's endurance, seconds.
         endurance_s: f64,
+        /// When the tank is what is short: the swath metres one tank sprays, and the spray
+        /// metres of the route's step there.
+        tank: Option<(f64, f64)>,
     },
     /// The file holds no field polygon.
     #[error("no field polygons found")]

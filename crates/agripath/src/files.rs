@@ -125,7 +125,12 @@ pub fn check_start(
 /// Reads a whole text file (UTF-8).
 pub fn read_text(path: &Path) -> Result<String, InputError> {
     check_start(path, true, &[], "text")?;
-    let bytes = read_bytes(path)?;
+    let mut bytes = read_bytes(path)?;
+    // A byte-order mark, which Windows editors write before UTF-8 text, is not part of the
+    // text (JSON parsers reject it at line 1, column 1).
+    if bytes.starts_with(UTF8_BOM) {
+        bytes.drain(..UTF8_BOM.len());
+    }
     String::from_utf8(bytes).map_err(|error| {
         InputError::new(
             path,
@@ -137,6 +142,9 @@ pub fn read_text(path: &Path) -> Result<String, InputError> {
     })
 }
 
+/// The UTF-8 byte-order mark.
+const UTF8_BOM: &[u8] = b"\xEF\xBB\xBF";
+
 pub(crate) fn unreadable(error: &std::io::Error) -> Fault {
     Fault::Unreadable(reason(error))
 }
@@ -147,5 +155,20 @@ pub fn reason(error: &std::io::Error) -> String {
         std::io::ErrorKind::NotFound => "no such file".to_string(),
         std::io::ErrorKind::PermissionDenied => "permission denied".to_string(),
         _ => error.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_byte_order_mark_is_not_part_of_the_text() {
+        let path =
+            std::env::temp_dir().join(format!("agripath-bom-{}.geojson", std::process::id()));
+        std::fs::write(&path, b"\xEF\xBB\xBF{\"type\":\"FeatureCollection\"}").unwrap();
+        let text = read_text(&path).unwrap();
+        std::fs::remove_file(&path).unwrap();
+        assert_eq!(text, "{\"type\":\"FeatureCollection\"}");
     }
 }

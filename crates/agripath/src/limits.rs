@@ -54,6 +54,27 @@ pub const MAX_SCAN_LINES: usize = 200_000;
 /// A swath width, metres: a vehicle's, or a grid cell taken as one (seed 004).
 pub const SWATH_WIDTH_RANGE_M: (f64, f64) = (0.5, 200.0);
 
+/// The least height above the ground, metres, that any airborne part of a mission may fly
+/// at, whatever the spray height and terrain tolerance say: lower, a sprayer is in the crop.
+/// The preflight holds every file to it, and a terrain tolerance that would let the spray
+/// legs sink below it is refused (`--terrain-tolerance`, a checked folder's `report.json`).
+pub const MIN_GROUND_CLEARANCE_M: f64 = 0.5;
+
+/// Why a terrain tolerance cannot be flown at a spray height: not a finite number above 0,
+/// or so large that spray legs within it may sink below [`MIN_GROUND_CLEARANCE_M`].
+pub fn terrain_tolerance_fault(tolerance_m: f64, spray_height_m: f64) -> Option<String> {
+    if !(tolerance_m.is_finite() && tolerance_m > 0.0) {
+        return Some("must be a finite number above 0".into());
+    }
+    let most = spray_height_m - MIN_GROUND_CLEARANCE_M;
+    (tolerance_m > most + 1e-9).then(|| {
+        format!(
+            "at spray height {spray_height_m} m it would let the spray legs sink to {:.2} m above the ground; at most {most} m keeps {MIN_GROUND_CLEARANCE_M} m of clearance",
+            spray_height_m - tolerance_m
+        )
+    })
+}
+
 /// Plausible ranges of a vehicle's figures (`Vehicle::validate`): beyond them a value is a
 /// typo or an attack (`1e308`), not an aircraft, and planning with it would overflow or run
 /// without end.
@@ -63,7 +84,8 @@ pub const VEHICLE_RANGES: [(&str, f64, f64); 14] = [
         SWATH_WIDTH_RANGE_M.0,
         SWATH_WIDTH_RANGE_M.1,
     ),
-    ("spray_height_m", 0.0, 500.0),
+    // A spray height must leave room for a terrain tolerance above the clearance floor.
+    ("spray_height_m", 1.0, 500.0),
     ("safe_height_m", 0.0, 500.0),
     ("spray_speed_mps", 0.1, 100.0),
     ("turn_speed_mps", 0.1, 100.0),
@@ -82,3 +104,21 @@ pub const VEHICLE_RANGES: [(&str, f64, f64); 14] = [
 /// Largest application rate, litres per hectare (ultra-low-volume spraying is 1-10, ground
 /// rigs 100-400).
 pub const MAX_APPLICATION_RATE_L_PER_HA: f64 = 10_000.0;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_tolerance_that_sinks_the_spray_legs_below_the_floor_is_refused() {
+        assert_eq!(terrain_tolerance_fault(1.0, 2.0), None);
+        assert_eq!(terrain_tolerance_fault(1.5, 2.0), None);
+        let fault = terrain_tolerance_fault(5.0, 2.5).unwrap();
+        assert!(
+            fault.contains("sink to -2.50 m") && fault.contains("at most 2 m"),
+            "{fault}"
+        );
+        assert!(terrain_tolerance_fault(0.0, 2.0).is_some());
+        assert!(terrain_tolerance_fault(f64::NAN, 2.0).is_some());
+    }
+}

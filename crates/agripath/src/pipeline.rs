@@ -202,9 +202,15 @@ fn choose_supply(
         return Ok(chosen(None));
     };
     let ground = |x: f64, y: f64| scenario.terrain.height_m(x, y).ok();
+    let model = sortie_model(vehicle, first);
+    if settings.sorties.planner.is_some() {
+        // A tank too small for one step of the route: no place serves it, and the search's
+        // "no place" would blame the battery.
+        crate::sortie::step_over_tank(&work_route, model.spray_per_tank_m, model.endurance_s)?;
+    }
     let evaluator = FixedRouteSplit::new(
         &work_route,
-        sortie_model(vehicle, first),
+        model,
         settings.sorties.planner.is_some(),
         &ground,
     );

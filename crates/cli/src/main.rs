@@ -64,11 +64,11 @@ fn main() -> ExitCode {
             eprintln!("agripath: error: {message}");
             ExitCode::from(1)
         }
-        Err(Failure::Unsafe(lines)) => {
-            for line in lines {
+        Err(Failure::Unsafe(flight)) => {
+            for line in flight.lines {
                 eprintln!("agripath: unsafe: {line}");
             }
-            eprintln!("agripath: error: {}", agripath::request::UNSAFE_CLOSING);
+            eprintln!("agripath: error: {}", flight.closing);
             ExitCode::from(3)
         }
     }

@@ -493,7 +493,15 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         flag(
             &["--spray-height", "501"],
             "--spray-height",
-            "lies in 0..=500",
+            "lies in 1..=500",
+        ),
+        // A sprayer at 0 m is in the crop (the red team's case: it flew below the ground).
+        flag(&["--spray-height", "0"], "--spray-height", "lies in 1..=500"),
+        // A tolerance that would let the spray legs sink into the ground.
+        flag(
+            &["--terrain-tolerance", "5"],
+            "arguments",
+            "sink to -3.00 m above the ground; at most 1.5 m keeps 0.5 m of clearance",
         ),
         flag(&["--crs", "utm"], "arguments", "utm"),
         flag(

@@ -334,7 +334,17 @@ pub fn plan_svg(
             })
             .filter(|(_, passes): &(usize, Vec<Vec<(f64, f64)>>)| !passes.is_empty())
             .collect();
-        let places = label_places(sortie_passes.iter().map(|(_, passes)| passes.as_slice()));
+        // Clear of the supply point's disc and its word above it.
+        let supply_marks: Vec<(f64, f64)> = sorties
+            .map(|split| {
+                let (x, y) = (canvas.x(split.supply.x), canvas.y(split.supply.y));
+                vec![(x, y), (x - 14.0, y - 15.0), (x, y - 15.0), (x + 14.0, y - 15.0)]
+            })
+            .unwrap_or_default();
+        let places = label_places(
+            &supply_marks,
+            sortie_passes.iter().map(|(_, passes)| passes.as_slice()),
+        );
         for ((sortie, _), (x, y)) in sortie_passes.iter().zip(places) {
             let sortie = *sortie;
             let _ = writeln!(
@@ -473,10 +483,13 @@ const LEGEND_GAP_PX: f64 = 22.0;
 /// Where each sortie's number goes, given each sortie's passes in pixels in flying order: at
 /// the start of its first pass, or, when a number already placed is closer than a label, at
 /// the first point further along its passes that is clear (sorties that begin along the same
-/// headland would otherwise stack their numbers into one blot). When no point is clear, the
-/// one farthest from the others.
-fn label_places<'a>(sorties: impl Iterator<Item = &'a [Vec<(f64, f64)>]>) -> Vec<(f64, f64)> {
-    let mut placed: Vec<(f64, f64)> = Vec::new();
+/// headland would otherwise stack their numbers into one blot), and clear of the marks in
+/// `avoid`. When no point is clear, the one farthest from the others.
+fn label_places<'a>(
+    avoid: &[(f64, f64)],
+    sorties: impl Iterator<Item = &'a [Vec<(f64, f64)>]>,
+) -> Vec<(f64, f64)> {
+    let mut placed: Vec<(f64, f64)> = avoid.to_vec();
     for passes in sorties {
         let clearance = |point: (f64, f64)| {
             placed
@@ -501,7 +514,7 @@ fn label_places<'a>(sorties: impl Iterator<Item = &'a [Vec<(f64, f64)>]>) -> Vec
             .unwrap_or((0.0, 0.0));
         placed.push(place);
     }
-    placed
+    placed.split_off(avoid.len())
 }
 
 /// Points every `step` along a polyline from its start (the start itself first; the
@@ -539,7 +552,7 @@ mod label_tests {
         let sorties: Vec<Vec<Vec<(f64, f64)>>> = (0..3)
             .map(|row| vec![vec![(0.0, 5.0 * row as f64), (100.0, 5.0 * row as f64)]])
             .collect();
-        let places = label_places(sorties.iter().map(Vec::as_slice));
+        let places = label_places(&[], sorties.iter().map(Vec::as_slice));
         assert_eq!(places[0], (0.0, 0.0));
         for (index, place) in places.iter().enumerate() {
             for other in &places[..index] {
@@ -551,7 +564,7 @@ mod label_tests {
             vec![vec![(0.0, 0.0), (5.0, 0.0)]],
             vec![vec![(1.0, 0.0), (4.0, 0.0)]],
         ];
-        let places = label_places(short.iter().map(Vec::as_slice));
+        let places = label_places(&[], short.iter().map(Vec::as_slice));
         assert_eq!(places[1], (1.0, 0.0));
         // A short first pass: the number moves on to the sortie's next pass.
         let sorties = [
@@ -561,7 +574,7 @@ mod label_tests {
                 vec![(0.0, 30.0), (80.0, 30.0)],
             ],
         ];
-        let places = label_places(sorties.iter().map(Vec::as_slice));
+        let places = label_places(&[], sorties.iter().map(Vec::as_slice));
         assert_eq!(places[1], (0.0, 30.0));
         assert_eq!(
             points_along(&[(0.0, 0.0), (10.0, 0.0), (10.0, 30.0)], 18.0),

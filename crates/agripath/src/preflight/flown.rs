@@ -67,6 +67,43 @@ pub struct Leg {
 }
 
 impl Leg {
+    /// A transit's clearance from its samples `(x, y, altitude, ground)`: where it flies
+    /// lowest and its height above the highest ground under it (the transit rule); when it
+    /// follows the terrain (frame 10), which holds the height above the ground under the
+    /// vehicle, its least height above the local ground instead.
+    pub fn transit_margin(&self, points: &[(f64, f64, f64, f64)]) -> (f64, f64, f64) {
+        let highest = points
+            .iter()
+            .map(|&(_, _, _, ground)| ground)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let (x, y, lowest_altitude) = points
+            .iter()
+            .map(|&(x, y, altitude, _)| (x, y, altitude))
+            .fold(
+                (0.0, 0.0, f64::INFINITY),
+                |low, p| {
+                    if p.2 < low.2 {
+                        p
+                    } else {
+                        low
+                    }
+                },
+            );
+        let follows_terrain = matches!(
+            (self.from.height, self.to.height),
+            (Height::AboveTerrain(_), Height::AboveTerrain(_))
+        );
+        let margin = if follows_terrain {
+            points
+                .iter()
+                .map(|&(_, _, altitude, ground)| altitude - ground)
+                .fold(f64::INFINITY, f64::min)
+        } else {
+            lowest_altitude - highest
+        };
+        (x, y, margin)
+    }
+
     /// Horizontal length of the leg, metres.
     pub fn horizontal_m(&self) -> f64 {
         (self.to.x - self.from.x).hypot(self.to.y - self.from.y)
@@ -266,6 +303,15 @@ pub fn fly(
             }
         }
     }
+    if !landed {
+        // Without it the autopilot ends the mission hovering at the last waypoint, with
+        // the battery the sortie was planned to land with, and the battery check would
+        // leave out the descent.
+        return Err(Unflyable {
+            item: items.len(),
+            why: "the mission ends without a landing (NAV_LAND): the vehicle would hover at its last waypoint".into(),
+        });
+    }
     Ok(legs)
 }
 
@@ -330,5 +376,17 @@ mod tests {
         )
         .unwrap_err();
         assert_eq!(error.item, 2);
+        // No landing: refused at the last item.
+        let error = fly(
+            &items[..items.len() - 1],
+            (0.0, 0.0),
+            0.0,
+            SprayerCommand::DoSprayer,
+            5.0,
+            &to_plan,
+        )
+        .unwrap_err();
+        assert_eq!(error.item, items.len() - 1);
+        assert!(error.why.contains("without a landing"), "{}", error.why);
     }
 }

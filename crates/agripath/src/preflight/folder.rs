@@ -28,6 +28,18 @@ pub fn check_folder(world: &World, folder: &std::path::Path) -> Result<Verdict, 
     };
     let mission: MissionSettings = serde_json::from_value(report["mission"].clone())
         .map_err(|error| missing(&format!("valid mission settings ({error})")))?;
+    // The tolerance is read from a file that may have been edited with the missions: it is
+    // held to the same bound as `--terrain-tolerance` (and the preflight's floor holds anyway).
+    if let Some(why) = crate::limits::terrain_tolerance_fault(
+        mission.terrain_tolerance_m,
+        world.vehicle.spray_height_m,
+    ) {
+        return Err(Fault::Structure(format!(
+            "{}: mission.terrain_tolerance_m = {}: {why}",
+            report_path.display(),
+            mission.terrain_tolerance_m
+        )));
+    }
     let number =
         |value: &serde_json::Value, what: &str| value.as_f64().ok_or_else(|| missing(what));
     let fields = report["fields"].as_array().cloned().unwrap_or_default();

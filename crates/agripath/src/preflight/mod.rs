@@ -28,6 +28,7 @@
 
 pub mod flown;
 pub mod folder;
+mod heights;
 mod missed;
 pub mod read_back;
 pub mod settings;
@@ -39,6 +40,7 @@ use geo::Coord;
 
 use crate::coverage::region::GroundPatches;
 use crate::geometry::rings;
+use crate::limits::MIN_GROUND_CLEARANCE_M;
 use crate::mission::flight::GeoFrame;
 use crate::mission::mavlink::Command;
 use crate::model::{Farm, Vehicle};
@@ -104,9 +106,10 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
     let mut low_legs = Tally::new(
         "ground clearance",
         "≥",
-        vehicle.spray_height_m - settings.terrain_tolerance_m,
+        (vehicle.spray_height_m - settings.terrain_tolerance_m).max(MIN_GROUND_CLEARANCE_M),
         "m above the ground on legs that do not spray",
     );
+    let mut heights = heights::HeightBounds::new(vehicle);
     let mut no_go = Tally::new("holes and obstacles", "≤", 0.0, "samples inside");
     let mut fence = Tally::new("fence", "≤", 0.0, "samples outside");
     let mut tank = Tally::new("tank", "≤", 1.0, "tanks");
@@ -121,7 +124,6 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
 
     let mut strips = Vec::new();
     let mut sorties = Vec::new();
-    let mut lowest_clearance = f64::INFINITY;
     let mut names: Vec<&String> = files
         .iter()
         .map(|(name, _)| name)
@@ -276,9 +278,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             if leg.motion != Motion::Flight {
                 continue;
             }
-            for &(_, _, altitude, ground) in &points {
-                lowest_clearance = lowest_clearance.min(altitude - ground);
-            }
+            heights.record((sortie, leg.item), &points, horizontal < SLACK_M, &place);
             if leg.spraying && horizontal > 0.0 {
                 figures.spray_m += horizontal;
                 let (a, b) = (points[0], points[points.len() - 1]);
@@ -382,34 +382,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                     });
                 }
             } else {
-                let highest = points
-                    .iter()
-                    .map(|&(_, _, _, ground)| ground)
-                    .fold(f64::NEG_INFINITY, f64::max);
-                let (x, y, lowest_altitude) = points
-                    .iter()
-                    .map(|&(x, y, altitude, _)| (x, y, altitude))
-                    .fold(
-                        (0.0, 0.0, f64::INFINITY),
-                        |low, p| if p.2 < low.2 { p } else { low },
-                    );
-                // Terrain following (frame 10) holds the height above the ground under the
-                // vehicle: there the least clearance above the local ground counts.
-                let follows_terrain = matches!(
-                    (leg.from.height, leg.to.height),
-                    (
-                        flown::Height::AboveTerrain(_),
-                        flown::Height::AboveTerrain(_)
-                    )
-                );
-                let margin = if follows_terrain {
-                    points
-                        .iter()
-                        .map(|&(_, _, altitude, ground)| altitude - ground)
-                        .fold(f64::INFINITY, f64::min)
-                } else {
-                    lowest_altitude - highest
-                };
+                let (x, y, margin) = leg.transit_margin(&points);
                 figures.least_transit_margin_m = Some(
                     figures
                         .least_transit_margin_m
@@ -428,6 +401,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 });
             }
         }
+        heights.end_sortie(&place);
         if let Some(per_tank) = vehicle.spray_length_per_tank_m() {
             let fraction = figures.spray_m / per_tank;
             figures.tank_fraction = Some(fraction);
@@ -532,19 +506,13 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             100.0 * limit
         )
     });
-    for tally in [
-        read,
-        frames,
-        spray_height,
-        transit,
-        low_legs,
-        no_go,
-        fence,
-        coverage,
-        outside,
-        tank,
-        battery,
-    ] {
+    let lowest_clearance = heights.lowest_clearance_m;
+    let bounds = heights.tallies();
+    for tally in [read, frames, spray_height, transit, low_legs]
+        .into_iter()
+        .chain(bounds)
+        .chain([no_go, fence, coverage, outside, tank, battery])
+    {
         tally.finish(&mut checks, &mut failures);
     }
     let round = |value: f64| crate::numbers::round(value, 1e-4);
@@ -758,6 +726,58 @@ mod tests {
             verdict.failures
         );
         assert!(verdict.lowest_clearance_m < 0.0);
+    }
+
+    #[test]
+    fn no_tolerance_lets_a_file_fly_into_the_ground() {
+        // Every waypoint of sortie 1 lowered 2.5 m below spray height (2 m), and the file
+        // held to a tolerance of 30 m, as an edited report.json could say: the checks drawn
+        // from the tolerance pass it, the clearance floor does not.
+        let (scenario, mut settings, mut files) = planned();
+        settings.terrain_tolerance_m = 30.0;
+        edit(&mut files, |items| {
+            for k in position_items(items) {
+                let altitude = items[k]["params"][6].as_f64().unwrap();
+                items[k]["params"][6] = (altitude - 2.5).into();
+            }
+        });
+        let verdict = verdict(&scenario, &settings, &files);
+        assert!(verdict.lowest_clearance_m < 0.0);
+        assert!(
+            failed(&verdict).contains(&"clearance floor"),
+            "{:?}",
+            verdict.failures
+        );
+        assert!(
+            verdict
+                .failures
+                .iter()
+                .any(|line| line.contains("never below 0.5 m")),
+            "{:?}",
+            verdict.failures
+        );
+    }
+
+    #[test]
+    fn a_climb_far_above_the_cruise_height_fails_and_the_plans_own_climbs_pass() {
+        // The plan as written passes the ceiling (its own climbs for transits included).
+        let (scenario, settings, mut files) = planned();
+        assert!(!failed(&verdict(&scenario, &settings, &files)).contains(&"height ceiling"));
+        // A climb to 250 m over a waypoint and down again, inserted in a ground station.
+        edit(&mut files, |items| {
+            let k = position_items(items)[4];
+            let mut climb = items[k].clone();
+            let altitude = climb["params"][6].as_f64().unwrap();
+            climb["params"][6] = (altitude + 250.0).into();
+            let back = items[k].clone();
+            items.splice(k + 1..k + 1, [climb, back]);
+        });
+        let verdict = verdict(&scenario, &settings, &files);
+        assert!(
+            failed(&verdict).contains(&"height ceiling"),
+            "{:?}",
+            verdict.failures
+        );
     }
 
     #[test]

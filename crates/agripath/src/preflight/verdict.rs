@@ -223,8 +223,11 @@ impl Tally {
         }
     }
 
+    /// A failure with no figure of its own (a file that cannot be read, a frame): the figure
+    /// is then the count of failures, so the check never reads "FAIL 0 faults".
     pub(super) fn fail(&mut self, line: String) {
         self.failed += 1;
+        self.worst = Some(self.worst.unwrap_or(0.0).max(self.failed as f64));
         if self.lines.len() < LINES_PER_CHECK {
             self.lines.push(line);
         }

@@ -91,9 +91,12 @@ impl GridRequest {
         // The grid route's preflight: a move that crosses an obstacle is not flown.
         let crossings = route.measure(&grid).crossings;
         if crossings > 0 {
-            return Err(Failure::Unsafe(vec![format!(
-                "{crossings} move(s) of the {method} route cross an obstacle and no clear way round was found"
-            )]));
+            return Err(Failure::Unsafe(super::UnsafeFlight {
+                lines: vec![format!(
+                    "{crossings} move(s) of the {method} route cross an obstacle and no clear way round was found"
+                )],
+                closing: "not safe to fly as planned: nothing was written",
+            }));
         }
         let (files, title) = render(&farm, index, &grid, &route, method, runtime_s);
         let files = files

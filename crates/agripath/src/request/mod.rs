@@ -15,7 +15,10 @@ pub mod repro;
 pub mod terrain;
 pub mod track;
 
-pub use outcome::{output_failure, write_folder, Failure, FolderFiles, Outcome, UNSAFE_CLOSING};
+pub use outcome::{
+    output_failure, write_folder, Failure, FolderFiles, Outcome, UnsafeFlight, CHECK_CLOSING,
+    UNSAFE_CLOSING,
+};
 
 use std::path::{Path, PathBuf};
 
@@ -146,6 +149,7 @@ pub fn check(inputs: &ScenarioInputs, folder: &Path) -> Result<Outcome, InputErr
     let mut outcome = Outcome::text(verdict.to_text());
     if !verdict.safe {
         outcome.failures = verdict.failures;
+        outcome.closing = Some(CHECK_CLOSING);
     }
     Ok(outcome)
 }

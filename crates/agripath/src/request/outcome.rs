@@ -14,8 +14,18 @@ pub enum Failure {
     Input(InputError),
     /// Something outside the input failed, a disk full or a folder not writable (exit 1).
     Output(String),
-    /// The mission as written does not fly safely, one line per failure (exit 3).
-    Unsafe(Vec<String>),
+    /// The mission as written does not fly safely (exit 3).
+    Unsafe(UnsafeFlight),
+}
+
+/// A flight that is not safe: one line per failure, then the line that says what became of
+/// the files (`plan` wrote none, `check` read them).
+#[derive(Debug)]
+pub struct UnsafeFlight {
+    /// One line per failure.
+    pub lines: Vec<String>,
+    /// The last line.
+    pub closing: &'static str,
 }
 
 impl From<InputError> for Failure {
@@ -24,9 +34,12 @@ impl From<InputError> for Failure {
     }
 }
 
-/// The last line `agripath` prints after the failures of a mission not safe to fly.
+/// The last line `agripath plan` prints after the failures of a mission not safe to fly.
 pub const UNSAFE_CLOSING: &str =
     "not safe to fly as planned: no mission file was written (--allow-unsafe writes them)";
+/// The last line `agripath check` prints after the failures of the files it read.
+pub const CHECK_CLOSING: &str =
+    "not safe to fly: the mission files fail the preflight (re-plan, or fix them and check again)";
 
 /// A finished request: print `text`, then write `folder` (when the caller was given one),
 /// print its report and what it holds, then `warning`; `failures` stop it after all that.
@@ -40,6 +53,8 @@ pub struct Outcome {
     pub warning: Option<String>,
     /// The preflight's failures: the request ends unsafe once the rest is done.
     pub failures: Vec<String>,
+    /// The line printed after the failures, when not [`UNSAFE_CLOSING`].
+    pub closing: Option<&'static str>,
 }
 
 /// The files of an output folder and what is printed once they are written.
@@ -54,6 +69,18 @@ pub struct FolderFiles {
 }
 
 impl Outcome {
+    /// Unsafe when there are failures, with the closing line; else done.
+    pub fn verdict(&self) -> Result<(), Failure> {
+        if self.failures.is_empty() {
+            Ok(())
+        } else {
+            Err(Failure::Unsafe(UnsafeFlight {
+                lines: self.failures.clone(),
+                closing: self.closing.unwrap_or(UNSAFE_CLOSING),
+            }))
+        }
+    }
+
     /// An outcome that only prints `text`.
     pub fn text(text: String) -> Self {
         Self {

@@ -196,6 +196,16 @@ impl PlanOptions {
     pub fn load(&self, inputs: &ScenarioInputs) -> Result<(Scenario, PlanSettings), InputError> {
         let mut mission = self.mission_settings()?;
         let scenario = inputs.load()?;
+        if let Some(why) = crate::limits::terrain_tolerance_fault(
+            mission.terrain_tolerance_m,
+            scenario.vehicle.spray_height_m,
+        ) {
+            return Err(bad_value(
+                "--terrain-tolerance",
+                mission.terrain_tolerance_m.to_string(),
+                why,
+            ));
+        }
         let requested = match self.altitude.as_deref() {
             Some(key) => Some(key.parse::<AltitudeReference>().map_err(|why| {
                 InputError::new(

@@ -98,12 +98,37 @@ pub fn planning_error(scenario: &Scenario, settings: &PlanSettings, fault: Fault
                 ),
             )
         }
-        Fault::UnreachableOnOneBattery { x, y, endurance_s } => {
+        Fault::UnreachableOnOneBattery {
+            x,
+            y,
+            endurance_s,
+            tank,
+        } => {
             let near = in_input(x, y);
             let file = scenario
                 .vehicle_file
                 .as_deref()
                 .unwrap_or(scenario.farm.source.as_path());
+            // A tank that cannot spray one step of the route is what is short, whatever the
+            // battery (the red team's 0.1 L tank was blamed on the battery share).
+            if let Some((per_tank_m, step_m)) = tank {
+                let (what, value) =
+                    match (scenario.vehicle.tank_l, scenario.vehicle.tank_spray_time_s) {
+                        (Some(litres), _) => ("tank_l", litres),
+                        (None, Some(seconds)) => ("tank_spray_time_s", seconds),
+                        (None, None) => ("tank_l", 0.0),
+                    };
+                return InputError::new(
+                    file,
+                    Fault::InvalidValue {
+                        what: what.into(),
+                        value: crate::error::figure(value),
+                        why: format!(
+                            "one tank sprays {per_tank_m:.1} m of swath, less than the {step_m:.1} m the route near {near} sprays between two of its points"
+                        ),
+                    },
+                );
+            }
             let share = scenario.vehicle.battery_reserve_percent;
             // With a share to land with, the battery left may be what is short: name both.
             let (what, value, usable) = if share > 0.0 {

@@ -250,6 +250,10 @@ pub fn sheet_html(parts: &SheetParts) -> String {
             escape(&report.altitude_assumption)
         ),
     );
+    // The sheet is what is taken to the field: the flat-ground warning goes with it.
+    if let Some(warning) = &report.terrain_warning {
+        term("Warning", format!("<strong>{}</strong>", escape(warning)));
+    }
     if let Some(supply) = &report.supply {
         let at = supply
             .at

@@ -460,6 +460,7 @@ pub fn check_sorties(
 
 /// Refuses routes where one step already cannot be flown on one tank and one battery.
 fn unreachable_points(route: &WorkRoute, model: &SortieModel) -> Result<(), Fault> {
+    step_over_tank(route, model.spray_per_tank_m, model.endurance_s)?;
     for index in 1..route.len() {
         if !model.feasible(route, index - 1, index) {
             let point = route.points()[index];
@@ -467,6 +468,32 @@ fn unreachable_points(route: &WorkRoute, model: &SortieModel) -> Result<(), Faul
                 x: point.x,
                 y: point.y,
                 endurance_s: model.endurance_s,
+                tank: None,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Refuses a route with a step that sprays more than one tank (`spray_per_tank_m`) holds: no
+/// supply point and no battery serves it, the tank is what is short.
+pub fn step_over_tank(
+    route: &WorkRoute,
+    spray_per_tank_m: Option<f64>,
+    endurance_s: f64,
+) -> Result<(), Fault> {
+    let Some(tank) = spray_per_tank_m else {
+        return Ok(());
+    };
+    for index in 1..route.len() {
+        let step_m = route.spray_between(index - 1, index);
+        if step_m > tank + TOLERANCE {
+            let point = route.points()[index];
+            return Err(Fault::UnreachableOnOneBattery {
+                x: point.x,
+                y: point.y,
+                endurance_s,
+                tank: Some((tank, step_m)),
             });
         }
     }

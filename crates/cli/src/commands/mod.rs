@@ -118,11 +118,7 @@ fn finish(out: Option<&Path>, outcome: Outcome) -> Result<(), Failure> {
     if let Some(warning) = &outcome.warning {
         emitln!("{warning}");
     }
-    if outcome.failures.is_empty() {
-        Ok(())
-    } else {
-        Err(Failure::Unsafe(outcome.failures))
-    }
+    outcome.verdict()
 }
 
 fn view(folder: &Path, port: u16, open: bool) -> Result<(), Failure> {

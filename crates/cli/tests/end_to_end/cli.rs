@@ -1444,6 +1444,29 @@ fn an_unsafe_plan_exits_3_and_writes_no_mission_file() {
     assert_eq!(checked.status.code(), Some(3));
     let stderr = String::from_utf8_lossy(&checked.stderr);
     assert!(stderr.contains("sortie 2"), "{stderr}");
+    // `check` wrote nothing: its last line says the files it read fail.
+    assert!(
+        stderr.ends_with(
+            "agripath: error: not safe to fly: the mission files fail the preflight (re-plan, or fix them and check again)\n"
+        ),
+        "{stderr}"
+    );
+    // A tolerance edited in report.json to let the files fly low is refused, not trusted.
+    let report_path = safe.join("report.json");
+    let mut report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(&report_path).unwrap()).unwrap();
+    report["mission"]["terrain_tolerance_m"] = serde_json::json!(30.0);
+    std::fs::write(&report_path, serde_json::to_vec_pretty(&report).unwrap()).unwrap();
+    let checked = agripath(
+        &["check", safe.to_str().unwrap(), "--fields", fields],
+        &folder,
+    );
+    assert_eq!(checked.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&checked.stderr);
+    assert!(
+        stderr.contains("report.json: mission.terrain_tolerance_m = 30: at spray height 2 m"),
+        "{stderr}"
+    );
     std::fs::remove_dir_all(&folder).unwrap();
 }
 

@@ -354,6 +354,12 @@ fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
     assert!(printed.contains("(usable 65%)"), "{printed}");
     // The coverage line names the ground missed as flown, the area report.json counts.
     assert!(printed.contains(" m² missed as flown"), "{printed}");
+    // The sheet taken to the field carries the flat-ground warning too.
+    let sheet = std::fs::read_to_string(out.join("sheet.html")).unwrap();
+    assert!(
+        sheet.contains("<dt>Warning</dt><dd><strong>no terrain model"),
+        "the sheet has no terrain warning"
+    );
     let report = report(&out);
     assert_eq!(report["preflight"]["safe"], true);
     // The files, flown, leave 35 % of the 600 s battery: the preflight's own figures.

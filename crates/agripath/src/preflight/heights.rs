@@ -1,0 +1,172 @@
+//! The two bounds on the height of every airborne sample that no setting of the plan moves
+//! (the red team's finding of 2026-12-06: a spray height of 0, a terrain tolerance of 5 m, or
+//! a `report.json` edited to say 30 m let files that fly into the ground read SAFE; a climb to
+//! 250 m inserted in a ground station read SAFE too).
+//!
+//! - The floor: no sample, spraying or not, nearer the ground than
+//!   [`MIN_GROUND_CLEARANCE_M`].
+//! - The ceiling: no sample higher above the highest ground under its leg than a transit
+//!   flies (the cruise height: spray height + max(h, 5 m)) and [`CEILING_SLACK_M`]. Every leg
+//!   agripath writes keeps to it over any terrain, because a transit's altitude is set from
+//!   the highest ground under it; a climb beyond it is an edit, not a plan.
+
+use super::verdict::Tally;
+use crate::limits::MIN_GROUND_CLEARANCE_M;
+use crate::model::Vehicle;
+
+/// How far above the cruise height (over the highest ground under a leg) a file may fly.
+pub const CEILING_SLACK_M: f64 = 10.0;
+
+/// Float slack of a bound, metres (as the other checks').
+const SLACK_M: f64 = 0.02;
+
+/// A sample waiting for the ground it is held to: `(sortie, item, x, y, altitude)`.
+type Sample = (usize, usize, f64, f64, f64);
+
+/// The floor and the ceiling as the samples of a flight are recorded, and the lowest
+/// clearance seen.
+///
+/// The ceiling's ground: a transit is flown level over the highest ground under the whole
+/// transit, which may bend round an obstacle in several legs, so consecutive legs across the
+/// ground at one altitude are a *level stretch*, held to the highest ground under all of them;
+/// a leg whose altitude changes (a draped spray leg, a terrain-following leg) is a stretch of
+/// its own. A climb or descent in place is held to the stretches on either side of it: it
+/// climbs for the one after it or comes down from the one before it.
+pub(super) struct HeightBounds {
+    floor: Tally,
+    ceiling: Tally,
+    /// The least height above the ground of any sample recorded, metres.
+    pub lowest_clearance_m: f64,
+    /// The highest ground under the last stretch held.
+    previous_highest: f64,
+    /// The stretch being flown: its samples, the highest ground under it, its altitude when
+    /// level.
+    stretch: Vec<Sample>,
+    stretch_highest: f64,
+    stretch_altitude: Option<f64>,
+    /// Samples of climbs and descents in place since the stretch being flown.
+    in_place: Vec<Sample>,
+    /// Those between the stretch before and the stretch being flown, held when it closes.
+    before_stretch: Vec<Sample>,
+}
+
+impl HeightBounds {
+    /// The bounds for `vehicle`.
+    pub fn new(vehicle: &Vehicle) -> Self {
+        Self {
+            floor: Tally::new(
+                "clearance floor",
+                "≥",
+                MIN_GROUND_CLEARANCE_M,
+                "m above the ground, any airborne sample",
+            ),
+            ceiling: Tally::new(
+                "height ceiling",
+                "≤",
+                vehicle.cruise_height_m() + CEILING_SLACK_M,
+                "m above the highest ground under a leg",
+            ),
+            lowest_clearance_m: f64::INFINITY,
+            previous_highest: f64::NEG_INFINITY,
+            stretch: Vec::new(),
+            stretch_highest: f64::NEG_INFINITY,
+            stretch_altitude: None,
+            in_place: Vec::new(),
+            before_stretch: Vec::new(),
+        }
+    }
+
+    /// Records the samples `(x, y, altitude, ground)` of one airborne leg: item `item` of
+    /// sortie `sortie`, a climb or descent in place when `in_place`; places printed by
+    /// `place`. Call [`Self::end_sortie`] after each sortie's legs.
+    pub fn record(
+        &mut self,
+        (sortie, item): (usize, usize),
+        points: &[(f64, f64, f64, f64)],
+        in_place: bool,
+        place: &dyn Fn(f64, f64) -> String,
+    ) {
+        for &(x, y, altitude, ground) in points {
+            let clearance = altitude - ground;
+            self.lowest_clearance_m = self.lowest_clearance_m.min(clearance);
+            self.floor.record(clearance, clearance < MIN_GROUND_CLEARANCE_M - SLACK_M, || {
+                format!(
+                    "sortie {sortie}, item {item} at {}: {clearance:.2} m above the ground (never below {MIN_GROUND_CLEARANCE_M} m)",
+                    place(x, y)
+                )
+            });
+        }
+        let samples = points
+            .iter()
+            .map(|&(x, y, altitude, _)| (sortie, item, x, y, altitude));
+        if in_place {
+            self.in_place.extend(samples);
+            return;
+        }
+        let highest = points
+            .iter()
+            .map(|&(_, _, _, ground)| ground)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let (low, high) = points
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), p| {
+                (low.min(p.2), high.max(p.2))
+            });
+        let level = (high - low <= 1e-6).then_some(low);
+        let continues = matches!((level, self.stretch_altitude), (Some(a), Some(b)) if (a - b).abs() <= 1e-6)
+            && self.in_place.is_empty();
+        if !continues {
+            self.close_stretch(place);
+            self.before_stretch = std::mem::take(&mut self.in_place);
+        }
+        self.stretch.extend(samples);
+        self.stretch_highest = self.stretch_highest.max(highest);
+        self.stretch_altitude = level;
+    }
+
+    /// Holds the stretch being flown to the highest ground under it, and the climbs and
+    /// descents just before it to that or the stretch before them, whichever is higher.
+    fn close_stretch(&mut self, place: &dyn Fn(f64, f64) -> String) {
+        if self.stretch.is_empty() {
+            return;
+        }
+        let stretch = std::mem::take(&mut self.stretch);
+        self.hold(&stretch, self.stretch_highest, place);
+        let waiting = std::mem::take(&mut self.before_stretch);
+        self.hold(
+            &waiting,
+            self.previous_highest.max(self.stretch_highest),
+            place,
+        );
+        self.previous_highest = self.stretch_highest;
+        self.stretch_highest = f64::NEG_INFINITY;
+        self.stretch_altitude = None;
+    }
+
+    /// Ends a sortie: its last stretch held, and its last climbs and descents to it.
+    pub fn end_sortie(&mut self, place: &dyn Fn(f64, f64) -> String) {
+        self.close_stretch(place);
+        let waiting = std::mem::take(&mut self.in_place);
+        self.hold(&waiting, self.previous_highest, place);
+        self.previous_highest = f64::NEG_INFINITY;
+    }
+
+    /// Holds `samples` to the ceiling over ground `highest`.
+    fn hold(&mut self, samples: &[Sample], highest: f64, place: &dyn Fn(f64, f64) -> String) {
+        let ceiling = self.ceiling.limit;
+        for &(sortie, item, x, y, altitude) in samples {
+            let height = altitude - highest;
+            self.ceiling.record(height, height > ceiling + SLACK_M, || {
+                format!(
+                    "sortie {sortie}, item {item} at {}: {height:.1} m above the highest ground under the leg (ceiling {ceiling:.1} m: the cruise height and {CEILING_SLACK_M} m)",
+                    place(x, y)
+                )
+            });
+        }
+    }
+
+    /// The two checks, floor first.
+    pub fn tallies(self) -> [Tally; 2] {
+        [self.floor, self.ceiling]
+    }
+}
