@@ -7,7 +7,7 @@
 //! (no corners). The hull makes the graph small and its corners always reachable; the price
 //! is a slightly longer way round a concave obstacle, never a way through it.
 
-use geo::{ConvexHull, Coord, Intersects, Line, MultiPoint, Point, Polygon};
+use geo::{Contains, ConvexHull, Coord, Intersects, Line, MultiPoint, Point, Polygon};
 
 /// Corners of the hull grown by `reach`: each hull vertex pushed out along its two edge
 /// normals and their bisector, so that every edge of the grown polygon stays at least
@@ -66,9 +66,18 @@ fn blocked(a: Coord<f64>, b: Coord<f64>, polygons: &[Polygon<f64>]) -> bool {
     polygons.iter().any(|polygon| polygon.intersects(&line))
 }
 
+/// How far a transit that begins or ends on an obstacle's edge steps off it first, metres.
+const STEP_OFF_M: f64 = 0.5;
+/// How near an edge a point counts as on it, metres.
+const ON_EDGE_M: f64 = 0.01;
+/// Directions tried for that step.
+const STEP_OFF_DIRECTIONS: usize = 16;
+
 /// The corners a transit from `start` to `goal` turns at to keep `clearance_m` from every
 /// polygon (empty when the straight segment is clear). `None` when the start or the goal is
-/// inside a polygon or no way exists.
+/// inside a polygon or no way exists. A start or goal on a polygon's edge (a swath cut by an
+/// obstacle with no margin ends there) first steps [`STEP_OFF_M`] off it, the step a corner
+/// of its own.
 pub fn detour(
     start: Coord<f64>,
     goal: Coord<f64>,
@@ -78,10 +87,67 @@ pub fn detour(
     if !blocked(start, goal, polygons) {
         return Some(Vec::new());
     }
-    if polygons.iter().any(|polygon| {
-        polygon.intersects(&Point::from(start)) || polygon.intersects(&Point::from(goal))
-    }) {
+    let (start_off, goal_off) = (
+        off_the_edge(start, polygons)?,
+        off_the_edge(goal, polygons)?,
+    );
+    let mut corners = Vec::new();
+    if start_off != start {
+        corners.push(start_off);
+    }
+    corners.extend(shortest_way(start_off, goal_off, polygons, clearance_m)?);
+    if goal_off != goal {
+        corners.push(goal_off);
+    }
+    Some(corners)
+}
+
+/// `point` when it touches no polygon; when it lies on an edge, the point [`STEP_OFF_M`]
+/// away in the first of [`STEP_OFF_DIRECTIONS`] directions whose step meets no polygon after
+/// leaving it; `None` when it is inside one (or hemmed in).
+fn off_the_edge(point: Coord<f64>, polygons: &[Polygon<f64>]) -> Option<Coord<f64>> {
+    let here = Point::from(point);
+    if !polygons.iter().any(|polygon| polygon.intersects(&here)) {
+        return Some(point);
+    }
+    // On the edge to within rounding (a swath end computed where its line meets the edge
+    // may fall a hair inside), or truly inside.
+    let deep_inside = |polygon: &Polygon<f64>| {
+        polygon.contains(&here)
+            && std::iter::once(polygon.exterior())
+                .chain(polygon.interiors())
+                .all(|ring| geo::Distance::distance(&geo::Euclidean, ring, &here) > ON_EDGE_M)
+    };
+    if polygons.iter().any(deep_inside) {
         return None;
+    }
+    (0..STEP_OFF_DIRECTIONS)
+        .map(|k| {
+            let angle = std::f64::consts::TAU * k as f64 / STEP_OFF_DIRECTIONS as f64;
+            (angle.cos(), angle.sin())
+        })
+        .find_map(|(dx, dy)| {
+            let leaving = Coord {
+                x: point.x + 0.02 * dx,
+                y: point.y + 0.02 * dy,
+            };
+            let stepped = Coord {
+                x: point.x + STEP_OFF_M * dx,
+                y: point.y + STEP_OFF_M * dy,
+            };
+            (!blocked(leaving, stepped, polygons)).then_some(stepped)
+        })
+}
+
+/// The corners of the shortest way from `start` to `goal`, both outside every polygon.
+fn shortest_way(
+    start: Coord<f64>,
+    goal: Coord<f64>,
+    polygons: &[Polygon<f64>],
+    clearance_m: f64,
+) -> Option<Vec<Coord<f64>>> {
+    if !blocked(start, goal, polygons) {
+        return Some(Vec::new());
     }
     // Segments keep out of each hull grown by the clearance (by ≥ 0.7 × clearance at its
     // corners); the graph's corners sit on hulls grown by 1.5 × the clearance, outside them.
@@ -299,5 +365,46 @@ mod tests {
                 assert!(polygon.contains(&Point::new(point.x + dx, point.y + dy)));
             }
         }
+    }
+}
+
+#[cfg(test)]
+mod edge_tests {
+    use super::*;
+
+    #[test]
+    fn ends_on_an_obstacles_edge_step_off_it_and_go_round() {
+        let square = Polygon::new(
+            geo::LineString::from(vec![
+                (0.0, 0.0),
+                (10.0, 0.0),
+                (10.0, 10.0),
+                (0.0, 10.0),
+                (0.0, 0.0),
+            ]),
+            vec![],
+        );
+        let corners = detour(
+            Coord { x: 10.0, y: 5.0 },
+            Coord { x: 0.0, y: 5.0 },
+            std::slice::from_ref(&square),
+            2.0,
+        )
+        .expect("a way round");
+        let mut path = vec![Coord { x: 10.0, y: 5.0 }];
+        path.extend(corners);
+        path.push(Coord { x: 0.0, y: 5.0 });
+        for pair in path.windows(2) {
+            let middle = Point::new((pair[0].x + pair[1].x) / 2.0, (pair[0].y + pair[1].y) / 2.0);
+            assert!(!square.contains(&middle), "{path:?}");
+        }
+        // Inside is still refused.
+        assert!(detour(
+            Coord { x: 5.0, y: 5.0 },
+            Coord { x: 20.0, y: 5.0 },
+            &[square],
+            2.0
+        )
+        .is_none());
     }
 }

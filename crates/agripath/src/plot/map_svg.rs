@@ -338,7 +338,12 @@ pub fn plan_svg(
         let supply_marks: Vec<(f64, f64)> = sorties
             .map(|split| {
                 let (x, y) = (canvas.x(split.supply.x), canvas.y(split.supply.y));
-                vec![(x, y), (x - 14.0, y - 15.0), (x, y - 15.0), (x + 14.0, y - 15.0)]
+                vec![
+                    (x, y),
+                    (x - 14.0, y - 15.0),
+                    (x, y - 15.0),
+                    (x + 14.0, y - 15.0),
+                ]
             })
             .unwrap_or_default();
         let places = label_places(

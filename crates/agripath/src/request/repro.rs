@@ -152,7 +152,9 @@ impl ReproJob {
                 Ok(Outcome::with_folder(text, files, "ablation.md"))
             }
             Table::Tracks(key, runs) => track_table(key, *runs, seed, with_files, tick),
-            Table::Other("seed003-table4") => Ok(Outcome::text(printed::seed003_table4(seed)?)),
+            Table::Other(key @ "seed003-table4") => {
+                Ok(printed_table(key, printed::seed003_table4(seed)?))
+            }
             Table::Other("seed004") => {
                 let settings = crate::grid_cover::hybrid_pso::HpsoSettings {
                     seed,
@@ -173,10 +175,19 @@ impl ReproJob {
                     "seed004.txt and a map per field",
                 ))
             }
-            Table::Other("seed001-table8") => Ok(Outcome::text(printed::seed001_table8(seed)?)),
-            Table::Other(_) => Ok(Outcome::text(printed::seed001_table7()?)),
+            Table::Other(key @ "seed001-table8") => {
+                Ok(printed_table(key, printed::seed001_table8(seed)?))
+            }
+            Table::Other(key) => Ok(printed_table(key, printed::seed001_table7()?)),
         }
     }
+}
+
+/// A table that is only text: printed, and with `--out` written as `KEY.txt`.
+fn printed_table(key: &str, text: String) -> Outcome {
+    let name = format!("{key}.txt");
+    let files = vec![(name.clone(), text.clone().into_bytes())];
+    Outcome::with_folder(text, files, &name)
 }
 
 /// A track table: its text and, with `with_files`, each case's track files (numbered when

@@ -463,7 +463,16 @@ fn view_serves_the_plan_folder_on_loopback_only() {
 #[test]
 fn headland_0_is_the_seed_layout_and_repro_prints_table_7() {
     let folder = scratch("repro");
-    let text = stdout(&agripath(&["repro", "seed001-table7"], &folder));
+    let text = stdout(&agripath(
+        &["repro", "seed001-table7", "--out", "t7"],
+        &folder,
+    ));
+    // --out writes the printed table (it wrote nothing for this table before 2026-12-06).
+    let written = std::fs::read_to_string(folder.join("t7/seed001-table7.txt")).unwrap();
+    assert!(
+        text.starts_with(&written) && text.ends_with("wrote t7/: seed001-table7.txt\n"),
+        "{text}"
+    );
     assert!(
         text.contains("S1    |     98     16     1781 |     16   1781.0 |     98     16   1781.0"),
         "{text}"
