@@ -254,6 +254,15 @@ pub enum Fault {
         /// metres of the route's step there.
         tank: Option<(f64, f64)>,
     },
+    /// No transit between two places of the flight keeps out of the obstacles (one of them
+    /// inside an obstacle, or walled in); both in the planning frame, metres.
+    #[error("no transit from ({:.1}, {:.1}) to ({:.1}, {:.1}) keeps out of the obstacles", from.0, from.1, to.0, to.1)]
+    NoTransit {
+        /// Where the transit starts.
+        from: (f64, f64),
+        /// Where it ends.
+        to: (f64, f64),
+    },
     /// The file holds no field polygon.
     #[error("no field polygons found")]
     NoFields,

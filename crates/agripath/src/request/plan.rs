@@ -421,7 +421,7 @@ pub fn outcome(
     source: &std::path::Path,
 ) -> Result<Outcome, InputError> {
     let mut rendered = crate::pipeline::render_flyable(scenario, mission)
-        .map_err(|fault| InputError::new(source, fault))?;
+        .map_err(|fault| super::plan_faults::rendering_error(scenario, source, fault))?;
     rendered.keep_files_to_write(files.allow_unsafe);
     let pdf_warning = if files.pdf {
         print_sheet(&mut rendered.files)

@@ -68,14 +68,7 @@ pub(super) fn typed_point(
 /// from a supply point typed on the command line (`settings.start`) farther from the fields
 /// than `auto` would stand ([`crate::supply::standing::REACH_M`]) blames that point.
 pub fn planning_error(scenario: &Scenario, settings: &PlanSettings, fault: Fault) -> InputError {
-    let frame = scenario.farm.coordinate_system;
-    let in_input = |x: f64, y: f64| {
-        let (a, b) = frame.to_input(x, y);
-        match frame {
-            crate::model::CoordinateSystem::Local => format!("({a:.1}, {b:.1})"),
-            crate::model::CoordinateSystem::Utm(_) => format!("lon {a:.6}, lat {b:.6}"),
-        }
-    };
+    let in_input = |x: f64, y: f64| input_place(scenario, (x, y));
     match fault {
         Fault::UnreachableOnOneBattery { x, y, .. }
             if settings.start.is_some_and(|[sx, sy]| {
@@ -160,6 +153,33 @@ pub fn planning_error(scenario: &Scenario, settings: &PlanSettings, fault: Fault
                 },
             )
         }
-        other => InputError::new(&scenario.farm.source, other),
+        other => rendering_error(scenario, &scenario.farm.source, other),
+    }
+}
+
+/// A fault of writing the mission files as planned, blamed on `source`, with places in the
+/// input's coordinates.
+pub fn rendering_error(scenario: &Scenario, source: &std::path::Path, fault: Fault) -> InputError {
+    let in_input = |place: (f64, f64)| input_place(scenario, place);
+    match fault {
+        Fault::NoTransit { from, to } => InputError::new(
+            source,
+            Fault::Structure(format!(
+                "no transit from {} to {} keeps out of the obstacles (is the supply point or a launch marker inside one?)",
+                in_input(from),
+                in_input(to)
+            )),
+        ),
+        other => InputError::new(source, other),
+    }
+}
+
+/// A place of the planning frame as the input gave places: lon/lat, or local metres.
+fn input_place(scenario: &Scenario, (x, y): (f64, f64)) -> String {
+    let frame = scenario.farm.coordinate_system;
+    let (a, b) = frame.to_input(x, y);
+    match frame {
+        crate::model::CoordinateSystem::Local => format!("({a:.1}, {b:.1})"),
+        crate::model::CoordinateSystem::Utm(_) => format!("lon {a:.6}, lat {b:.6}"),
     }
 }

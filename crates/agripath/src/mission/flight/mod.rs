@@ -180,11 +180,9 @@ fn transit(
         obstacles,
         OBSTACLE_CLEARANCE_M,
     )
-    .ok_or_else(|| {
-        Fault::Structure(format!(
-            "no transit from ({:.1}, {:.1}) to ({:.1}, {:.1}) keeps out of the obstacles",
-            from.x, from.y, to.x, to.y
-        ))
+    .ok_or(Fault::NoTransit {
+        from: (from.x, from.y),
+        to: (to.x, to.y),
     })?;
     let corners: Vec<RoutePoint> = corners
         .into_iter()
