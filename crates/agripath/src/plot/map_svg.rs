@@ -318,7 +318,7 @@ pub fn plan_svg(
             r##"<g id="sortie-numbers" font-size="11" font-weight="bold" text-anchor="middle">"##
         );
         // Each sortie's passes in pixels, in flying order.
-        let sortie_passes: Vec<(usize, Vec<Vec<(f64, f64)>>)> = (0..sortie_count)
+        let sortie_passes: Vec<(usize, Vec<PixelLine>)> = (0..sortie_count)
             .map(|sortie| {
                 let passes = (0..route.visits.len())
                     .filter(|&index| sortie_of(index) == sortie)
@@ -332,7 +332,7 @@ pub fn plan_svg(
                     .collect();
                 (sortie, passes)
             })
-            .filter(|(_, passes): &(usize, Vec<Vec<(f64, f64)>>)| !passes.is_empty())
+            .filter(|(_, passes): &(usize, Vec<PixelLine>)| !passes.is_empty())
             .collect();
         // Clear of the supply point's disc and its word above it.
         let supply_marks: Vec<(f64, f64)> = sorties
@@ -476,6 +476,9 @@ pub fn plan_svg(
     svg
 }
 
+/// A line on the map, in pixels.
+type PixelLine = Vec<(f64, f64)>;
+
 /// A sortie number's diameter on the map, px, and the step by which a number slides along
 /// its pass when another number is in the way.
 const LABEL_PX: f64 = 18.0;
@@ -492,7 +495,7 @@ const LEGEND_GAP_PX: f64 = 22.0;
 /// `avoid`. When no point is clear, the one farthest from the others.
 fn label_places<'a>(
     avoid: &[(f64, f64)],
-    sorties: impl Iterator<Item = &'a [Vec<(f64, f64)>]>,
+    sorties: impl Iterator<Item = &'a [PixelLine]>,
 ) -> Vec<(f64, f64)> {
     let mut placed: Vec<(f64, f64)> = avoid.to_vec();
     for passes in sorties {
