@@ -76,7 +76,7 @@ const STEP_OFF_DIRECTIONS: usize = 16;
 /// The corners a transit from `start` to `goal` turns at to keep `clearance_m` from every
 /// polygon (empty when the straight segment is clear). `None` when the start or the goal is
 /// inside a polygon or no way exists. A start or goal on a polygon's edge (a swath cut by an
-/// obstacle with no margin ends there) first steps [`STEP_OFF_M`] off it, the step a corner
+/// obstacle with no margin ends there) first steps 0.5 m off it, the step a corner
 /// of its own.
 pub fn detour(
     start: Coord<f64>,
