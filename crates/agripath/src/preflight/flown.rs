@@ -89,11 +89,7 @@ impl Leg {
                     }
                 },
             );
-        let follows_terrain = matches!(
-            (self.from.height, self.to.height),
-            (Height::AboveTerrain(_), Height::AboveTerrain(_))
-        );
-        let margin = if follows_terrain {
+        let margin = if self.follows_terrain() {
             points
                 .iter()
                 .map(|&(_, _, altitude, ground)| altitude - ground)
@@ -102,6 +98,15 @@ impl Leg {
             lowest_altitude - highest
         };
         (x, y, margin)
+    }
+
+    /// Whether the leg follows the terrain (frame 10 at both ends): the autopilot holds a
+    /// height above the ground under the vehicle.
+    pub fn follows_terrain(&self) -> bool {
+        matches!(
+            (self.from.height, self.to.height),
+            (Height::AboveTerrain(_), Height::AboveTerrain(_))
+        )
     }
 
     /// Horizontal length of the leg, metres.

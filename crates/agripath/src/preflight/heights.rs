@@ -23,6 +23,23 @@ const SLACK_M: f64 = 0.02;
 /// A sample waiting for the ground it is held to: `(sortie, item, x, y, altitude)`.
 type Sample = (usize, usize, f64, f64, f64);
 
+/// How a leg flies, for the ceiling.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum LegShape {
+    /// Across the ground, its altitude above sea level interpolated between its ends.
+    Along,
+    /// Across the ground following the terrain (frame 10): the autopilot holds a height above
+    /// the ground beneath, interpolated between the heights its ends command, so the leg flies
+    /// no higher above the local ground than its ends. Its samples between the ends may stand
+    /// far above the *highest* ground under the leg where the ground rises early and the
+    /// height comes down late (the island's transits out of a valley climb at the supply
+    /// point to clear the ridge, then follow the terrain down to the cruise height); the
+    /// ceiling holds the heights the file commands, at the two ends.
+    FollowingTerrain,
+    /// A climb or descent where the vehicle stands.
+    InPlace,
+}
+
 /// The floor and the ceiling as the samples of a flight are recorded, and the lowest
 /// clearance seen.
 ///
@@ -76,14 +93,14 @@ impl HeightBounds {
         }
     }
 
-    /// Records the samples `(x, y, altitude, ground)` of one airborne leg: item `item` of
-    /// sortie `sortie`, a climb or descent in place when `in_place`; places printed by
-    /// `place`. Call [`Self::end_sortie`] after each sortie's legs.
+    /// Records the samples `(x, y, altitude, ground)` of one airborne leg of shape `shape`:
+    /// item `item` of sortie `sortie`; places printed by `place`. Call [`Self::end_sortie`]
+    /// after each sortie's legs.
     pub fn record(
         &mut self,
         (sortie, item): (usize, usize),
         points: &[(f64, f64, f64, f64)],
-        in_place: bool,
+        shape: LegShape,
         place: &dyn Fn(f64, f64) -> String,
     ) {
         for &(x, y, altitude, ground) in points {
@@ -96,10 +113,14 @@ impl HeightBounds {
                 )
             });
         }
-        let samples = points
+        let held = match (shape, points) {
+            (LegShape::FollowingTerrain, [first, .., last]) => vec![*first, *last],
+            _ => points.to_vec(),
+        };
+        let samples = held
             .iter()
             .map(|&(x, y, altitude, _)| (sortie, item, x, y, altitude));
-        if in_place {
+        if shape == LegShape::InPlace {
             self.in_place.extend(samples);
             return;
         }
@@ -168,5 +189,63 @@ impl HeightBounds {
     /// The two checks, floor first.
     pub fn tallies(self) -> [Tally; 2] {
         [self.floor, self.ceiling]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A leg's samples from `ground(t)` and the height above it `height(t)`, 21 of them.
+    fn leg(ground: impl Fn(f64) -> f64, height: impl Fn(f64) -> f64) -> Vec<(f64, f64, f64, f64)> {
+        (0..=20)
+            .map(|k| {
+                let t = f64::from(k) / 20.0;
+                (100.0 * t, 0.0, ground(t) + height(t), ground(t))
+            })
+            .collect()
+    }
+
+    fn failures(shape: LegShape, points: &[(f64, f64, f64, f64)]) -> usize {
+        let vehicle = Vehicle::default();
+        let mut bounds = HeightBounds::new(&vehicle);
+        let place = |x: f64, y: f64| format!("({x}, {y})");
+        bounds.record((1, 3), points, shape, &place);
+        bounds.end_sortie(&place);
+        let (mut checks, mut lines) = (Vec::new(), Vec::new());
+        for tally in bounds.tallies() {
+            tally.finish(&mut checks, &mut lines);
+        }
+        assert!(checks[0].passed, "the floor: {lines:?}");
+        lines.len()
+    }
+
+    #[test]
+    fn a_terrain_following_leg_is_held_at_the_heights_its_ends_command() {
+        let vehicle = Vehicle::default();
+        let ceiling = vehicle.cruise_height_m() + CEILING_SLACK_M;
+        // Out of a valley: the ground rises 30 m in the first tenth of the leg, and the
+        // height comes down from the climb at the start (30 m + the cruise height, to clear
+        // the ridge) to the cruise height over it. Between the ends the vehicle stands far
+        // above the highest ground; the ends keep to the ceiling.
+        let cruise = vehicle.cruise_height_m();
+        let out_of_the_valley = leg(
+            |t| (300.0 * t).min(30.0),
+            |t| (30.0 + cruise) * (1.0 - t) + cruise * t,
+        );
+        let worst = out_of_the_valley
+            .iter()
+            .map(|p| p.2 - 30.0)
+            .fold(f64::NEG_INFINITY, f64::max);
+        assert!(
+            worst > ceiling,
+            "{worst} m, the samples are over the ceiling"
+        );
+        assert_eq!(failures(LegShape::FollowingTerrain, &out_of_the_valley), 0);
+        // A leg level above sea level is held at every sample.
+        assert!(failures(LegShape::Along, &out_of_the_valley) > 0);
+        // An edited end 250 m above the terrain fails, following the terrain or not.
+        let edited = leg(|_| 0.0, |t| cruise + 250.0 * t);
+        assert_eq!(failures(LegShape::FollowingTerrain, &edited), 1);
     }
 }

@@ -278,7 +278,14 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             if leg.motion != Motion::Flight {
                 continue;
             }
-            heights.record((sortie, leg.item), &points, horizontal < SLACK_M, &place);
+            let shape = if horizontal < SLACK_M {
+                heights::LegShape::InPlace
+            } else if leg.follows_terrain() {
+                heights::LegShape::FollowingTerrain
+            } else {
+                heights::LegShape::Along
+            };
+            heights.record((sortie, leg.item), &points, shape, &place);
             if leg.spraying && horizontal > 0.0 {
                 figures.spray_m += horizontal;
                 let (a, b) = (points[0], points[points.len() - 1]);
