@@ -23,6 +23,32 @@ pub struct PlannerRuns {
 }
 
 impl PlannerRuns {
+    /// The result's name in file names: the planner's key, with the encoding's where another
+    /// result of `results` has the same planner (`repro spso` runs IBA-FCS on two encodings,
+    /// whose files would otherwise overwrite each other).
+    pub fn file_key(&self, results: &[PlannerRuns]) -> String {
+        let shared = results
+            .iter()
+            .filter(|other| other.planner == self.planner)
+            .count()
+            > 1;
+        if shared {
+            format!("{}-{}", self.planner.key(), self.encoding.key())
+        } else {
+            self.planner.key().to_string()
+        }
+    }
+
+    /// The result's name in legends: the planner's label, with the encoding's where another
+    /// result of `results` has the same planner.
+    pub fn legend_label(&self, results: &[PlannerRuns]) -> String {
+        if results.iter().filter(|o| o.planner == self.planner).count() > 1 {
+            format!("{} ({})", self.planner.label(), self.encoding.key())
+        } else {
+            self.planner.label().to_string()
+        }
+    }
+
     /// The track handed over: the safe run with the lowest final cost, or the lowest-cost
     /// run when none is safe (the first of equals).
     pub fn best(&self) -> &TrackRun {
@@ -168,7 +194,8 @@ pub fn geojson(scenario: &TrackScenario, results: &[PlannerRuns]) -> String {
         let verdict = result.verdict();
         let points: Vec<[f64; 3]> = best.final_points().iter().map(|&p| position(p)).collect();
         features.push(json!({"type": "Feature",
-            "properties": {"kind": "track", "planner": result.planner.label(), "run": best.run,
+            "properties": {"kind": "track", "planner": result.planner.label(),
+                           "encoding": result.encoding.key(), "run": best.run,
                            "cost": best.final_cost(), "safe": verdict.is_safe(),
                            "lowest_clearance_m": verdict.lowest_clearance_m,
                            "threat_margin_m": verdict.threat_margin_m,
@@ -178,7 +205,8 @@ pub fn geojson(scenario: &TrackScenario, results: &[PlannerRuns]) -> String {
         let inner = best.points.len().saturating_sub(2);
         for (seq, &p) in best.points.iter().enumerate().skip(1).take(inner) {
             features.push(json!({"type": "Feature",
-                "properties": {"kind": "waypoint", "planner": result.planner.label(), "seq": seq},
+                "properties": {"kind": "waypoint", "planner": result.planner.label(),
+                               "encoding": result.encoding.key(), "seq": seq},
                 "geometry": {"type": "Point", "coordinates": position(p)}}));
         }
     }
@@ -268,7 +296,7 @@ pub fn convergence(scenario: &TrackScenario, results: &[PlannerRuns]) -> String 
                 .filter(|(_, mean)| mean.is_finite())
                 .collect();
             Series {
-                name: result.planner.label().to_string(),
+                name: result.legend_label(results),
                 points,
             }
         })
@@ -341,10 +369,15 @@ pub fn files(
             convergence(scenario, results).into_bytes(),
         ),
     ];
+    let labels: Vec<String> = results
+        .iter()
+        .map(|result| result.legend_label(results))
+        .collect();
     let drawn: Vec<track_svg::DrawnTrack> = results
         .iter()
-        .map(|result| track_svg::DrawnTrack {
-            label: result.planner.label(),
+        .zip(&labels)
+        .map(|(result, label)| track_svg::DrawnTrack {
+            label,
             colour: result.planner.colour(),
             points: result.best().final_points(),
             safe: result.verdict().is_safe(),
@@ -358,7 +391,7 @@ pub fn files(
     ));
     files.push(("top_view.svg".to_string(), top.into_bytes()));
     for (result, track) in results.iter().zip(&drawn) {
-        let key = result.planner.key();
+        let key = result.file_key(results);
         if track.safe || allow_unsafe {
             files.push((
                 format!("{key}.waypoints"),
@@ -368,7 +401,7 @@ pub fn files(
         let title = format!(
             "{}: altitude profile of the best track ({}){}",
             scenario.name,
-            result.planner.label(),
+            track.label,
             if track.safe { "" } else { ", UNSAFE" }
         );
         files.push((
@@ -377,4 +410,42 @@ pub fn files(
         ));
     }
     Ok(files)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::track::Encoding;
+
+    fn result(planner: Planner, encoding: Encoding) -> PlannerRuns {
+        PlannerRuns {
+            planner,
+            encoding,
+            runs: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn one_planner_on_two_encodings_gets_two_file_names() {
+        let iba = Planner::parse("iba-fcs").unwrap();
+        let results = [
+            result(iba, Encoding::Cartesian),
+            result(iba, Encoding::Spherical),
+            result(Planner::Lattice, Encoding::Cartesian),
+        ];
+        let keys: Vec<String> = results.iter().map(|r| r.file_key(&results)).collect();
+        assert_eq!(
+            keys,
+            [
+                format!("{}-cartesian", iba.key()),
+                format!("{}-spherical", iba.key()),
+                "lattice".to_string()
+            ]
+        );
+        assert_ne!(
+            results[0].legend_label(&results),
+            results[1].legend_label(&results)
+        );
+        assert_eq!(results[2].legend_label(&results), Planner::Lattice.label());
+    }
 }
