@@ -266,7 +266,7 @@ fn load_vehicle(parts: &ScenarioParts) -> Result<Vehicle, InputError> {
                 )
             })?;
     vehicle
-        .apply_camera(&table)
+        .apply_stated(&table)
         .map_err(|fault| InputError::new(&source, fault))?;
     for (key, value, flag) in overrides {
         if let Some(value) = value {

@@ -864,6 +864,11 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "go together",
         ),
         (
+            vehicle("vehicle_two_tanks.toml"),
+            bad("vehicle_two_tanks.toml"),
+            "tank_l and tank_spray_time_s both give the tank",
+        ),
+        (
             scenario("scenario_syntax.toml"),
             bad("scenario_syntax.toml"),
             "not valid TOML",

@@ -200,7 +200,7 @@ impl Vehicle {
         let mut vehicle: Self =
             toml::from_str(&text).map_err(|error| InputError::toml(path, &error, &text))?;
         vehicle
-            .apply_camera(&stated)
+            .apply_stated(&stated)
             .and_then(|()| vehicle.validate())
             .map_err(|fault| InputError::new(path, fault))?;
         Ok(vehicle)
@@ -208,10 +208,13 @@ impl Vehicle {
 
     /// Parses and validates a vehicle file's text; errs on bad TOML or an invalid value.
     pub fn from_toml(text: &str) -> Result<Self, Fault> {
-        let vehicle: Self = toml::from_str(text).map_err(|error| Fault::Toml {
+        let fault = |error: toml::de::Error| Fault::Toml {
             message: one_line(&error, text),
             line_column: None,
-        })?;
+        };
+        let stated: toml::Table = toml::from_str(text).map_err(fault)?;
+        let mut vehicle: Self = toml::from_str(text).map_err(fault)?;
+        vehicle.apply_stated(&stated)?;
         vehicle.validate()?;
         Ok(vehicle)
     }
@@ -237,10 +240,28 @@ impl Vehicle {
         self.camera.as_ref().and_then(Camera::trigger_distance_m)
     }
 
-    /// Completes a survey vehicle from what its file (`stated`, the keys as written) says: the
-    /// swath from the camera's footprint and side overlap, and no tank. A tank key beside a
-    /// camera, or a stated swath the footprint contradicts, is refused rather than ignored.
-    pub fn apply_camera(&mut self, stated: &toml::Table) -> Result<(), Fault> {
+    /// Completes a vehicle from what its file (`stated`, the keys as written) says.
+    ///
+    /// The tank: a file gives it as `tank_l` with `application_rate_l_per_ha` or as
+    /// `tank_spray_time_s`, and the seed 003 tank of 900 s that a file without tank keys gets
+    /// by default is not the stated one's (a 100 L tank was held to 900 s of spraying,
+    /// silently, whichever was smaller); both forms at once are refused.
+    ///
+    /// A survey vehicle: the swath from the camera's footprint and side overlap, and no tank.
+    /// A tank key beside a camera, or a stated swath the footprint contradicts, is refused
+    /// rather than ignored.
+    pub fn apply_stated(&mut self, stated: &toml::Table) -> Result<(), Fault> {
+        let by_volume = ["tank_l", "application_rate_l_per_ha"]
+            .into_iter()
+            .find(|key| stated.contains_key(*key));
+        if let Some(key) = by_volume {
+            if self.camera.is_none() && stated.contains_key("tank_spray_time_s") {
+                return Err(Fault::Structure(format!(
+                    "{key} and tank_spray_time_s both give the tank: give one (tank_l with application_rate_l_per_ha, or tank_spray_time_s)"
+                )));
+            }
+            self.tank_spray_time_s = None;
+        }
         let Some(camera) = &self.camera else {
             return Ok(());
         };
@@ -437,11 +458,27 @@ mod tests {
     }
 
     fn survey(text: &str) -> Result<Vehicle, Fault> {
-        let stated: toml::Table = toml::from_str(text).unwrap();
-        let mut vehicle: Vehicle = toml::from_str(text).unwrap();
-        vehicle.apply_camera(&stated)?;
-        vehicle.validate()?;
-        Ok(vehicle)
+        Vehicle::from_toml(text)
+    }
+
+    #[test]
+    fn a_tank_is_given_one_way() {
+        // A 100 L tank at 20 L/ha and 5 m: 10,000 m of swath, not the 900 s × 5 m/s of the
+        // seed 003 default.
+        let volume = "tank_l = 100.0\napplication_rate_l_per_ha = 20.0\nswath_width_m = 5.0\nspray_speed_mps = 5.0\n";
+        let vehicle = Vehicle::from_toml(volume).unwrap();
+        assert_eq!(vehicle.tank_spray_time_s, None);
+        assert!((vehicle.spray_length_per_tank_m().unwrap() - 10_000.0).abs() < 1e-9);
+        // Without tank keys the seed 003 tank stays.
+        let none = Vehicle::from_toml("spray_speed_mps = 5.0\n").unwrap();
+        assert_eq!(none.spray_length_per_tank_m(), Some(4_500.0));
+        // Both forms: refused, naming both keys.
+        let both = format!("{volume}tank_spray_time_s = 600.0\n");
+        let error = Vehicle::from_toml(&both).unwrap_err().to_string();
+        assert!(
+            error.contains("tank_l and tank_spray_time_s both give the tank"),
+            "{error}"
+        );
     }
 
     #[test]

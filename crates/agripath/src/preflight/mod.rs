@@ -124,15 +124,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
 
     let mut strips = Vec::new();
     let mut sorties = Vec::new();
-    let mut names: Vec<&String> = files
-        .iter()
-        .map(|(name, _)| name)
-        .filter(|name| name.starts_with("sortie_") && name.ends_with(".plan"))
-        .collect();
-    names.sort();
-    if names.is_empty() {
-        read.fail("no mission file (sortie_NN.plan) to fly".into());
-    }
+    let names = read_back::sortie_files(files, &mut read);
     for (number, name) in names.iter().enumerate() {
         let sortie = number + 1;
         let bytes = |file: &str| {
@@ -846,6 +838,37 @@ mod tests {
             .failures
             .iter()
             .any(|line| line.contains("s usable")));
+    }
+
+    #[test]
+    fn a_stray_copy_or_a_missing_sortie_fails_the_read() {
+        let (scenario, settings, files) = planned();
+        let mut copied = files.clone();
+        let first = copied
+            .iter()
+            .find(|(name, _)| name == "sortie_01.plan")
+            .unwrap()
+            .1
+            .clone();
+        copied.push(("sortie_01 copy.plan".to_string(), first));
+        let with_copy = verdict(&scenario, &settings, &copied);
+        assert_eq!(failed(&with_copy), vec!["files read back"]);
+        assert!(with_copy.failures[0].contains("sortie_01 copy.plan is not"));
+        // The sortie's files numbered 2: sortie 1 is missing.
+        let missing: Vec<(String, Vec<u8>)> = files
+            .into_iter()
+            .map(|(name, bytes)| (name.replace("sortie_01.", "sortie_02."), bytes))
+            .collect();
+        let verdict = verdict(&scenario, &settings, &missing);
+        assert!(failed(&verdict).contains(&"files read back"));
+        assert!(
+            verdict
+                .failures
+                .iter()
+                .any(|line| line.contains("sortie 1 is missing")),
+            "{:?}",
+            verdict.failures
+        );
     }
 
     #[test]

@@ -230,6 +230,46 @@ pub fn differences(plan: &PlanFile, waypoints: &WaypointsFile) -> Vec<String> {
     found
 }
 
+/// The folder's mission files, `sortie_NN.plan`, by sortie number. A file named like one
+/// that is not (`sortie_01 copy.plan`, a ground station's second save) fails the read, as
+/// does a missing number: flown as one more sortie, or skipped, it would change the verdict
+/// of the files the drone will fly.
+pub(super) fn sortie_files<'f>(
+    files: &'f [(String, Vec<u8>)],
+    read: &mut super::verdict::Tally,
+) -> Vec<&'f String> {
+    let mut numbered: Vec<(usize, &String)> = Vec::new();
+    for (name, _) in files {
+        let Some(middle) = name
+            .strip_prefix("sortie_")
+            .and_then(|rest| rest.strip_suffix(".plan"))
+        else {
+            continue;
+        };
+        match middle.parse::<usize>() {
+            Ok(number) if middle.len() >= 2 && middle.bytes().all(|b| b.is_ascii_digit()) => {
+                numbered.push((number, name));
+            }
+            _ => read.fail(format!(
+                "{name} is not a mission file name agripath writes (sortie_NN.plan): move it out of the folder"
+            )),
+        }
+    }
+    numbered.sort();
+    if numbered.is_empty() {
+        read.fail("no mission file (sortie_NN.plan) to fly".into());
+    }
+    for (expected, (number, name)) in (1..).zip(&numbered) {
+        if *number != expected {
+            read.fail(format!(
+                "{name}: sortie {expected} is missing (the files number the sorties 1, 2, … with none left out)"
+            ));
+            break;
+        }
+    }
+    numbered.into_iter().map(|(_, name)| name).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
