@@ -254,6 +254,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "fields 'A' and 'A again' overlap by 10000.0 m²",
         ),
         on("overlap.kml", "overlap by"),
+        on("holes_only.kml", "holes) but no outerBoundaryIs ring"),
         on("polar.kml", "polar region"),
         (
             plan(&bad("covered_by_obstacle.geojson"), &[]),

@@ -223,6 +223,7 @@ pub fn build(
     if fields.is_empty() {
         return Err(InputError::new(path, Fault::NoFields));
     }
+    notes.extend(name_fields_apart(&mut fields));
     let farm = Farm {
         source: path.to_path_buf(),
         coordinate_system,
@@ -247,6 +248,37 @@ pub fn build(
         ));
     }
     Ok(farm)
+}
+
+/// Gives fields that share a name (two polygons both called "Untitled Polygon" in a KML, say) names
+/// of their own, `NAME (2)`, `NAME (3)`, …, in the file's order, so the summary, the sheet, the
+/// map and `report.json` tell them apart; returns a note for each name changed.
+fn name_fields_apart(fields: &mut [Field]) -> Vec<String> {
+    let mut taken: std::collections::HashSet<String> =
+        fields.iter().map(|field| field.name.clone()).collect();
+    let mut seen: std::collections::HashSet<String> = std::collections::HashSet::new();
+    let mut notes = Vec::new();
+    for field in fields.iter_mut() {
+        if seen.insert(field.name.clone()) {
+            continue;
+        }
+        let mut copy = 2;
+        let renamed = loop {
+            let candidate = format!("{} ({copy})", field.name);
+            if !taken.contains(&candidate) {
+                break candidate;
+            }
+            copy += 1;
+        };
+        notes.push(format!(
+            "two fields are named '{}': the later one is '{renamed}' in the plan",
+            field.name
+        ));
+        taken.insert(renamed.clone());
+        seen.insert(renamed.clone());
+        field.name = renamed;
+    }
+    notes
 }
 
 /// A road or track in planning metres: repeated points dropped, at least two left.

@@ -277,6 +277,29 @@ mod tests {
     }
 
     #[test]
+    fn fields_that_share_a_name_get_names_of_their_own() {
+        let square = |x: i32, name: &str| {
+            format!(
+                r#"{{"type":"Feature","properties":{{"name":"{name}"}},"geometry":{{"type":"Polygon","coordinates":[[[{x},0],[{},0],[{},50],[{x},50],[{x},0]]]}}}}"#,
+                x + 50,
+                x + 50
+            )
+        };
+        let text = format!(
+            r#"{{"type":"FeatureCollection","crs":"local","features":[{},{},{},{}]}}"#,
+            square(0, "A"),
+            square(100, "A (2)"),
+            square(200, "A"),
+            square(300, "A")
+        );
+        let read = farm(&text).unwrap();
+        let names: Vec<&str> = read.fields.iter().map(|f| f.name.as_str()).collect();
+        assert_eq!(names, ["A", "A (2)", "A (3)", "A (4)"]);
+        assert_eq!(read.notes.len(), 2, "{:?}", read.notes);
+        assert!(read.notes[0].contains("'A (3)'"), "{:?}", read.notes);
+    }
+
+    #[test]
     fn access_lines_and_yards_are_read_and_a_plain_line_is_refused() {
         let text = r#"{"type":"FeatureCollection","crs":"local","features":[
           {"type":"Feature","properties":{"name":"A"},"geometry":{"type":"Polygon","coordinates":[

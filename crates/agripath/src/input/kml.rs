@@ -190,6 +190,9 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
     let mut folders: Vec<FolderKind> = Vec::new();
     let mut placemark: Option<PlacemarkState> = None;
     let mut polygon: Option<RawRings> = None;
+    // Outer rings seen in the open Polygon: exactly one makes a polygon. With none, its inner
+    // rings would be read as the boundary and the holes flown as a field.
+    let mut outer_rings = 0usize;
     let mut data_name: Option<String> = None;
     let mut text_buffer = String::new();
     let mut features = Vec::new();
@@ -210,7 +213,10 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                 match name.as_str() {
                     "Folder" => folders.push(folders.last().copied().unwrap_or(FolderKind::Plain)),
                     "Placemark" => placemark = Some(PlacemarkState::default()),
-                    "Polygon" => polygon = Some(Vec::new()),
+                    "Polygon" => {
+                        polygon = Some(Vec::new());
+                        outer_rings = 0;
+                    }
                     "Data" | "SimpleData" => {
                         data_name = start
                             .try_get_attribute("name")
@@ -316,7 +322,10 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                         let inner = stack.iter().any(|element| element == "innerBoundaryIs");
                         let outer = stack.iter().any(|element| element == "outerBoundaryIs");
                         match (polygon.as_mut(), in_ring) {
-                            (Some(rings), true) if outer => rings.insert(0, positions),
+                            (Some(rings), true) if outer => {
+                                outer_rings += 1;
+                                rings.insert(0, positions)
+                            }
                             (Some(rings), true) if inner => rings.push(positions),
                             _ if parent == "Point" => {
                                 if let (Some(state), Some(first)) =
@@ -335,10 +344,20 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                     }
                     "Polygon" => {
                         let rings = polygon.take().unwrap_or_default();
-                        if rings.is_empty() {
+                        if outer_rings == 0 {
                             return Err((
                                 Some(place()),
-                                Fault::Kml("Polygon has no outerBoundaryIs ring".into()),
+                                Fault::Kml(if rings.is_empty() {
+                                    "Polygon has no outerBoundaryIs ring".into()
+                                } else {
+                                    "Polygon has innerBoundaryIs rings (holes) but no outerBoundaryIs ring: give the field's boundary as its outerBoundaryIs".into()
+                                }),
+                            ));
+                        }
+                        if outer_rings > 1 {
+                            return Err((
+                                Some(place()),
+                                Fault::Kml(format!("Polygon has {outer_rings} outerBoundaryIs rings: a Polygon has one (use a MultiGeometry for several fields)")),
                             ));
                         }
                         match placemark.as_mut() {
@@ -534,5 +553,24 @@ mod tests {
             matches!(error.fault, Fault::Kml(_) | Fault::NoFields),
             "{error}"
         );
+    }
+
+    #[test]
+    fn a_polygon_needs_one_outer_boundary() {
+        let ring = "<LinearRing><coordinates>8.50,47.30 8.51,47.30 8.51,47.31 8.50,47.30</coordinates></LinearRing>";
+        let read = |polygon: String| {
+            let text = format!(
+                "<kml><Document><Placemark><name>F</name><Polygon>{polygon}</Polygon></Placemark></Document></kml>"
+            );
+            parse(Path::new("f.kml"), &text, CoordinateChoice::FromFile)
+                .unwrap_err()
+                .to_string()
+        };
+        let holes_only = read(format!("<innerBoundaryIs>{ring}</innerBoundaryIs>"));
+        assert!(holes_only.contains("no outerBoundaryIs"), "{holes_only}");
+        let two_outer = read(format!(
+            "<outerBoundaryIs>{ring}</outerBoundaryIs><outerBoundaryIs>{ring}</outerBoundaryIs>"
+        ));
+        assert!(two_outer.contains("2 outerBoundaryIs rings"), "{two_outer}");
     }
 }

@@ -507,7 +507,7 @@ impl Report {
             "field",
             "bearing°",
             "heading°",
-            "(1° )",
+            "1° scan",
             "swaths",
             format!("{work} m"),
             "edge m",
