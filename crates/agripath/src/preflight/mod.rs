@@ -11,7 +11,8 @@
 //!   obstacle) stays ≥ h above the highest ground under it; one inside a field (a headland
 //!   turn) stays within the tolerance of spray height or above;
 //! - **holes and obstacles**: no leg at spray height enters a hole or an obstacle (grown by
-//!   the obstacle margin);
+//!   the obstacle margin), and no leg at any height enters an obstacle of the inputs, whatever
+//!   the file's fence says;
 //! - **fence**: every sample inside the file's inclusion polygon and outside its exclusions;
 //! - **coverage** as flown (strips one swath wide along the spray legs, [`sprayed`]) of each
 //!   field's sprayable area: covered / (covered + missed), where missed is ground a swath
@@ -262,6 +263,14 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 fence.record(f64::from(u8::from(outside)), outside, || {
                     format!(
                         "sortie {sortie}, item {} at {}: outside the geofence",
+                        leg.item,
+                        place(x, y)
+                    )
+                });
+                let in_obstacle = zones.in_obstacle(p);
+                no_go.record(f64::from(u8::from(in_obstacle)), in_obstacle, || {
+                    format!(
+                        "sortie {sortie}, item {} at {}: flying through an obstacle",
                         leg.item,
                         place(x, y)
                     )
@@ -807,6 +816,34 @@ mod tests {
             verdict.failures.iter().any(|line| line.contains("(126.63")),
             "places in lon/lat"
         );
+    }
+
+    #[test]
+    fn a_flight_through_an_obstacle_fails_whatever_the_files_fence_says() {
+        // The files as planned, checked against the farm with a strip of obstacle between the
+        // launch point and the field: the files' fence does not exclude it (as after a fence
+        // edited away in a ground station), yet every way out crosses it at transit height.
+        let (scenario, settings, files) = planned();
+        let strip = r#"{"type":"Feature","properties":{"name":"hedge","kind":"obstacle"},"geometry":{"type":"Polygon","coordinates":[
+          [[126.62988,45.7490],[126.62994,45.7490],[126.62994,45.7510],[126.62988,45.7510],[126.62988,45.7490]]]}},"#;
+        let text = FARM.replacen(r#""features":["#, &format!(r#""features":[{strip}"#), 1);
+        let farm = geojson::parse(Path::new("hedged.geojson"), &text, CoordinateChoice::FromFile)
+            .unwrap();
+        let hedged = Scenario::with_farm(farm, ScenarioParts::default()).unwrap();
+        let verdict = verdict(&hedged, &settings, &files);
+        let failed = failed(&verdict);
+        assert!(failed.contains(&"holes and obstacles"), "{:?}", verdict.failures);
+        assert!(!failed.contains(&"fence"), "{:?}", verdict.failures);
+        assert!(
+            verdict
+                .failures
+                .iter()
+                .any(|line| line.contains("flying through an obstacle")),
+            "{:?}",
+            verdict.failures
+        );
+        // Without the hedge the same files pass.
+        assert!(self::verdict(&scenario, &settings, &files).safe);
     }
 
     #[test]

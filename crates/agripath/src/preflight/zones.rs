@@ -149,6 +149,13 @@ impl Zones {
             .any(|&k| enters(&self.obstacles[k as usize], p, margin_m))
     }
 
+    /// Whether `p` is inside an obstacle of the inputs (beyond the files' rounding): no flight
+    /// goes there at any height, since the plan's geofence excludes obstacles at every
+    /// altitude. Asked of the inputs, so a file whose fence was edited away is still held to it.
+    pub fn in_obstacle(&self, p: Coord<f64>) -> bool {
+        self.enters_obstacle(p, 0.0)
+    }
+
     /// Whether spraying at `p` is in a hole or an obstacle (grown by the obstacle margin).
     /// A hole of one field that is crop of another (a field drawn inside the hole, or one
     /// overlapping it under `--allow-overlap`) is not a hole there.
