@@ -9,14 +9,14 @@
 
 use std::path::Path;
 
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 use crate::error::{Fault, InputError};
 use crate::files::read_text;
 
 /// A spraying or survey drone. `Default` is the seed 001 sprayer (5 m swath, h = 18 m) with
 /// seed 003's speeds, tank and battery.
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct Vehicle {
     /// The vehicle's name, as reports show it.
@@ -57,7 +57,7 @@ pub struct Vehicle {
 }
 
 /// A survey camera, triggered by distance along each swath (`MAV_CMD_DO_SET_CAM_TRIGG_DIST`).
-#[derive(Debug, Clone, PartialEq, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Camera {
     /// Ground distance between photos along a swath, metres; else derived from the

@@ -63,6 +63,10 @@ const ROW_M: f64 = 0.1;
 const SLACK_M: f64 = 0.02;
 /// Most sprayed area outside the fields, as a share of the sprayed area (the default layout).
 pub const MAX_OUTSIDE_FRACTION: f64 = 0.005;
+/// Most a spray leg's commanded speed may differ from the vehicle's spray speed, as a share
+/// of it: the dose then stays within ±10 % of the rate, the tolerance sprayer inspections
+/// (ISO 16122) hold a nozzle's flow to.
+pub const MAX_SPRAY_SPEED_SHARE: f64 = 0.10;
 /// Smallest change of direction between two spray legs that sweeps a turn's disc, radians.
 const MIN_TURN_RAD: f64 = 0.5 * std::f64::consts::PI / 180.0;
 
@@ -97,6 +101,15 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         "≤",
         settings.terrain_tolerance_m,
         "m from spray height",
+    );
+    // The dose per hectare is the flow over the speed: a spray leg flown faster or slower
+    // than the vehicle's spray speed (a speed item edited in a ground station) under- or
+    // over-doses the crop however well it covers it.
+    let mut spray_speed = Tally::new(
+        "spray speed",
+        "≤",
+        MAX_SPRAY_SPEED_SHARE,
+        "share off the spray speed",
     );
     let mut transit = Tally::new(
         "transit clearance",
@@ -289,6 +302,17 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             heights.record((sortie, leg.item), &points, shape, &place);
             if leg.spraying && horizontal > 0.0 {
                 figures.spray_m += horizontal;
+                let off = (leg.speed_mps / vehicle.spray_speed_mps - 1.0).abs();
+                spray_speed.record(off, off > MAX_SPRAY_SPEED_SHARE, || {
+                    format!(
+                        "sortie {sortie}, item {}: spraying at {:.1} m/s, not the vehicle's {} m/s (± {:.0}%): the dose would be {:.0}% of the rate",
+                        leg.item,
+                        leg.speed_mps,
+                        vehicle.spray_speed_mps,
+                        100.0 * MAX_SPRAY_SPEED_SHARE,
+                        100.0 * vehicle.spray_speed_mps / leg.speed_mps
+                    )
+                });
                 let (a, b) = (points[0], points[points.len() - 1]);
                 let half = vehicle.swath_width_m / 2.0;
                 let strip = Strip::new(Coord { x: a.0, y: a.1 }, Coord { x: b.0, y: b.1 }, half);
@@ -516,7 +540,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
     });
     let lowest_clearance = heights.lowest_clearance_m;
     let bounds = heights.tallies();
-    for tally in [read, frames, spray_height, transit, low_legs]
+    for tally in [read, frames, spray_height, spray_speed, transit, low_legs]
         .into_iter()
         .chain(bounds)
         .chain([no_go, fence, coverage, outside, tank, battery])
@@ -827,12 +851,20 @@ mod tests {
         let strip = r#"{"type":"Feature","properties":{"name":"hedge","kind":"obstacle"},"geometry":{"type":"Polygon","coordinates":[
           [[126.62988,45.7490],[126.62994,45.7490],[126.62994,45.7510],[126.62988,45.7510],[126.62988,45.7490]]]}},"#;
         let text = FARM.replacen(r#""features":["#, &format!(r#""features":[{strip}"#), 1);
-        let farm = geojson::parse(Path::new("hedged.geojson"), &text, CoordinateChoice::FromFile)
-            .unwrap();
+        let farm = geojson::parse(
+            Path::new("hedged.geojson"),
+            &text,
+            CoordinateChoice::FromFile,
+        )
+        .unwrap();
         let hedged = Scenario::with_farm(farm, ScenarioParts::default()).unwrap();
         let verdict = verdict(&hedged, &settings, &files);
         let failed = failed(&verdict);
-        assert!(failed.contains(&"holes and obstacles"), "{:?}", verdict.failures);
+        assert!(
+            failed.contains(&"holes and obstacles"),
+            "{:?}",
+            verdict.failures
+        );
         assert!(!failed.contains(&"fence"), "{:?}", verdict.failures);
         assert!(
             verdict
@@ -844,6 +876,42 @@ mod tests {
         );
         // Without the hedge the same files pass.
         assert!(self::verdict(&scenario, &settings, &files).safe);
+    }
+
+    #[test]
+    fn a_spray_speed_edited_fails_and_the_plans_own_passes() {
+        let (scenario, settings, mut files) = planned();
+        let as_planned = verdict(&scenario, &settings, &files);
+        let check = |verdict: &Verdict| {
+            verdict
+                .checks
+                .iter()
+                .find(|check| check.name == "spray speed")
+                .cloned()
+                .unwrap()
+        };
+        assert!(check(&as_planned).passed);
+        assert!(
+            check(&as_planned).figure < 1e-9,
+            "the plan sprays at the spray speed"
+        );
+        // Every speed item of sortie 1 set to four times the spray speed.
+        let fast = 4.0 * scenario.vehicle.spray_speed_mps;
+        edit(&mut files, |items| {
+            for item in items.iter_mut().filter(|item| item["command"] == 178) {
+                item["params"][1] = fast.into();
+            }
+        });
+        let edited = verdict(&scenario, &settings, &files);
+        assert!(!check(&edited).passed, "{:?}", edited.failures);
+        assert!(
+            edited
+                .failures
+                .iter()
+                .any(|line| line.contains("the dose would be 25% of the rate")),
+            "{:?}",
+            edited.failures
+        );
     }
 
     #[test]

@@ -63,6 +63,9 @@ pub struct Report {
     pub coordinate_system: String,
     /// The vehicle's name.
     pub vehicle: String,
+    /// The vehicle planned for, every figure (its file's keys, the command line's overrides
+    /// applied): what `agripath check` flies the folder with when no vehicle is named.
+    pub vehicle_settings: Vehicle,
     /// Swath width, metres.
     pub swath_width_m: f64,
     /// Height above the terrain while spraying, metres.
@@ -332,6 +335,7 @@ impl Report {
             scenario: scenario.name.clone(),
             coordinate_system: scenario.farm.coordinate_system.describe(),
             vehicle: vehicle.name.clone(),
+            vehicle_settings: vehicle.clone(),
             swath_width_m: vehicle.swath_width_m,
             spray_height_m: vehicle.spray_height_m,
             safe_height_m: vehicle.safe_height_m,

@@ -129,24 +129,96 @@ impl ScenarioInputs {
 
 /// The preflight of `agripath check`: the mission files of `folder` as they are now, flown
 /// against the scenario `inputs` give (the demo's embedded farm when they give none).
-pub fn check_folder(inputs: &ScenarioInputs, folder: &Path) -> Result<Verdict, InputError> {
-    let scenario = if inputs.given() {
+///
+/// The vehicle is the one the inputs name (a scenario file's, or `--vehicle`); when they name
+/// none, the one the plan was made for, as `report.json` records it (`vehicle_settings`), with
+/// the command line's overrides applied: a folder planned for a small battery is not checked
+/// against the default vehicle's. Returns the verdict and a line saying which vehicle flew.
+pub fn check_folder(
+    inputs: &ScenarioInputs,
+    folder: &Path,
+) -> Result<(Verdict, String), InputError> {
+    let mut scenario = if inputs.given() {
         inputs.load()?
     } else {
         crate::demo::scenario()?
+    };
+    let report_path = folder.join("report.json");
+    let recorded = recorded_vehicle(&report_path)?;
+    let vehicle_named = inputs.vehicle.is_some() || inputs.scenario.is_some();
+    let line = match recorded {
+        Some(recorded) if !vehicle_named => {
+            scenario.vehicle = apply_overrides(recorded, &inputs.overrides);
+            format!(
+                "vehicle: {} (as planned: {})\n",
+                scenario.vehicle.name,
+                report_path.display()
+            )
+        }
+        Some(recorded) if recorded != scenario.vehicle => format!(
+            "warning: the plan was made for vehicle '{}' ({}); checked with '{}' as given\n",
+            recorded.name,
+            report_path.display(),
+            scenario.vehicle.name
+        ),
+        _ => format!("vehicle: {}\n", scenario.vehicle.name),
     };
     let world = World {
         farm: &scenario.farm,
         terrain: scenario.terrain.as_ref(),
         vehicle: &scenario.vehicle,
     };
-    crate::preflight::check_folder(&world, folder).map_err(|fault| InputError::new(folder, fault))
+    let verdict = crate::preflight::check_folder(&world, folder)
+        .map_err(|fault| InputError::new(folder, fault))?;
+    Ok((verdict, line))
+}
+
+/// The vehicle `report.json` records the plan was made for, validated; `None` for a report
+/// written before it was recorded (or none at all: the folder check names that fault).
+fn recorded_vehicle(report_path: &Path) -> Result<Option<crate::model::Vehicle>, InputError> {
+    let Ok(text) = crate::files::read_text(report_path) else {
+        return Ok(None);
+    };
+    let Ok(report) = serde_json::from_str::<serde_json::Value>(&text) else {
+        return Ok(None);
+    };
+    let Some(settings) = report.get("vehicle_settings") else {
+        return Ok(None);
+    };
+    let vehicle: crate::model::Vehicle =
+        serde_json::from_value(settings.clone()).map_err(|error| {
+            InputError::new(
+                report_path,
+                Fault::Structure(format!("vehicle_settings: {error}")),
+            )
+        })?;
+    vehicle
+        .validate()
+        .map_err(|fault| InputError::new(report_path, fault).at("vehicle_settings".to_string()))?;
+    Ok(Some(vehicle))
+}
+
+/// `vehicle` with the command line's swath width, spray height and safe height, where given.
+fn apply_overrides(
+    mut vehicle: crate::model::Vehicle,
+    overrides: &crate::scenario::VehicleOverrides,
+) -> crate::model::Vehicle {
+    if let Some(value) = overrides.swath_width_m {
+        vehicle.swath_width_m = value;
+    }
+    if let Some(value) = overrides.spray_height_m {
+        vehicle.spray_height_m = value;
+    }
+    if let Some(value) = overrides.safe_height_m {
+        vehicle.safe_height_m = value;
+    }
+    vehicle
 }
 
 /// `agripath check`: the verdict on `folder` as text, unsafe when the preflight fails.
 pub fn check(inputs: &ScenarioInputs, folder: &Path) -> Result<Outcome, InputError> {
-    let verdict = check_folder(inputs, folder)?;
-    let mut outcome = Outcome::text(verdict.to_text());
+    let (verdict, vehicle_line) = check_folder(inputs, folder)?;
+    let mut outcome = Outcome::text(vehicle_line + &verdict.to_text());
     if !verdict.safe {
         outcome.failures = verdict.failures;
         outcome.closing = Some(CHECK_CLOSING);

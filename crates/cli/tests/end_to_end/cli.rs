@@ -1660,3 +1660,66 @@ fn a_farm_on_the_antimeridian_is_planned_in_its_own_zone_with_true_spacing() {
     );
     std::fs::remove_dir_all(folder).unwrap();
 }
+
+/// `check` with no vehicle named flies the folder with the vehicle the plan was made for
+/// (`report.json`'s `vehicle_settings`), not the default one; a different vehicle given is
+/// used, with a warning.
+#[test]
+fn check_flies_the_vehicle_the_plan_was_made_for() {
+    let folder = scratch("check_vehicle");
+    let fields = data("seed001_farm.geojson");
+    let fields = fields.to_str().unwrap();
+    let t16 = data("vehicles/dji_t16.toml");
+    let t16 = t16.to_str().unwrap();
+    stdout(&agripath(
+        &["plan", "--fields", fields, "--vehicle", t16, "--out", "t16"],
+        &folder,
+    ));
+    let plan = folder.join("t16");
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(plan.join("report.json")).unwrap()).unwrap();
+    assert_eq!(report["vehicle_settings"]["tank_l"], 16.0);
+    let battery = |checks: &serde_json::Value| {
+        checks
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|check| check["name"] == "battery")
+            .unwrap()["figure"]
+            .as_f64()
+            .unwrap()
+    };
+    let planned = battery(&report["preflight"]["checks"]);
+    let checked = stdout(&agripath(
+        &["check", plan.to_str().unwrap(), "--fields", fields],
+        &folder,
+    ));
+    assert!(
+        checked.starts_with("vehicle: DJI T16-class sprayer (as planned: "),
+        "{checked}"
+    );
+    assert!(
+        checked.contains(&format!("{planned} batteries")),
+        "the plan's own battery figure {planned}: {checked}"
+    );
+    let seed003 = data("vehicles/seed003_sprayer.toml");
+    // Seed 003's sprayer flies slower than the T16 sprays: the files fail with it.
+    let output = agripath(
+        &[
+            "check",
+            plan.to_str().unwrap(),
+            "--fields",
+            fields,
+            "--vehicle",
+            seed003.to_str().unwrap(),
+        ],
+        &folder,
+    );
+    assert_eq!(output.status.code(), Some(3));
+    let other = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        other.starts_with("warning: the plan was made for vehicle 'DJI T16-class sprayer'"),
+        "{other}"
+    );
+    std::fs::remove_dir_all(&folder).unwrap();
+}
