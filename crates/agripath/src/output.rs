@@ -51,6 +51,7 @@ impl StagedFolder {
             std::fs::remove_dir_all(&staging)?;
         }
         std::fs::create_dir_all(&staging)?;
+        std::fs::write(staging.join(MARKER), MARKER_TEXT)?;
         Ok(Self {
             target: target.to_path_buf(),
             staging,
@@ -103,9 +104,16 @@ impl StagedFolder {
     }
 }
 
+/// The file every output folder holds, so that a later run knows the folder is one it may
+/// replace whole.
+pub const MARKER: &str = ".agripath-output";
+const MARKER_TEXT: &str =
+    "This folder was written by agripath. A run that writes to it again replaces it whole.\n";
+
 /// Refuses an output path that cannot become a plan folder, before anything is written or
-/// moved: an existing file (which a commit would otherwise move aside), or a path whose
-/// parent is a file.
+/// moved: an existing file (which a commit would otherwise move aside), a path whose parent
+/// is a file, or a folder with files in it that agripath did not write (the field file's own
+/// folder, say), which the commit would delete.
 pub fn check_target(target: &Path) -> std::io::Result<()> {
     let refused = |why: String| std::io::Error::new(std::io::ErrorKind::InvalidInput, why);
     let not_a_folder = |path: &Path| {
@@ -135,6 +143,22 @@ pub fn check_target(target: &Path) -> std::io::Result<()> {
         }
         if !metadata.is_dir() {
             return Err(not_a_folder(target));
+        }
+        if !target.join(MARKER).exists() {
+            let mut held: Vec<String> = std::fs::read_dir(target)?
+                .flatten()
+                .map(|entry| entry.file_name().to_string_lossy().into_owned())
+                .collect();
+            if !held.is_empty() {
+                held.sort();
+                let shown = held.len().min(3);
+                return Err(refused(format!(
+                    "{} holds files agripath did not write ({}{}): a run replaces its output folder whole, so give --out a new folder or one an earlier run wrote (a folder from an agripath before 2026-12-06 has no {MARKER}: delete it first)",
+                    target.display(),
+                    held[..shown].join(", "),
+                    if held.len() > shown { ", …" } else { "" }
+                )));
+            }
         }
     }
     let existing_parent = target
@@ -315,11 +339,21 @@ mod tests {
         assert_eq!(std::fs::read_dir(&root).unwrap().count(), 0);
         std::fs::create_dir_all(&target).unwrap();
         std::fs::write(target.join("stale.txt"), b"old").unwrap();
+        // A folder agripath did not write is refused, and left as it was.
+        let refused = StagedFolder::new(&target).err().unwrap().to_string();
+        assert!(
+            refused.contains("holds files agripath did not write (stale.txt)"),
+            "{refused}"
+        );
+        assert!(target.join("stale.txt").exists());
+        // One an earlier run wrote is replaced whole.
+        std::fs::write(target.join(MARKER), MARKER_TEXT).unwrap();
         let staged = StagedFolder::new(&target).unwrap();
         staged.write("a.txt", b"new").unwrap();
         staged.commit().unwrap();
         assert!(!target.join("stale.txt").exists());
         assert_eq!(std::fs::read(target.join("a.txt")).unwrap(), b"new");
+        assert!(target.join(MARKER).exists(), "the new folder is marked too");
         assert_eq!(
             std::fs::read_dir(&root).unwrap().count(),
             1,

@@ -296,14 +296,7 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                         }
                     }
                     "name" if parent == "Folder" => {
-                        let named = content.trim();
-                        let kind = if named.eq_ignore_ascii_case("obstacles") {
-                            Some(FolderKind::Obstacles)
-                        } else if named.eq_ignore_ascii_case("access") {
-                            Some(FolderKind::Access)
-                        } else {
-                            None
-                        };
+                        let kind = folder_kind(&content);
                         if let (Some(kind), Some(last)) = (kind, folders.last_mut()) {
                             *last = kind;
                         }
@@ -436,6 +429,32 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
 
 fn local_name(bytes: &[u8]) -> String {
     String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// What a Folder's name says its Placemarks are. Operators name such folders in their own
+/// words: "Obstacles", "No-spray zones", "Exclusions", "Keep out"; letters only are compared,
+/// case aside.
+fn folder_kind(name: &str) -> Option<FolderKind> {
+    let letters: String = name
+        .chars()
+        .filter(|c| c.is_alphanumeric())
+        .flat_map(char::to_lowercase)
+        .collect();
+    const OBSTACLE_WORDS: [&str; 6] = [
+        "obstacle",
+        "nospray",
+        "exclusion",
+        "exclude",
+        "nofly",
+        "keepout",
+    ];
+    if OBSTACLE_WORDS.iter().any(|word| letters.contains(word)) {
+        Some(FolderKind::Obstacles)
+    } else if letters.contains("access") {
+        Some(FolderKind::Access)
+    } else {
+        None
+    }
 }
 
 /// KML `coordinates`: tuples `lon,lat[,alt]` separated by white space.
@@ -572,5 +591,24 @@ mod tests {
             "<outerBoundaryIs>{ring}</outerBoundaryIs><outerBoundaryIs>{ring}</outerBoundaryIs>"
         ));
         assert!(two_outer.contains("2 outerBoundaryIs rings"), "{two_outer}");
+    }
+
+    #[test]
+    fn folders_named_in_an_operators_words_give_the_kind() {
+        for name in [
+            "obstacles",
+            "Obstacle",
+            "No-spray zones",
+            "no spray",
+            "Exclusions",
+            "KEEP OUT",
+            "No fly",
+        ] {
+            assert_eq!(folder_kind(name), Some(FolderKind::Obstacles), "{name}");
+        }
+        assert_eq!(folder_kind("Access roads"), Some(FolderKind::Access));
+        for name in ["North farm", "Fields 2026", "Spray"] {
+            assert_eq!(folder_kind(name), None, "{name}");
+        }
     }
 }

@@ -263,8 +263,9 @@ impl Farm {
         let pairs = self.overlaps(if allow { MAX_OVERLAP_PAIRS + 1 } else { 1 })?;
         if let (false, Some(&(first, second, shared))) = (allow, pairs.first()) {
             return Err(crate::Fault::Structure(format!(
-                "fields '{}' and '{}' overlap by {shared:.1} m²: correct the boundaries, or plan \
-                 with --allow-overlap to spray each overlap once",
+                "fields '{}' and '{}' overlap by {shared:.1} m²: if one is a no-spray zone, mark it \
+                 as an obstacle (kind 'obstacle', or a KML Folder named 'obstacles'); else correct \
+                 the boundaries, or plan with --allow-overlap to spray each overlap once",
                 self.fields[first].name, self.fields[second].name,
             )));
         }
