@@ -260,7 +260,7 @@ pub enum TerrainAction {
         #[arg(long, default_value_t = 1.0)]
         exaggeration: f64,
         /// Area to draw, for unbounded terrains: MIN_X,MIN_Y,MAX_X,MAX_Y.
-        #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+        #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
         extent: Option<Vec<f64>>,
         #[arg(long)]
         cell: Option<f64>,

@@ -98,7 +98,7 @@ pub struct PlanOptions {
     /// `--supply auto` (with sorties), else none: the flight is an open path.
     #[cfg_attr(
         feature = "cli",
-        arg(long, value_delimiter = ',', allow_negative_numbers = true)
+        arg(long, value_delimiter = ',', allow_hyphen_values = true)
     )]
     pub start: Option<Vec<f64>>,
     /// Supply point (take-off, refills, battery swaps, landing): `auto` (the place a vehicle
@@ -153,7 +153,7 @@ pub struct PlanOptions {
     /// For fields in local metres: LON,LAT of their origin in mission files (default 126.63,45.75).
     #[cfg_attr(
         feature = "cli",
-        arg(long, value_delimiter = ',', allow_negative_numbers = true)
+        arg(long, value_delimiter = ',', allow_hyphen_values = true)
     )]
     pub origin: Option<Vec<f64>>,
 }

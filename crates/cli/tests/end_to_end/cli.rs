@@ -1723,3 +1723,32 @@ fn check_flies_the_vehicle_the_plan_was_made_for() {
     );
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+/// West of Greenwich and south of the equator a point starts with a minus sign: `--start`
+/// and `--origin` take it as a value, not as an option.
+#[test]
+fn a_negative_start_is_a_value_not_an_option() {
+    let folder = scratch("negative_start");
+    let field = r#"{"type":"FeatureCollection","features":[{"type":"Feature","properties":{"name":"F"},"geometry":{"type":"Polygon","coordinates":[[[-93.6000,-42.0000],[-93.5988,-42.0000],[-93.5988,-41.9996],[-93.6000,-41.9996],[-93.6000,-42.0000]]]}}]}"#;
+    std::fs::write(folder.join("west.geojson"), field).unwrap();
+    stdout(&agripath(
+        &[
+            "plan",
+            "--fields",
+            "west.geojson",
+            "--start",
+            "-93.6004,-42.0001",
+            "--out",
+            "west",
+        ],
+        &folder,
+    ));
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("west/report.json")).unwrap()).unwrap();
+    let lon_lat = &report["supply"]["lon_lat"];
+    assert!(
+        (lon_lat[0].as_f64().unwrap() + 93.6004).abs() < 1e-6,
+        "{lon_lat}"
+    );
+    std::fs::remove_dir_all(&folder).unwrap();
+}
