@@ -225,6 +225,24 @@ fn choose_supply(
                     crate::error::figure(vehicle.battery_endurance_s)
                 ))
             }
+            // No point serves the route: if none would even where the route begins, the
+            // vehicle is what is short, and the fault names it rather than the field file.
+            Fault::Structure(why) => {
+                let at_first = scenario
+                    .terrain
+                    .height_m(first.x, first.y)
+                    .map(|ground_m| GroundPoint {
+                        x: first.x,
+                        y: first.y,
+                        ground_m,
+                    });
+                match at_first.map(|point| {
+                    split_into_sorties(scenario, &free, Some(point), &settings.sorties)
+                }) {
+                    Ok(Err(fault @ Fault::UnreachableOnOneBattery { .. })) => fault,
+                    _ => Fault::Structure(why),
+                }
+            }
             other => other,
         })?;
     let best = auto.best().point;

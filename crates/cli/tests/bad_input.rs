@@ -865,6 +865,12 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "go together",
         ),
         (
+            // The automatic supply point finds no place; the fault is the battery's.
+            plan_farm(&["--vehicle", &bad("vehicle_tiny_battery.toml")]),
+            bad("vehicle_tiny_battery.toml"),
+            "battery_endurance_s = 30 is invalid",
+        ),
+        (
             vehicle("vehicle_two_tanks.toml"),
             bad("vehicle_two_tanks.toml"),
             "tank_l and tank_spray_time_s both give the tank",
