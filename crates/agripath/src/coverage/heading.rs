@@ -41,6 +41,13 @@ pub enum HeadingObjective {
     Swaths,
     /// Shortest total draped length.
     Length,
+    /// A compass bearing of the swaths given by the user (`bearing:DEG`), degrees clockwise
+    /// from true north: each field flies it, turned into its own frame by the grid
+    /// convergence there ([`HeadingObjective::for_field`]).
+    Bearing {
+        /// Degrees clockwise from true north, modulo 180°.
+        bearing_deg: f64,
+    },
     /// A heading given by the user, degrees.
     Fixed {
         /// Degrees from east, counter-clockwise ([`HeadingObjective::parse`] takes it modulo 180°).
@@ -56,8 +63,8 @@ impl HeadingObjective {
     pub fn parse(spec: &str, weights: [f64; 2]) -> Result<Self, String> {
         if let Some(bearing) = spec.strip_prefix("bearing:") {
             return match bearing.parse::<f64>() {
-                Ok(bearing_deg) if bearing_deg.is_finite() => Ok(Self::Fixed {
-                    heading_deg: crate::geometry::heading_of_bearing_deg(bearing_deg),
+                Ok(bearing_deg) if bearing_deg.is_finite() => Ok(Self::Bearing {
+                    bearing_deg: bearing_deg.rem_euclid(180.0),
                 }),
                 _ => Err("expected bearing:DEG, a compass bearing in degrees".into()),
             };
@@ -89,6 +96,20 @@ impl HeadingObjective {
 }
 
 impl HeadingObjective {
+    /// The objective for a field whose frame's north lies `grid_north_bearing_deg` clockwise
+    /// of true north: a compass bearing becomes the fixed heading in that frame; the rest are
+    /// the same in any frame.
+    pub fn for_field(self, grid_north_bearing_deg: f64) -> Self {
+        match self {
+            Self::Bearing { bearing_deg } => Self::Fixed {
+                heading_deg: crate::geometry::heading_of_bearing_deg(
+                    bearing_deg - grid_north_bearing_deg,
+                ),
+            },
+            other => other,
+        }
+    }
+
     /// Seed 001's E with the paper's weights ω_N = ω_L = 0.5 (`--heading auto`): the tables'.
     pub const SEED: Self = Self::Seed {
         count_weight: 0.5,
@@ -208,7 +229,7 @@ fn score(
             sample.swaths as f64 + 0.5 * Normalisation::term(normalisation.length, sample.length_m)
         }
         HeadingObjective::Length => Normalisation::term(normalisation.length, sample.length_m),
-        HeadingObjective::Fixed { .. } => 0.0,
+        HeadingObjective::Fixed { .. } | HeadingObjective::Bearing { .. } => 0.0,
     }
 }
 

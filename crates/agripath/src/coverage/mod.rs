@@ -98,9 +98,12 @@ impl CoverageSettings {
             });
         }
         match self.heading {
-            HeadingObjective::Fixed { heading_deg } if !heading_deg.is_finite() => {
-                Err(Fault::NonFinite)
+            HeadingObjective::Fixed {
+                heading_deg: degrees,
             }
+            | HeadingObjective::Bearing {
+                bearing_deg: degrees,
+            } if !degrees.is_finite() => Err(Fault::NonFinite),
             HeadingObjective::Seed {
                 count_weight,
                 length_weight,
@@ -194,6 +197,14 @@ pub struct CoveragePlan {
     pub fields: Vec<FieldCoverage>,
 }
 
+/// The true bearing of the planning frame's north at the middle of `field` (the UTM grid
+/// convergence there; 0 in local metres).
+pub fn field_grid_north_bearing_deg(farm: &Farm, field: &crate::model::Field) -> f64 {
+    let (low, high) = crate::geometry::bounds(&field.polygon.exterior().0);
+    farm.coordinate_system
+        .grid_north_bearing_deg(0.5 * (low.x + high.x), 0.5 * (low.y + high.y))
+}
+
 /// Lays out every field of the farm.
 pub fn plan_coverage(
     farm: &Farm,
@@ -225,13 +236,19 @@ pub fn plan_coverage(
             settings.obstacle_margin_m,
         );
         check_something_to_spray(field, &sprayable, vehicle.swath_width_m)?;
+        let in_its_frame = CoverageSettings {
+            heading: settings
+                .heading
+                .for_field(field_grid_north_bearing_deg(farm, field)),
+            ..*settings
+        };
         let coverage = cover_field(
             index,
             &field.name,
             &sprayable,
             terrain,
             vehicle.swath_width_m,
-            settings,
+            &in_its_frame,
         )?;
         // A strip narrower than a swath has area but no line to fly.
         if coverage.swaths.is_empty()

@@ -22,7 +22,8 @@ pub struct FieldReport {
     pub name: String,
     /// Chosen heading, degrees from east, counter-clockwise, 0..180 (the seed's angle).
     pub heading_deg: f64,
-    /// The same heading as a compass bearing of the swaths, 0..180 (0 = north, clockwise).
+    /// The same heading as a true bearing of the swaths, 0..180 (0 = true north, clockwise):
+    /// the grid bearing plus the grid convergence at the field's middle.
     pub heading_bearing_deg: f64,
     /// The best heading of the 1° scan (seed 001's answer).
     pub heading_integer_deg: f64,
@@ -259,11 +260,17 @@ impl Report {
         let fields: Vec<FieldReport> = plan
             .fields
             .iter()
-            .map(|field| FieldReport {
+            .zip(&scenario.farm.fields)
+            .map(|(field, farm_field)| FieldReport {
                 name: field.name.clone(),
                 heading_deg: round(field.heading.heading_deg, 1e-9),
                 heading_bearing_deg: round(
-                    crate::geometry::swath_bearing_deg(field.heading.heading_deg),
+                    (crate::geometry::swath_bearing_deg(field.heading.heading_deg)
+                        + crate::coverage::field_grid_north_bearing_deg(
+                            &scenario.farm,
+                            farm_field,
+                        ))
+                    .rem_euclid(180.0),
                     1e-9,
                 ),
                 heading_integer_deg: field.heading.integer_heading_deg,
@@ -471,6 +478,7 @@ impl Report {
             HeadingObjective::Swaths => "fewest swaths".into(),
             HeadingObjective::Length => "shortest length".into(),
             HeadingObjective::Fixed { heading_deg } => format!("fixed {heading_deg}°"),
+            HeadingObjective::Bearing { bearing_deg } => format!("bearing {bearing_deg}°"),
         }
     }
 

@@ -278,16 +278,10 @@ pub fn sheet_html(parts: &SheetParts) -> String {
         report
             .fields
             .iter()
-            .map(|field| {
-                format!(
-                    "{} {:.1}°",
-                    escape(&field.name),
-                    crate::geometry::swath_bearing_deg(field.heading_deg)
-                )
-            })
+            .map(|field| format!("{} {:.1}°", escape(&field.name), field.heading_bearing_deg))
             .collect::<Vec<_>>()
             .join(", ")
-            + " (compass bearing of the swaths, 0° = north, clockwise)",
+            + " (true bearing of the swaths, 0° = true north, clockwise)",
     );
     term(
         "Time",

@@ -687,3 +687,53 @@ fn a_track_waypoints_file_gives_each_place_once() {
     }
     let _ = std::fs::remove_dir_all(&folder);
 }
+
+/// In lon/lat a bearing is a true one: a field in Flevoland, 2.7° east of its UTM zone's
+/// central meridian (grid north 2.1° east of true north there), flown at `bearing:90` has
+/// swaths that run true east-west on the ground, and the report prints 90°, not the grid's.
+#[test]
+fn a_bearing_in_lon_lat_is_true_not_the_grids() {
+    let folder = scratch("true_bearing");
+    std::fs::create_dir_all(&folder).unwrap();
+    let field = r#"{"type":"FeatureCollection","features":[{"type":"Feature","properties":{"name":"polder"},"geometry":{"type":"Polygon","coordinates":[[[5.700,52.500],[5.706,52.500],[5.706,52.5025],[5.700,52.5025],[5.700,52.500]]]}}]}"#;
+    let fields = folder.join("polder.geojson");
+    std::fs::write(&fields, field).unwrap();
+    let out = folder.join("plan");
+    stdout(&agripath_without_browser(&[
+        "plan",
+        "--fields",
+        fields.to_str().unwrap(),
+        "--heading",
+        "bearing:90",
+        "--out",
+        out.to_str().unwrap(),
+    ]));
+    let report = report(&out);
+    let printed = report["fields"][0]["heading_bearing_deg"].as_f64().unwrap();
+    assert!((printed - 90.0).abs() < 1e-6, "{printed}");
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("plan.geojson")).unwrap()).unwrap();
+    let mut swaths = 0;
+    for feature in plan["features"].as_array().unwrap() {
+        if feature["properties"]["kind"] != "swath" {
+            continue;
+        }
+        let line = feature["geometry"]["coordinates"].as_array().unwrap();
+        let (first, last) = (&line[0], &line[line.len() - 1]);
+        let lon = |p: &serde_json::Value| p[0].as_f64().unwrap().to_radians();
+        let lat = |p: &serde_json::Value| p[1].as_f64().unwrap().to_radians();
+        // The initial azimuth on the sphere, modulo 180° (a line has two directions).
+        let delta = lon(last) - lon(first);
+        let east = delta.sin() * lat(last).cos();
+        let north =
+            lat(first).cos() * lat(last).sin() - lat(first).sin() * lat(last).cos() * delta.cos();
+        let bearing = east.atan2(north).to_degrees().rem_euclid(180.0);
+        assert!(
+            (bearing - 90.0).abs() < 0.05,
+            "a swath at true bearing {bearing}"
+        );
+        swaths += 1;
+    }
+    assert!(swaths > 10, "{swaths} swaths");
+    std::fs::remove_dir_all(&folder).unwrap();
+}
