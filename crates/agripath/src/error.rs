@@ -216,7 +216,7 @@ pub enum Fault {
         /// Northing of the contact in the planning frame, metres.
         y: f64,
     },
-    #[error("hole {hole} crosses the outer boundary near ({x:.3}, {y:.3})")]
+    #[error("hole {hole} touches or crosses the outer boundary near ({x:.3}, {y:.3})")]
     /// A hole that crosses or touches the outer boundary.
     HoleCrossesShell {
         /// The hole's number, counted from 1 in file order.

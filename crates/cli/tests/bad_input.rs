@@ -692,7 +692,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             fields("hole_crossing.geojson"),
             bad("hole_crossing.geojson"),
-            "hole 1 crosses the outer boundary",
+            "hole 1 touches or crosses the outer boundary",
         ),
         (
             fields("holes_overlap.geojson"),

@@ -316,7 +316,7 @@ fn in_input_terms(fault: Fault, frame: CoordinateSystem) -> Fault {
             Fault::Structure(format!("boundary intersects itself {}", lon_lat(x, y)))
         }
         Fault::HoleCrossesShell { hole, x, y } => Fault::Structure(format!(
-            "hole {hole} crosses the outer boundary {}",
+            "hole {hole} touches or crosses the outer boundary {} (a hole must lie inside it: redraw the boundary round the gap if the hole opens onto the edge)",
             lon_lat(x, y)
         )),
         other => other,

@@ -6,7 +6,7 @@
 
 use std::fmt::Write;
 
-use geo::{Centroid, Polygon};
+use geo::Polygon;
 
 use super::line_chart::escape;
 use crate::coverage::drape::GroundPoint;
@@ -367,7 +367,10 @@ pub fn plan_svg(
         r##"<g id="labels" font-size="13" fill="#111" text-anchor="middle">"##
     );
     for (index, field) in farm.fields.iter().enumerate() {
-        if let (Some(centre), Some(coverage)) = (field.polygon.centroid(), plan.fields.get(index)) {
+        // A point inside the field, away from its edges: a concave field's centroid can lie in
+        // its notch, outside it, where the label would name the wrong ground.
+        let inside = geo::InteriorPoint::interior_point(&field.polygon);
+        if let (Some(centre), Some(coverage)) = (inside, plan.fields.get(index)) {
             let _ = writeln!(
                 svg,
                 r##"<text x="{:.2}" y="{:.2}" stroke="#fbfbf8" stroke-width="3" paint-order="stroke">{} {:.1}°</text>"##,

@@ -195,7 +195,14 @@ impl PlanOptions {
     /// options, the scenario, the altitude reference, the start, the layout, the sequencer.
     pub fn load(&self, inputs: &ScenarioInputs) -> Result<(Scenario, PlanSettings), InputError> {
         let mut mission = self.mission_settings()?;
-        let scenario = inputs.load()?;
+        let mut scenario = inputs.load()?;
+        if self.origin.is_some()
+            && scenario.farm.coordinate_system != crate::model::CoordinateSystem::Local
+        {
+            scenario.farm.notes.push(
+                "--origin is not used: the fields are in lon/lat, and the mission files place them where they lie".into(),
+            );
+        }
         if let Some(why) = crate::limits::terrain_tolerance_fault(
             mission.terrain_tolerance_m,
             scenario.vehicle.spray_height_m,
