@@ -159,7 +159,7 @@ impl Verdict {
             String::new()
         };
         format!(
-            "preflight ({} altitudes, read back from {} mission file(s)): {}; least coverage {:.2}%{missed}{unreachable}, sprayed outside {:.3}%, lowest clearance {:.2} m (spray legs included)",
+            "preflight ({} altitudes, read back from {} mission file(s)): {}; coverage as flown {:.2}% in the least covered field{missed}{unreachable}, sprayed outside {:.3}%, lowest clearance {:.2} m (spray legs included)",
             self.altitude_reference.key(),
             self.sorties.len(),
             if self.safe {

@@ -554,7 +554,7 @@ impl Report {
             ));
         }
         text.push_str(&format!(
-            "total: {work} {:.1} m + edges {:.1} m, transfers {:.1} m ({} climbing), {} turns ({} U-turns), covered {:.2}%, {:.1} min ({:.1} min not {working}), planned in {:.3} s\n",
+            "total: {work} {:.1} m + edges {:.1} m, transfers {:.1} m ({} climbing), {} turns ({} U-turns), covered {:.2}% as planned, {:.1} min ({:.1} min not {working}), planned in {:.3} s\n",
             self.spray_length_m,
             self.edge_length_m,
             self.transfer_length_m,
