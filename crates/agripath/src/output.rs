@@ -110,6 +110,43 @@ pub const MARKER: &str = ".agripath-output";
 const MARKER_TEXT: &str =
     "This folder was written by agripath. A run that writes to it again replaces it whole.\n";
 
+/// Files a desktop drops in any folder it shows: a folder holding only these is empty.
+const SYSTEM_FILES: [&str; 3] = [".DS_Store", "Thumbs.db", "desktop.ini"];
+
+/// Whether `folder` is a plan folder written before output folders were marked (2026-12-06):
+/// its `report.json` is agripath's (it names the scenario and the time the plan took).
+fn is_earlier_output(folder: &Path) -> bool {
+    let Ok(text) = crate::files::read_text(&folder.join("report.json")) else {
+        return false;
+    };
+    serde_json::from_str::<serde_json::Value>(&text)
+        .is_ok_and(|report| report.get("scenario").is_some() && report.get("runtime_s").is_some())
+}
+
+/// Refuses an output folder that holds one of the run's own inputs: replacing the folder
+/// would delete the file being read (a field file saved into an earlier plan's folder, say).
+pub fn check_inputs_outside(target: &Path, inputs: &[PathBuf]) -> std::io::Result<()> {
+    let Ok(folder) = target.canonicalize() else {
+        return Ok(()); // Not there yet: nothing in it to lose.
+    };
+    for input in inputs {
+        let Ok(file) = input.canonicalize() else {
+            continue; // Not a file (a terrain keyword such as `flat`), or the reader will say.
+        };
+        if file.starts_with(&folder) {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                format!(
+                    "{} holds {}, an input of this run: a run replaces its output folder whole, so give --out another folder",
+                    target.display(),
+                    input.display()
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// Refuses an output path that cannot become a plan folder, before anything is written or
 /// moved: an existing file (which a commit would otherwise move aside), a path whose parent
 /// is a file, or a folder with files in it that agripath did not write (the field file's own
@@ -144,16 +181,17 @@ pub fn check_target(target: &Path) -> std::io::Result<()> {
         if !metadata.is_dir() {
             return Err(not_a_folder(target));
         }
-        if !target.join(MARKER).exists() {
+        if !target.join(MARKER).exists() && !is_earlier_output(target) {
             let mut held: Vec<String> = std::fs::read_dir(target)?
                 .flatten()
                 .map(|entry| entry.file_name().to_string_lossy().into_owned())
+                .filter(|name| !SYSTEM_FILES.contains(&name.as_str()))
                 .collect();
             if !held.is_empty() {
                 held.sort();
                 let shown = held.len().min(3);
                 return Err(refused(format!(
-                    "{} holds files agripath did not write ({}{}): a run replaces its output folder whole, so give --out a new folder or one an earlier run wrote (a folder from an agripath before 2026-12-06 has no {MARKER}: delete it first)",
+                    "{} is a folder agripath did not write (it holds {}{}, and no {MARKER}): a run replaces its output folder whole, so give --out a new folder or one an earlier run wrote",
                     target.display(),
                     held[..shown].join(", "),
                     if held.len() > shown { ", …" } else { "" }
@@ -342,7 +380,7 @@ mod tests {
         // A folder agripath did not write is refused, and left as it was.
         let refused = StagedFolder::new(&target).err().unwrap().to_string();
         assert!(
-            refused.contains("holds files agripath did not write (stale.txt)"),
+            refused.contains("is a folder agripath did not write (it holds stale.txt,"),
             "{refused}"
         );
         assert!(target.join("stale.txt").exists());
@@ -354,6 +392,30 @@ mod tests {
         assert!(!target.join("stale.txt").exists());
         assert_eq!(std::fs::read(target.join("a.txt")).unwrap(), b"new");
         assert!(target.join(MARKER).exists(), "the new folder is marked too");
+        // A plan folder from before the mark (its report.json is agripath's) is replaced; a
+        // folder holding only what a desktop drops is as good as empty.
+        let earlier = root.join("earlier");
+        std::fs::create_dir_all(&earlier).unwrap();
+        std::fs::write(
+            earlier.join("report.json"),
+            br#"{"scenario":"demo","runtime_s":0.2}"#,
+        )
+        .unwrap();
+        assert!(check_target(&earlier).is_ok());
+        let shown = root.join("shown");
+        std::fs::create_dir_all(&shown).unwrap();
+        std::fs::write(shown.join(".DS_Store"), b"x").unwrap();
+        assert!(check_target(&shown).is_ok());
+        // An input of the run inside the folder is refused, marked or not.
+        std::fs::write(target.join("fields.geojson"), b"{}").unwrap();
+        let inside = check_inputs_outside(&target, &[target.join("fields.geojson")])
+            .err()
+            .unwrap()
+            .to_string();
+        assert!(inside.contains("an input of this run"), "{inside}");
+        assert!(check_inputs_outside(&target, &[root.join("elsewhere.geojson")]).is_ok());
+        std::fs::remove_dir_all(&earlier).unwrap();
+        std::fs::remove_dir_all(&shown).unwrap();
         assert_eq!(
             std::fs::read_dir(&root).unwrap().count(),
             1,

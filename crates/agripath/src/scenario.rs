@@ -217,7 +217,9 @@ impl Scenario {
     }
 }
 
-fn load_vehicle(parts: &ScenarioParts) -> Result<Vehicle, InputError> {
+/// The vehicle the parts give (its file, else the default), with the overrides applied and
+/// every figure checked.
+pub(crate) fn load_vehicle(parts: &ScenarioParts) -> Result<Vehicle, InputError> {
     let (mut table, source) = match &parts.vehicle_file {
         Some(path) => {
             let text = read_text(path)?;

@@ -12,6 +12,18 @@ pub fn swath_bearing_deg(heading_deg: f64) -> f64 {
     (90.0 - heading_deg).rem_euclid(180.0)
 }
 
+/// The true bearing, 0..180°, of a swath line at the seed's `heading_deg` in a frame whose
+/// north lies `grid_north_bearing_deg` clockwise of true north (a line's two directions are
+/// one bearing, and a hair under 180° reads 0°).
+pub fn true_swath_bearing_deg(heading_deg: f64, grid_north_bearing_deg: f64) -> f64 {
+    let bearing = (swath_bearing_deg(heading_deg) + grid_north_bearing_deg).rem_euclid(180.0);
+    if bearing > 180.0 - 1e-9 {
+        0.0
+    } else {
+        bearing
+    }
+}
+
 /// The seed's heading (degrees from east, counter-clockwise, 0..180°) of a line at compass
 /// bearing `bearing_deg`: the inverse of [`swath_bearing_deg`].
 pub fn heading_of_bearing_deg(bearing_deg: f64) -> f64 {

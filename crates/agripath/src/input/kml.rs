@@ -432,25 +432,37 @@ fn local_name(bytes: &[u8]) -> String {
 }
 
 /// What a Folder's name says its Placemarks are. Operators name such folders in their own
-/// words: "Obstacles", "No-spray zones", "Exclusions", "Keep out"; letters only are compared,
-/// case aside.
+/// words ("Obstacles", "No-spray zones", "Exclusions", "Keep out"): the name's letters, case
+/// aside, must be one of these whole, so that "Excluded blocks" or "Obstacle-free fields" stay
+/// fields.
 fn folder_kind(name: &str) -> Option<FolderKind> {
     let letters: String = name
         .chars()
         .filter(|c| c.is_alphanumeric())
         .flat_map(char::to_lowercase)
         .collect();
-    const OBSTACLE_WORDS: [&str; 6] = [
+    const OBSTACLE_NAMES: [&str; 16] = [
         "obstacle",
+        "obstacles",
         "nospray",
+        "nosprayzone",
+        "nosprayzones",
+        "nosprayarea",
+        "nosprayareas",
         "exclusion",
-        "exclude",
-        "nofly",
+        "exclusions",
+        "exclusionzones",
         "keepout",
+        "keepoutzone",
+        "keepoutzones",
+        "nofly",
+        "noflyzone",
+        "noflyzones",
     ];
-    if OBSTACLE_WORDS.iter().any(|word| letters.contains(word)) {
+    const ACCESS_NAMES: [&str; 4] = ["access", "accessroads", "accesstracks", "roads"];
+    if OBSTACLE_NAMES.contains(&letters.as_str()) {
         Some(FolderKind::Obstacles)
-    } else if letters.contains("access") {
+    } else if ACCESS_NAMES.contains(&letters.as_str()) {
         Some(FolderKind::Access)
     } else {
         None
@@ -607,7 +619,13 @@ mod tests {
             assert_eq!(folder_kind(name), Some(FolderKind::Obstacles), "{name}");
         }
         assert_eq!(folder_kind("Access roads"), Some(FolderKind::Access));
-        for name in ["North farm", "Fields 2026", "Spray"] {
+        for name in [
+            "North farm",
+            "Fields 2026",
+            "Spray",
+            "Excluded blocks",
+            "Obstacle-free fields",
+        ] {
             assert_eq!(folder_kind(name), None, "{name}");
         }
     }

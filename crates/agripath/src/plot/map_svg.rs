@@ -377,9 +377,10 @@ pub fn plan_svg(
                 canvas.x(centre.x()),
                 canvas.y(centre.y()),
                 escape(&field.name),
-                (crate::geometry::swath_bearing_deg(coverage.heading.heading_deg)
-                    + crate::coverage::field_grid_north_bearing_deg(farm, field))
-                .rem_euclid(180.0)
+                crate::geometry::true_swath_bearing_deg(
+                    coverage.heading.heading_deg,
+                    crate::coverage::field_grid_north_bearing_deg(farm, field)
+                )
             );
         }
     }

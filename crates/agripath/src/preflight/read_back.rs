@@ -259,6 +259,15 @@ pub(super) fn sortie_files<'f>(
     if numbered.is_empty() {
         read.fail("no mission file (sortie_NN.plan) to fly".into());
     }
+    for pair in numbered.windows(2) {
+        if pair[0].0 == pair[1].0 {
+            read.fail(format!(
+                "{} and {} are both sortie {}: move one out of the folder",
+                pair[0].1, pair[1].1, pair[0].0
+            ));
+            return numbered.into_iter().map(|(_, name)| name).collect();
+        }
+    }
     for (expected, (number, name)) in (1..).zip(&numbered) {
         if *number != expected {
             read.fail(format!(

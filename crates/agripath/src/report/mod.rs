@@ -265,12 +265,10 @@ impl Report {
                 name: field.name.clone(),
                 heading_deg: round(field.heading.heading_deg, 1e-9),
                 heading_bearing_deg: round(
-                    (crate::geometry::swath_bearing_deg(field.heading.heading_deg)
-                        + crate::coverage::field_grid_north_bearing_deg(
-                            &scenario.farm,
-                            farm_field,
-                        ))
-                    .rem_euclid(180.0),
+                    crate::geometry::true_swath_bearing_deg(
+                        field.heading.heading_deg,
+                        crate::coverage::field_grid_north_bearing_deg(&scenario.farm, farm_field),
+                    ),
                     1e-9,
                 ),
                 heading_integer_deg: field.heading.integer_heading_deg,

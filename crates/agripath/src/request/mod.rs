@@ -130,10 +130,13 @@ impl ScenarioInputs {
 /// The preflight of `agripath check`: the mission files of `folder` as they are now, flown
 /// against the scenario `inputs` give (the demo's embedded farm when they give none).
 ///
-/// The vehicle is the one the inputs name (a scenario file's, or `--vehicle`); when they name
-/// none, the one the plan was made for, as `report.json` records it (`vehicle_settings`), with
-/// the command line's overrides applied: a folder planned for a small battery is not checked
-/// against the default vehicle's. Returns the verdict and a line saying which vehicle flew.
+/// The vehicle is the one the inputs give (a scenario file's, `--vehicle`, else the default,
+/// with the command line's overrides). `report.json` records the vehicle the plan was made
+/// for (`vehicle_settings`), but `check` does not fly with it, since it can be edited along
+/// with the missions; it compares: when the inputs name no vehicle and the recorded one
+/// differs, the check is refused (a plan for a small battery is not passed against the
+/// default one); when a named vehicle differs, it flies with a warning. Returns the verdict
+/// and a line saying which vehicle flew.
 pub fn check_folder(
     inputs: &ScenarioInputs,
     folder: &Path,
@@ -143,17 +146,28 @@ pub fn check_folder(
     } else {
         crate::demo::scenario()?
     };
+    let overridden = inputs.overrides != crate::scenario::VehicleOverrides::default();
+    if !inputs.given() && (inputs.vehicle.is_some() || overridden) {
+        scenario.vehicle = crate::scenario::load_vehicle(&crate::scenario::ScenarioParts {
+            vehicle_file: inputs.vehicle.clone(),
+            overrides: inputs.overrides,
+            ..Default::default()
+        })?;
+    }
     let report_path = folder.join("report.json");
-    let recorded = recorded_vehicle(&report_path)?;
     let vehicle_named = inputs.vehicle.is_some() || inputs.scenario.is_some();
-    let line = match recorded {
-        Some(recorded) if !vehicle_named => {
-            scenario.vehicle = apply_overrides(recorded, &inputs.overrides);
-            format!(
-                "vehicle: {} (as planned: {})\n",
-                scenario.vehicle.name,
-                report_path.display()
-            )
+    let line = match recorded_vehicle(&report_path)? {
+        Some(recorded) if recorded != scenario.vehicle && !vehicle_named => {
+            return Err(InputError::new(
+                "--vehicle",
+                Fault::Structure(format!(
+                    "{} was planned for vehicle '{}' ({}), not '{}': give its file with --vehicle (and the plan's --swath-width, --spray-height or --safe-height, if it had them); check does not take the vehicle from report.json, which can be edited with the missions",
+                    folder.display(),
+                    recorded.name,
+                    report_path.display(),
+                    scenario.vehicle.name
+                )),
+            ));
         }
         Some(recorded) if recorded != scenario.vehicle => format!(
             "warning: the plan was made for vehicle '{}' ({}); checked with '{}' as given\n",
@@ -173,8 +187,8 @@ pub fn check_folder(
     Ok((verdict, line))
 }
 
-/// The vehicle `report.json` records the plan was made for, validated; `None` for a report
-/// written before it was recorded (or none at all: the folder check names that fault).
+/// The vehicle `report.json` records the plan was made for; `None` for a report written
+/// before it was recorded, or one that cannot be read (the folder check names that fault).
 fn recorded_vehicle(report_path: &Path) -> Result<Option<crate::model::Vehicle>, InputError> {
     let Ok(text) = crate::files::read_text(report_path) else {
         return Ok(None);
@@ -185,34 +199,14 @@ fn recorded_vehicle(report_path: &Path) -> Result<Option<crate::model::Vehicle>,
     let Some(settings) = report.get("vehicle_settings") else {
         return Ok(None);
     };
-    let vehicle: crate::model::Vehicle =
-        serde_json::from_value(settings.clone()).map_err(|error| {
+    serde_json::from_value(settings.clone())
+        .map(Some)
+        .map_err(|error| {
             InputError::new(
                 report_path,
                 Fault::Structure(format!("vehicle_settings: {error}")),
             )
-        })?;
-    vehicle
-        .validate()
-        .map_err(|fault| InputError::new(report_path, fault).at("vehicle_settings".to_string()))?;
-    Ok(Some(vehicle))
-}
-
-/// `vehicle` with the command line's swath width, spray height and safe height, where given.
-fn apply_overrides(
-    mut vehicle: crate::model::Vehicle,
-    overrides: &crate::scenario::VehicleOverrides,
-) -> crate::model::Vehicle {
-    if let Some(value) = overrides.swath_width_m {
-        vehicle.swath_width_m = value;
-    }
-    if let Some(value) = overrides.spray_height_m {
-        vehicle.spray_height_m = value;
-    }
-    if let Some(value) = overrides.safe_height_m {
-        vehicle.safe_height_m = value;
-    }
-    vehicle
+        })
 }
 
 /// `agripath check`: the verdict on `folder` as text, unsafe when the preflight fails.

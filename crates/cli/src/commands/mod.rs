@@ -34,6 +34,9 @@ mod runs;
 pub fn run(arguments: Arguments) -> Result<(), Failure> {
     if let Some(out) = arguments.command.output_folder() {
         agripath::output::check_target(out)
+            .and_then(|()| {
+                agripath::output::check_inputs_outside(out, &arguments.command.input_files())
+            })
             .map_err(|error| InputError::new("--out", Fault::Structure(error.to_string())))?;
     }
     match arguments.command {

@@ -1661,11 +1661,12 @@ fn a_farm_on_the_antimeridian_is_planned_in_its_own_zone_with_true_spacing() {
     std::fs::remove_dir_all(folder).unwrap();
 }
 
-/// `check` with no vehicle named flies the folder with the vehicle the plan was made for
-/// (`report.json`'s `vehicle_settings`), not the default one; a different vehicle given is
-/// used, with a warning.
+/// `check` flies the vehicle the inputs give, and holds it against the one `report.json` says
+/// the plan was made for: with none named and the two different, it refuses (a plan for a
+/// smaller battery is not passed against the default vehicle); a different one named flies
+/// with a warning.
 #[test]
-fn check_flies_the_vehicle_the_plan_was_made_for() {
+fn check_holds_the_vehicle_against_the_one_the_plan_was_made_for() {
     let folder = scratch("check_vehicle");
     let fields = data("seed001_farm.geojson");
     let fields = fields.to_str().unwrap();
@@ -1676,9 +1677,19 @@ fn check_flies_the_vehicle_the_plan_was_made_for() {
         &folder,
     ));
     let plan = folder.join("t16");
+    let plan = plan.to_str().unwrap();
     let report: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(plan.join("report.json")).unwrap()).unwrap();
+        serde_json::from_slice(&std::fs::read(folder.join("t16/report.json")).unwrap()).unwrap();
     assert_eq!(report["vehicle_settings"]["tank_l"], 16.0);
+    // No vehicle named: refused, naming the one planned for.
+    let unnamed = agripath(&["check", plan, "--fields", fields], &folder);
+    assert_eq!(unnamed.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&unnamed.stderr);
+    assert!(
+        stderr.contains("was planned for vehicle 'DJI T16-class sprayer'"),
+        "{stderr}"
+    );
+    // The same vehicle named, with or without the fields: the plan's own battery figure.
     let battery = |checks: &serde_json::Value| {
         checks
             .as_array()
@@ -1691,23 +1702,24 @@ fn check_flies_the_vehicle_the_plan_was_made_for() {
     };
     let planned = battery(&report["preflight"]["checks"]);
     let checked = stdout(&agripath(
-        &["check", plan.to_str().unwrap(), "--fields", fields],
+        &["check", plan, "--fields", fields, "--vehicle", t16],
         &folder,
     ));
     assert!(
-        checked.starts_with("vehicle: DJI T16-class sprayer (as planned: "),
+        checked.starts_with("vehicle: DJI T16-class sprayer\n"),
         "{checked}"
     );
     assert!(
         checked.contains(&format!("{planned} batteries")),
         "the plan's own battery figure {planned}: {checked}"
     );
+    // Seed 003's sprayer named instead: flown with it, with a warning (it sprays slower
+    // than the T16, so the files fail).
     let seed003 = data("vehicles/seed003_sprayer.toml");
-    // Seed 003's sprayer flies slower than the T16 sprays: the files fail with it.
     let output = agripath(
         &[
             "check",
-            plan.to_str().unwrap(),
+            plan,
             "--fields",
             fields,
             "--vehicle",
@@ -1721,6 +1733,12 @@ fn check_flies_the_vehicle_the_plan_was_made_for() {
         other.starts_with("warning: the plan was made for vehicle 'DJI T16-class sprayer'"),
         "{other}"
     );
+    // An override that is not a figure is refused, even with the demo's farm.
+    let demo = agripath(
+        &["check", plan, "--vehicle", t16, "--swath-width", "nan"],
+        &folder,
+    );
+    assert_eq!(demo.status.code(), Some(2));
     std::fs::remove_dir_all(&folder).unwrap();
 }
 
