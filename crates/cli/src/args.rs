@@ -163,17 +163,8 @@ impl Command {
     /// The files the command reads, where they are paths: a run must not replace the folder
     /// that holds one of them.
     pub fn input_files(&self) -> Vec<PathBuf> {
-        let of_inputs = |inputs: &agripath::request::ScenarioInputs| {
-            let mut files: Vec<PathBuf> = [&inputs.scenario, &inputs.fields, &inputs.vehicle]
-                .into_iter()
-                .flatten()
-                .cloned()
-                .collect();
-            files.extend(inputs.terrain.as_ref().map(PathBuf::from));
-            files
-        };
         match self {
-            Command::Plan { inputs, .. } => of_inputs(inputs),
+            Command::Plan { inputs, .. } => inputs.files(),
             Command::Grid { grid, .. } => vec![grid.fields.clone()],
             Command::Track { track, .. } => vec![track.scenario_path.clone()],
             _ => Vec::new(),

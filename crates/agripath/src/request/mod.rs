@@ -74,6 +74,18 @@ pub(crate) mod cli {
 }
 
 impl ScenarioInputs {
+    /// The files these inputs name (the terrain's name taken as a path; a keyword such as
+    /// `flat` names none that exists).
+    pub fn files(&self) -> Vec<PathBuf> {
+        let mut files: Vec<PathBuf> = [&self.scenario, &self.fields, &self.vehicle]
+            .into_iter()
+            .flatten()
+            .cloned()
+            .collect();
+        files.extend(self.terrain.as_ref().map(PathBuf::from));
+        files
+    }
+
     /// Whether a scenario file or a field file is given at all.
     pub fn given(&self) -> bool {
         self.scenario.is_some() || self.fields.is_some()
