@@ -172,9 +172,21 @@ pub struct FieldCoverage {
     pub edge_corners_cut: usize,
     /// Double dose those corners save by the corner model, m².
     pub edge_corners_saved_m2: f64,
+    /// The true bearing of the planning frame's north at the field's middle, degrees: the UTM
+    /// grid convergence for lon/lat input, 0 in local metres (and for a field laid out alone).
+    pub grid_north_bearing_deg: f64,
 }
 
 impl FieldCoverage {
+    /// The swaths' bearing as the operator reads it, 0..180°: true for lon/lat input, from the
+    /// frame's y axis in local metres.
+    pub fn swath_bearing_deg(&self) -> f64 {
+        crate::geometry::true_swath_bearing_deg(
+            self.heading.heading_deg,
+            self.grid_north_bearing_deg,
+        )
+    }
+
     /// Interior swath length, metres (seed 001's L).
     pub fn spray_length_m(&self) -> f64 {
         self.swaths.iter().map(|swath| swath.length_m).sum()
@@ -199,7 +211,7 @@ pub struct CoveragePlan {
 
 /// The true bearing of the planning frame's north at the middle of `field` (the UTM grid
 /// convergence there; 0 in local metres).
-pub fn field_grid_north_bearing_deg(farm: &Farm, field: &crate::model::Field) -> f64 {
+fn field_grid_north_bearing_deg(farm: &Farm, field: &crate::model::Field) -> f64 {
     let (low, high) = crate::geometry::bounds(&field.polygon.exterior().0);
     farm.coordinate_system
         .grid_north_bearing_deg(0.5 * (low.x + high.x), 0.5 * (low.y + high.y))
@@ -236,13 +248,12 @@ pub fn plan_coverage(
             settings.obstacle_margin_m,
         );
         check_something_to_spray(field, &sprayable, vehicle.swath_width_m)?;
+        let grid_north_bearing_deg = field_grid_north_bearing_deg(farm, field);
         let in_its_frame = CoverageSettings {
-            heading: settings
-                .heading
-                .for_field(field_grid_north_bearing_deg(farm, field)),
+            heading: settings.heading.for_field(grid_north_bearing_deg),
             ..*settings
         };
-        let coverage = cover_field(
+        let mut coverage = cover_field(
             index,
             &field.name,
             &sprayable,
@@ -250,6 +261,7 @@ pub fn plan_coverage(
             vehicle.swath_width_m,
             &in_its_frame,
         )?;
+        coverage.grid_north_bearing_deg = grid_north_bearing_deg;
         // A strip narrower than a swath has area but no line to fly.
         if coverage.swaths.is_empty()
             && coverage.edges.is_empty()
@@ -503,6 +515,7 @@ pub fn cover_field(
         heading_samples,
         edge_corners_cut: corner_cuts.corners,
         edge_corners_saved_m2: corner_cuts.double_saved_m2,
+        grid_north_bearing_deg: 0.0,
     })
 }
 

@@ -457,10 +457,6 @@ mod tests {
         assert!(count >= 4, "expected an example per seed drone and the T16");
     }
 
-    fn survey(text: &str) -> Result<Vehicle, Fault> {
-        Vehicle::from_toml(text)
-    }
-
     #[test]
     fn a_tank_is_given_one_way() {
         // A 100 L tank at 20 L/ha and 5 m: 10,000 m of swath, not the 900 s × 5 m/s of the
@@ -484,19 +480,21 @@ mod tests {
     #[test]
     fn a_camera_makes_a_survey_vehicle_without_a_tank() {
         let camera = "[camera]\nfootprint_width_m = 90.0\nfootprint_length_m = 60.0\nside_overlap_percent = 70.0\nfront_overlap_percent = 80.0\n";
-        let vehicle = survey(camera).unwrap();
+        let vehicle = Vehicle::from_toml(camera).unwrap();
         assert!(vehicle.is_survey());
         assert_eq!(vehicle.swath_width_m, 27.0);
         assert_eq!(vehicle.trigger_distance_m(), Some(12.0));
         // No seed 003 tank by default: sorties end for the battery only.
         assert_eq!(vehicle.spray_length_per_tank_m(), None);
-        let direct = survey("swath_width_m = 20.0\n[camera]\ntrigger_distance_m = 8.0\n").unwrap();
+        let direct =
+            Vehicle::from_toml("swath_width_m = 20.0\n[camera]\ntrigger_distance_m = 8.0\n")
+                .unwrap();
         assert_eq!(
             (direct.swath_width_m, direct.trigger_distance_m()),
             (20.0, Some(8.0))
         );
         let agreeing = format!("swath_width_m = 27.0\n{camera}");
-        assert_eq!(survey(&agreeing).unwrap().swath_width_m, 27.0);
+        assert_eq!(Vehicle::from_toml(&agreeing).unwrap().swath_width_m, 27.0);
     }
 
     #[test]
@@ -512,7 +510,7 @@ mod tests {
             ("[camera]\ntrigger_distance_m = 8.0\nfootprint_length_m = 60.0\nfront_overlap_percent = 80.0\n", "disagrees with footprint_length_m"),
         ];
         for (text, expected) in cases {
-            let error = survey(text).unwrap_err().to_string();
+            let error = Vehicle::from_toml(text).unwrap_err().to_string();
             assert!(error.contains(expected), "{text}: {error}");
         }
         let error = toml::from_str::<Vehicle>("[camera]\nshutter = 1\n").unwrap_err();

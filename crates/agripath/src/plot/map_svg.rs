@@ -377,10 +377,7 @@ pub fn plan_svg(
                 canvas.x(centre.x()),
                 canvas.y(centre.y()),
                 escape(&field.name),
-                crate::geometry::true_swath_bearing_deg(
-                    coverage.heading.heading_deg,
-                    crate::coverage::field_grid_north_bearing_deg(farm, field)
-                )
+                coverage.swath_bearing_deg()
             );
         }
     }

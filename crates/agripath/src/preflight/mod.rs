@@ -280,7 +280,8 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                         place(x, y)
                     )
                 });
-                let in_obstacle = zones.in_obstacle(p);
+                // Spray legs are asked below, against obstacles grown by the margin.
+                let in_obstacle = !(leg.spraying && horizontal > 0.0) && zones.in_obstacle(p);
                 no_go.record(f64::from(u8::from(in_obstacle)), in_obstacle, || {
                     format!(
                         "sortie {sortie}, item {} at {}: flying through an obstacle",
@@ -959,6 +960,24 @@ mod tests {
         let with_copy = verdict(&scenario, &settings, &copied);
         assert_eq!(failed(&with_copy), vec!["files read back"]);
         assert!(with_copy.failures[0].contains("sortie_01 copy.plan is not"));
+        // The same sortie under two numberings: named, not taken for a missing sortie 2.
+        let mut twice = files.clone();
+        let first_plan = twice
+            .iter()
+            .find(|(name, _)| name == "sortie_01.plan")
+            .unwrap()
+            .1
+            .clone();
+        twice.push(("sortie_001.plan".to_string(), first_plan));
+        let doubled = verdict(&scenario, &settings, &twice);
+        assert!(
+            doubled
+                .failures
+                .iter()
+                .any(|line| line.contains("are both sortie 1")),
+            "{:?}",
+            doubled.failures
+        );
         // The sortie's files numbered 2: sortie 1 is missing.
         let missing: Vec<(String, Vec<u8>)> = files
             .into_iter()

@@ -259,22 +259,18 @@ pub(super) fn sortie_files<'f>(
     if numbered.is_empty() {
         read.fail("no mission file (sortie_NN.plan) to fly".into());
     }
-    for pair in numbered.windows(2) {
-        if pair[0].0 == pair[1].0 {
-            read.fail(format!(
-                "{} and {} are both sortie {}: move one out of the folder",
-                pair[0].1, pair[1].1, pair[0].0
-            ));
-            return numbered.into_iter().map(|(_, name)| name).collect();
-        }
-    }
-    for (expected, (number, name)) in (1..).zip(&numbered) {
-        if *number != expected {
-            read.fail(format!(
-                "{name}: sortie {expected} is missing (the files number the sorties 1, 2, … with none left out)"
-            ));
-            break;
-        }
+    if let Some(pair) = numbered.windows(2).find(|pair| pair[0].0 == pair[1].0) {
+        read.fail(format!(
+            "{} and {} are both sortie {}: move one out of the folder",
+            pair[0].1, pair[1].1, pair[0].0
+        ));
+    } else if let Some((expected, (_, name))) = (1..)
+        .zip(&numbered)
+        .find(|(expected, (number, _))| number != expected)
+    {
+        read.fail(format!(
+            "{name}: sortie {expected} is missing (the files number the sorties 1, 2, … with none left out)"
+        ));
     }
     numbered.into_iter().map(|(_, name)| name).collect()
 }

@@ -65,7 +65,7 @@ pub struct Report {
     /// The vehicle's name.
     pub vehicle: String,
     /// The vehicle planned for, every figure (its file's keys, the command line's overrides
-    /// applied): what `agripath check` flies the folder with when no vehicle is named.
+    /// applied): what `agripath check` holds the vehicle it flies with against.
     pub vehicle_settings: Vehicle,
     /// Swath width, metres.
     pub swath_width_m: f64,
@@ -260,17 +260,10 @@ impl Report {
         let fields: Vec<FieldReport> = plan
             .fields
             .iter()
-            .zip(&scenario.farm.fields)
-            .map(|(field, farm_field)| FieldReport {
+            .map(|field| FieldReport {
                 name: field.name.clone(),
                 heading_deg: round(field.heading.heading_deg, 1e-9),
-                heading_bearing_deg: round(
-                    crate::geometry::true_swath_bearing_deg(
-                        field.heading.heading_deg,
-                        crate::coverage::field_grid_north_bearing_deg(&scenario.farm, farm_field),
-                    ),
-                    1e-9,
-                ),
+                heading_bearing_deg: round(field.swath_bearing_deg(), 1e-9),
                 heading_integer_deg: field.heading.integer_heading_deg,
                 objective: round(field.heading.objective, 1e-9),
                 objective_integer: round(field.heading.integer_objective, 1e-9),

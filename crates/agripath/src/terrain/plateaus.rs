@@ -51,8 +51,8 @@ impl Terrain for Plateaus {
             .map(|plateau| {
                 let (dx, dy) = (x - plateau.center[0], y - plateau.center[1]);
                 // Most samples lie well inside a plateau's top or well beyond its ramp: there
-                // the squared distance decides, without `hypot` (5 % of the demo's planning,
-                // through the battery reserve's terrain sampling). Near either edge, within
+                // the squared distance decides, without `hypot` (5 % of a demo run's samples,
+                // 1.4 points of them in planning, the battery reserve's terrain sampling). Near either edge, within
                 // a relative 1e-9 that rounding cannot cross, the distance decides as before,
                 // so every height is the same to the bit.
                 let squared = dx * dx + dy * dy;
@@ -154,6 +154,7 @@ mod tests {
         for i in -200..=200 {
             for j in -200..=200 {
                 points.push((f64::from(i) * 0.237, f64::from(j) * 0.193));
+                points.push((30.0 + f64::from(i) * 0.0171, 11.0 + f64::from(j) * 0.0163));
             }
         }
         for k in 0..3600 {
@@ -161,7 +162,11 @@ mod tests {
             for radius in [10.0, 14.0, 10.0 + 1e-12, 14.0 - 1e-12] {
                 points.push((3.0 + radius * angle.cos(), -7.0 + radius * angle.sin()));
             }
+            for radius in [2.0, 3.0, 2.0 + 1e-12, 3.0 - 1e-12] {
+                points.push((30.0 + radius * angle.cos(), 11.0 + radius * angle.sin()));
+            }
         }
+        assert_eq!(points.len(), 2 * 401 * 401 + 2 * 4 * 3600);
         points.push((30.0, 11.0));
         for (x, y) in points {
             assert_eq!(

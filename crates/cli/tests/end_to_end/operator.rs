@@ -19,6 +19,23 @@ fn agripath_without_browser(arguments: &[&str]) -> Output {
         .unwrap()
 }
 
+/// The first and last positions of every swath in a plan folder's `plan.geojson`.
+fn swath_ends(folder: &Path) -> Vec<([f64; 2], [f64; 2])> {
+    let plan: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("plan.geojson")).unwrap()).unwrap();
+    let position = |p: &serde_json::Value| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()];
+    plan["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|feature| feature["properties"]["kind"] == "swath")
+        .map(|feature| {
+            let line = feature["geometry"]["coordinates"].as_array().unwrap();
+            (position(&line[0]), position(&line[line.len() - 1]))
+        })
+        .collect()
+}
+
 fn report(folder: &Path) -> serde_json::Value {
     serde_json::from_slice(&std::fs::read(folder.join("report.json")).unwrap()).unwrap()
 }
@@ -232,18 +249,9 @@ fn headings_are_given_as_compass_bearings_and_taken_as_them() {
         }
     }
     // The swaths as written (plan.geojson, local metres: x east, y north) run east-west.
-    let plan: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(folder.join("bearing/plan.geojson")).unwrap())
-            .unwrap();
     let mut swaths = 0;
-    for feature in plan["features"].as_array().unwrap() {
-        if feature["properties"]["kind"] != "swath" {
-            continue;
-        }
-        let line = feature["geometry"]["coordinates"].as_array().unwrap();
-        let (first, last) = (&line[0], &line[line.len() - 1]);
-        let dx = last[0].as_f64().unwrap() - first[0].as_f64().unwrap();
-        let dy = last[1].as_f64().unwrap() - first[1].as_f64().unwrap();
+    for (first, last) in swath_ends(&folder.join("bearing")) {
+        let (dx, dy) = (last[0] - first[0], last[1] - first[1]);
         let bearing = dx.atan2(dy).to_degrees().rem_euclid(180.0);
         assert!(
             (bearing - 90.0).abs() < 1e-6,
@@ -711,17 +719,10 @@ fn a_bearing_in_lon_lat_is_true_not_the_grids() {
     let report = report(&out);
     let printed = report["fields"][0]["heading_bearing_deg"].as_f64().unwrap();
     assert!((printed - 90.0).abs() < 1e-6, "{printed}");
-    let plan: serde_json::Value =
-        serde_json::from_slice(&std::fs::read(out.join("plan.geojson")).unwrap()).unwrap();
     let mut swaths = 0;
-    for feature in plan["features"].as_array().unwrap() {
-        if feature["properties"]["kind"] != "swath" {
-            continue;
-        }
-        let line = feature["geometry"]["coordinates"].as_array().unwrap();
-        let (first, last) = (&line[0], &line[line.len() - 1]);
-        let lon = |p: &serde_json::Value| p[0].as_f64().unwrap().to_radians();
-        let lat = |p: &serde_json::Value| p[1].as_f64().unwrap().to_radians();
+    for (first, last) in swath_ends(&out) {
+        let lon = |p: [f64; 2]| p[0].to_radians();
+        let lat = |p: [f64; 2]| p[1].to_radians();
         // The initial azimuth on the sphere, modulo 180° (a line has two directions).
         let delta = lon(last) - lon(first);
         let east = delta.sin() * lat(last).cos();
