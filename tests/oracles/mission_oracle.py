@@ -1,8 +1,8 @@
 """Mission files checked by the tools autopilots use.
 
 Every `.waypoints` file of the plans (the embedded demo; the Christmas Island plantation in
-lon/lat over the real DEM, with sea-level altitudes, with terrain-frame altitudes and a servo
-sprayer, and surveyed by a camera drone) is loaded with
+lon/lat over the real DEM, with sea-level altitudes, with terrain-frame altitudes, and surveyed
+by a camera drone; the seed 001 farm with a pump on a servo output) is loaded with
 pymavlink's `mavwp.MAVWPLoader` (what MAVProxy and Mission Planner-compatible tools use),
 each item packed as an ArduPilot MISSION_ITEM (which refuses out-of-range fields), and the
 matching `.plan` must hold the same commands, frames and parameters. A point-to-point track
@@ -96,8 +96,18 @@ with tempfile.TemporaryDirectory() as scratch:
     check_folder(island_sea_level, {0})
     island = os.path.join(scratch, "island")
     subprocess.run([AGRIPATH, "plan", os.path.join(ROOT, "data/scenarios/christmas_island.toml"), "--altitude", "terrain",
-                    "--sprayer", "servo:9:1900:1100", "--out", island], check=True, stdout=subprocess.DEVNULL)
+                    "--out", island], check=True, stdout=subprocess.DEVNULL)
     check_folder(island, {10})
+    # A pump on a servo output (DO_SET_SERVO, 183). Not on the island: a constant-flow pump
+    # slowed by its climbs over the island's terraces overdoses, and that plan exits 3
+    # (decision 0028); the seed 001 farm is level.
+    servo = os.path.join(scratch, "servo")
+    subprocess.run([AGRIPATH, "plan", os.path.join(ROOT, "data/scenarios/seed001_farm.toml"),
+                    "--sprayer", "servo:9:1900:1100", "--out", servo], check=True, stdout=subprocess.DEVNULL)
+    check_folder(servo, {3})
+    servo_items = [json.load(open(path))["mission"]["items"] for path in glob.glob(os.path.join(servo, "*.plan"))]
+    check(all(any(item.get("command") == 183 for item in items) for items in servo_items) and servo_items,
+          "servo: every sortie switches the pump with DO_SET_SERVO")
     # A survey vehicle: camera triggers (MAV_CMD_DO_SET_CAM_TRIGG_DIST, 206), no sprayer item.
     survey = os.path.join(scratch, "survey")
     subprocess.run([AGRIPATH, "plan", os.path.join(ROOT, "data/scenarios/christmas_island_survey.toml"),

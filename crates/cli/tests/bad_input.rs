@@ -261,6 +261,15 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             bad("covered_by_obstacle.geojson"),
             "field 'wood' has 0.00 m² left to spray",
         ),
+        // Decision 0028: a DEM with no data between two fields names the DEM, not the fields.
+        (
+            plan(
+                &data("seed001_farm.geojson"),
+                &["--terrain", &bad("gap_between_fields.asc")],
+            ),
+            bad("gap_between_fields.asc"),
+            "which the flight crosses (a transfer, a return to the supply point or a transit between fields)",
+        ),
         (
             plan(&bad("speck.geojson"), &[]),
             bad("speck.geojson"),

@@ -43,6 +43,7 @@ use crate::coverage::region::GroundPatches;
 use crate::geometry::rings;
 use crate::limits::MIN_GROUND_CLEARANCE_M;
 use crate::mission::flight::GeoFrame;
+use crate::mission::flight::SprayerCommand;
 use crate::mission::mavlink::Command;
 use crate::model::{Farm, Vehicle};
 use crate::terrain::Terrain;
@@ -80,9 +81,24 @@ pub struct World<'a> {
     pub vehicle: &'a Vehicle,
 }
 
-/// The places a horizontal leg is sampled at: both ends and every [`SAMPLE_M`].
-fn samples(leg: &Leg) -> impl Iterator<Item = f64> {
-    crate::geometry::leg_samples(leg.horizontal_m(), SAMPLE_M)
+/// The places a horizontal leg is sampled at: both ends, every [`SAMPLE_M`], every bend of
+/// the terrain under it (a raster's lines through its cell centres, a plateau's edges), and
+/// between two bends where the ground and the height above it are highest and lowest
+/// ([`crate::terrain::profile_places`]). At 1 m alone, a step in the ground one cell wide was
+/// stepped over: a flight 1.08 m off spray height read 0.89 m (decision 0028).
+fn samples(leg: &Leg, terrain: &dyn Terrain) -> Vec<f64> {
+    crate::terrain::profile_places(
+        terrain,
+        (leg.from.x, leg.from.y),
+        (leg.to.x, leg.to.y),
+        leg.horizontal_m(),
+        SAMPLE_M,
+        |t| {
+            let (x, y, altitude) = leg.at(t, terrain).ok()?;
+            let ground = terrain.height_m(x, y).ok()?;
+            Some(vec![ground, altitude - ground])
+        },
+    )
 }
 
 /// Runs the check on the mission files among `files` (name, bytes).
@@ -257,12 +273,14 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 (horizontal / leg.speed_mps).max(vertical / vehicle.climb_speed_mps);
             // Where the terrain has no answer (a waypoint off the DEM), the leg cannot be
             // checked: that is a failure, and the leg's other checks are skipped.
-            let sampled: Result<Vec<(f64, f64, f64, f64)>, crate::TerrainError> = samples(leg)
-                .map(|t| {
-                    let (x, y, altitude) = leg.at(t, terrain)?;
-                    Ok((x, y, altitude, terrain.height_m(x, y)?))
-                })
-                .collect();
+            let sampled: Result<Vec<(f64, f64, f64, f64)>, crate::TerrainError> =
+                samples(leg, terrain)
+                    .into_iter()
+                    .map(|t| {
+                        let (x, y, altitude) = leg.at(t, terrain)?;
+                        Ok((x, y, altitude, terrain.height_m(x, y)?))
+                    })
+                    .collect();
             let points = match sampled {
                 Ok(points) => points,
                 Err(error) => {
@@ -303,16 +321,43 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             heights.record((sortie, leg.item), &points, shape, &place);
             if leg.spraying && horizontal > 0.0 {
                 figures.spray_m += horizontal;
-                let off = (leg.speed_mps / vehicle.spray_speed_mps - 1.0).abs();
+                // Over ground steeper than the vehicle climbs at the commanded speed, the
+                // climb (or descent) holds it back along the leg (the autopilot keeps its
+                // vertical speed limit). A pump on a servo output runs at one flow, so the
+                // slower crossing doses more; ArduPilot's sprayer (DO_SPRAYER) pumps in
+                // proportion to ground speed, and a camera triggers by distance, so theirs
+                // does not change (decision 0028).
+                let constant_flow = matches!(settings.sprayer, SprayerCommand::Servo { .. })
+                    && vehicle.camera.is_none();
+                let over_ground_mps = if constant_flow {
+                    horizontal
+                        / (horizontal / leg.speed_mps).max(vertical / vehicle.climb_speed_mps)
+                } else {
+                    leg.speed_mps
+                };
+                let off = (over_ground_mps / vehicle.spray_speed_mps - 1.0).abs();
                 spray_speed.record(off, off > MAX_SPRAY_SPEED_SHARE, || {
-                    format!(
-                        "sortie {sortie}, item {}: spraying at {:.1} m/s, not the vehicle's {} m/s (± {:.0}%): the dose would be {:.0}% of the rate",
-                        leg.item,
-                        leg.speed_mps,
-                        vehicle.spray_speed_mps,
-                        100.0 * MAX_SPRAY_SPEED_SHARE,
-                        100.0 * vehicle.spray_speed_mps / leg.speed_mps
-                    )
+                    if over_ground_mps < leg.speed_mps * (1.0 - 1e-9) {
+                        format!(
+                            "sortie {sortie}, item {}: the ground climbs or falls {:.1} m over {:.1} m, more than the vehicle's climb speed ({} m/s) lets it follow at {:.1} m/s: it crosses at {:.1} m/s and the dose would be {:.0}% of the rate (terrain too steep to spray along; spray across the slope, or a vehicle that climbs faster)",
+                            leg.item,
+                            vertical,
+                            horizontal,
+                            vehicle.climb_speed_mps,
+                            leg.speed_mps,
+                            over_ground_mps,
+                            100.0 * vehicle.spray_speed_mps / over_ground_mps
+                        )
+                    } else {
+                        format!(
+                            "sortie {sortie}, item {}: spraying at {:.1} m/s, not the vehicle's {} m/s (± {:.0}%): the dose would be {:.0}% of the rate",
+                            leg.item,
+                            leg.speed_mps,
+                            vehicle.spray_speed_mps,
+                            100.0 * MAX_SPRAY_SPEED_SHARE,
+                            100.0 * vehicle.spray_speed_mps / leg.speed_mps
+                        )
+                    }
                 });
                 let (a, b) = (points[0], points[points.len() - 1]);
                 let half = vehicle.swath_width_m / 2.0;
@@ -913,6 +958,55 @@ mod tests {
             "{:?}",
             edited.failures
         );
+    }
+
+    /// Decision 0028: over a plateau's ramp (6 m over 2 m) the climb holds the vehicle back
+    /// along its spray legs. A pump on a servo output runs at one flow and overdoses there;
+    /// ArduPilot's sprayer pumps in proportion to ground speed and does not.
+    #[test]
+    fn a_constant_flow_pump_slowed_by_its_climbs_overdoses() {
+        use geo::BoundingRect;
+        let farm =
+            geojson::parse(Path::new("holed.geojson"), FARM, CoordinateChoice::FromFile).unwrap();
+        let mut scenario = Scenario::with_farm(farm, ScenarioParts::default()).unwrap();
+        let bounds = scenario.farm.fields[0].polygon.bounding_rect().unwrap();
+        let plateau = crate::terrain::Plateau {
+            center: [
+                bounds.min().x + 25.0,
+                (bounds.min().y + bounds.max().y) / 2.0,
+            ],
+            radius_m: 12.0,
+            height_m: 6.0,
+            edge_ramp_m: 2.0,
+        };
+        scenario.terrain = Box::new(crate::terrain::Plateaus::new(0.0, vec![plateau]).unwrap());
+        let servo = SprayerCommand::Servo {
+            channel: 9,
+            on_pwm: 1900,
+            off_pwm: 1100,
+        };
+        for (sprayer, overdoses) in [(SprayerCommand::DoSprayer, false), (servo, true)] {
+            let mut plan_settings = PlanSettings::default();
+            plan_settings.mission.sprayer = sprayer;
+            let mission = plan_mission(&scenario, &plan_settings).unwrap();
+            let rendered = render(&scenario, &mission).unwrap();
+            let verdict = rendered.verdict;
+            let spray_speed = verdict
+                .checks
+                .iter()
+                .find(|check| check.name == "spray speed")
+                .unwrap();
+            assert_eq!(
+                spray_speed.passed, !overdoses,
+                "{sprayer:?}: {:?}",
+                verdict.failures
+            );
+            let steep = verdict
+                .failures
+                .iter()
+                .any(|line| line.contains("terrain too steep to spray along"));
+            assert_eq!(steep, overdoses, "{sprayer:?}: {:?}", verdict.failures);
+        }
     }
 
     #[test]

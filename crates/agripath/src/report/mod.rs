@@ -564,6 +564,20 @@ impl Report {
             ));
         }
         text.push_str(&format!("altitudes: {}\n", self.altitude_assumption));
+        // Local metres have no place on Earth: say where the mission files put them, which
+        // only the sheet said (a trial's finding, decision 0028).
+        if self.coordinate_system == crate::model::CoordinateSystem::Local.describe() {
+            let (lon, lat) = self.mission.local_origin;
+            let default = crate::mission::flight::MissionSettings::default().local_origin;
+            text.push_str(&format!(
+                "placed: local (0, 0) at lon {lon:.6}, lat {lat:.6} in the mission files ({}; --origin LON,LAT places them)\n",
+                if (lon, lat) == default {
+                    "the default origin, near Harbin, China"
+                } else {
+                    "as given"
+                }
+            ));
+        }
         if let Some(warning) = &self.terrain_warning {
             text.push_str(&format!("warning: {warning}\n"));
         }

@@ -2,9 +2,10 @@
 //! and refused naming the flag, planning faults named after their cause.
 
 use super::bad_value;
-use crate::error::{Fault, InputError};
+use crate::error::{Fault, InputError, TerrainError};
 use crate::scenario::Scenario;
 use crate::settings::PlanSettings;
+use crate::terrain::TerrainSpec;
 
 /// A point typed after `flag` (`text`, read as `typed` in the field file's coordinates:
 /// longitude first for a lon/lat file), in planning metres. Refused, naming the flag and the
@@ -153,7 +154,34 @@ pub fn planning_error(scenario: &Scenario, settings: &PlanSettings, fault: Fault
                 },
             )
         }
+        Fault::Terrain(
+            TerrainError::Outside { x, y } | TerrainError::NoData { x, y },
+        ) if settings
+            .start
+            .is_some_and(|[sx, sy]| (sx - x).hypot(sy - y) < 1e-6) =>
+        {
+            bad_value(
+                "--supply/--start",
+                in_input(x, y),
+                format!(
+                    "the terrain has no height there ({}): the supply point must stand on the terrain model",
+                    terrain_extent(scenario)
+                ),
+            )
+        }
         other => rendering_error(scenario, &scenario.farm.source, other),
+    }
+}
+
+/// The terrain model's extent in the input's coordinates, for a message.
+fn terrain_extent(scenario: &Scenario) -> String {
+    match scenario.terrain.extent() {
+        Some(extent) => format!(
+            "the terrain model covers {} to {}",
+            input_place(scenario, (extent.min_x, extent.min_y)),
+            input_place(scenario, (extent.max_x, extent.max_y))
+        ),
+        None => "the terrain model has no extent".into(),
     }
 }
 
@@ -170,6 +198,31 @@ pub fn rendering_error(scenario: &Scenario, source: &std::path::Path, fault: Fau
                 in_input(to)
             )),
         ),
+        // A place the flight crosses off the fields: the DEM is what falls short, so it is
+        // the file named (a gap between two fields named the field file, with no reason).
+        Fault::Terrain(error @ (TerrainError::Outside { x, y } | TerrainError::NoData { x, y })) => {
+            let (file, spec_is_file) = match &scenario.terrain_spec {
+                TerrainSpec::File { path, .. } => (path.as_path(), true),
+                _ => (source, false),
+            };
+            let what = match error {
+                TerrainError::NoData { .. } => "the terrain model has no data",
+                TerrainError::Outside { .. } => "the terrain model does not reach",
+            };
+            let hint = if spec_is_file {
+                "; the DEM must cover the fields and the ground flown over between them and the supply point"
+            } else {
+                ""
+            };
+            InputError::new(
+                file,
+                Fault::Structure(format!(
+                    "{what} at {}, which the flight crosses (a transfer, a return to the supply point or a transit between fields); {}{hint}",
+                    in_input((x, y)),
+                    terrain_extent(scenario)
+                )),
+            )
+        }
         other => InputError::new(source, other),
     }
 }

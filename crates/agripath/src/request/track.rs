@@ -151,6 +151,18 @@ impl TrackJob {
         let files = files::files(&self.scenario, results, self.seed, allow_unsafe)
             .map_err(Failure::Output)?;
         let mut report = files::table(&self.scenario, results);
+        // Local metres have no place on Earth: say where the files put them (decision 0028).
+        if let crate::track::scenario::Georeference::Local { lon, lat } = self.scenario.georeference
+        {
+            let given = if [lon, lat] == crate::track::operator::DEFAULT_ORIGIN {
+                "the default origin, near Harbin, China; `origin = [lon, lat]` in an operator's TOML places them"
+            } else {
+                "the scenario's origin"
+            };
+            report += &format!(
+                "placed: local (0, 0) at lon {lon:.6}, lat {lat:.6} in the .waypoints ({given})\n"
+            );
+        }
         let reasons: Vec<String> = results
             .iter()
             .filter_map(PlannerRuns::unsafe_reason)

@@ -132,6 +132,19 @@ impl Terrain for Reprojected {
         )
     }
 
+    /// The DEM's lines through its cell centres, crossed by the segment carried into the DEM's
+    /// coordinates (over one leg the projection is affine to well under a centimetre).
+    fn bends_along(&self, from: (f64, f64), to: (f64, f64)) -> Vec<f64> {
+        let to_dem = |(x, y): (f64, f64)| {
+            let (lon, lat) = from_utm(x, y, self.plan_zone);
+            match self.dem {
+                DemCoordinates::LonLat => (lon, lat),
+                DemCoordinates::Utm(zone) => to_utm(lon, lat, zone),
+            }
+        };
+        self.grid.bends_along(to_dem(from), to_dem(to))
+    }
+
     fn describe(&self) -> String {
         format!(
             "{} (sampled from UTM zone {}{})",

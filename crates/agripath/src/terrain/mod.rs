@@ -71,6 +71,16 @@ pub trait Terrain: Send + Sync {
         None
     }
 
+    /// Where the surface bends along the straight segment `from`–`to`: fractions of it in
+    /// (0, 1), ascending. Between two bends the surface along the segment is smooth (on a
+    /// raster, bilinear between cell centres: a quadratic along a line). A check that samples
+    /// a leg only every metre steps over a step in the ground one cell wide; sampled at the
+    /// bends and at each piece's extremes ([`profile_places`]) it sees the surface as modelled.
+    /// The default, for smooth models: none.
+    fn bends_along(&self, _from: (f64, f64), _to: (f64, f64)) -> Vec<f64> {
+        Vec::new()
+    }
+
     /// Lowest and highest height over `within`, metres. The default samples a 257 × 257
     /// lattice; rasters override it with their exact range.
     fn height_range_m(&self, within: Extent) -> Option<(f64, f64)> {
@@ -90,6 +100,93 @@ pub trait Terrain: Send + Sync {
         }
         range
     }
+}
+
+/// Most bends of one segment taken from a raster: beyond, the segment is sampled as a smooth
+/// one (a leg of 100 km over a 1 m grid; no flight of this tool is that long).
+pub const MAX_BENDS: usize = 200_000;
+
+/// The fractions of the straight segment `from`–`to` where the lines `origin + k·step`
+/// (x = … for `axis` 0, y = … for 1) cross it, strictly inside; appended to `bends`.
+/// Nothing when there would be more than [`MAX_BENDS`].
+pub fn grid_line_crossings(
+    from: (f64, f64),
+    to: (f64, f64),
+    axis: usize,
+    origin: f64,
+    step: f64,
+    bends: &mut Vec<f64>,
+) {
+    let (start, end) = if axis == 0 {
+        (from.0, to.0)
+    } else {
+        (from.1, to.1)
+    };
+    let span = end - start;
+    if !(span.abs() > 1e-12 && step > 0.0 && step.is_finite()) {
+        return;
+    }
+    let (low, high) = (start.min(end), start.max(end));
+    let first = ((low - origin) / step).floor() + 1.0;
+    let last = ((high - origin) / step).ceil() - 1.0;
+    if !(first.is_finite() && last.is_finite()) || last - first > MAX_BENDS as f64 {
+        return;
+    }
+    let mut line = first;
+    while line <= last {
+        let t = (origin + line * step - start) / span;
+        if t > 0.0 && t < 1.0 {
+            bends.push(t);
+        }
+        line += 1.0;
+    }
+}
+
+/// The places to sample a profile of the straight segment `from`–`to` at, as fractions of it
+/// in ascending order: both ends, at most `spacing_m` apart (its length `length_m`), every
+/// bend of the surface ([`Terrain::bends_along`]), and, between two bends, where each of
+/// `values(t)` (the ground, or the height above it) is highest or lowest, found as the vertex
+/// of the quadratic through the piece's ends and middle (exact on a raster for a leg whose
+/// altitude changes linearly). Where `values` has no answer the piece gets no extreme (the
+/// caller's own samples report the fault).
+pub fn profile_places(
+    terrain: &dyn Terrain,
+    from: (f64, f64),
+    to: (f64, f64),
+    length_m: f64,
+    spacing_m: f64,
+    values: impl Fn(f64) -> Option<Vec<f64>>,
+) -> Vec<f64> {
+    let mut places: Vec<f64> = crate::geometry::leg_samples(length_m, spacing_m).collect();
+    // A leg within one cell bends nowhere but may still peak between two samples.
+    let bends = terrain.bends_along(from, to);
+    let bounds: Vec<f64> = std::iter::once(0.0)
+        .chain(bends.iter().copied())
+        .chain(std::iter::once(1.0))
+        .collect();
+    for piece in bounds.windows(2) {
+        let (a, b) = (piece[0], piece[1]);
+        let (Some(at_a), Some(at_middle), Some(at_b)) =
+            (values(a), values((a + b) / 2.0), values(b))
+        else {
+            continue;
+        };
+        for ((&first, &middle), &last) in at_a.iter().zip(&at_middle).zip(&at_b) {
+            // f(s) = first + s·(−3·first + 4·middle − last) + s²·(2·first − 4·middle + 2·last)
+            let linear = -3.0 * first + 4.0 * middle - last;
+            let square = 2.0 * first - 4.0 * middle + 2.0 * last;
+            if square.abs() > 1e-12 {
+                let vertex = -linear / (2.0 * square);
+                if vertex > 0.0 && vertex < 1.0 {
+                    places.push(a + vertex * (b - a));
+                }
+            }
+        }
+    }
+    places.extend(bends);
+    places.sort_by(f64::total_cmp);
+    places.dedup_by(|later, earlier| *later - *earlier < 1e-12);
+    places
 }
 
 impl TerrainSpec {
@@ -181,4 +278,134 @@ pub fn load_grid(path: &Path, cell_m: Option<f64>) -> Result<Grid, InputError> {
     grid.check_plausible()
         .map_err(|fault| InputError::new(path, fault))?;
     Ok(grid)
+}
+
+#[cfg(test)]
+mod profile_tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// Highest and lowest of the ground and of a leg's height above it (its altitude going
+    /// linearly from `altitudes.0` to `altitudes.1`) over the places `places` of the segment.
+    fn extremes(
+        terrain: &dyn Terrain,
+        from: (f64, f64),
+        to: (f64, f64),
+        altitudes: (f64, f64),
+        places: impl IntoIterator<Item = f64>,
+    ) -> [f64; 4] {
+        let mut found = [
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+        ];
+        for t in places {
+            let (x, y) = (from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1));
+            let ground = terrain.height_m(x, y).unwrap();
+            let above = altitudes.0 + t * (altitudes.1 - altitudes.0) - ground;
+            found = [
+                found[0].max(ground),
+                found[1].min(ground),
+                found[2].max(above),
+                found[3].min(above),
+            ];
+        }
+        found
+    }
+
+    /// `profile_places` of the segment against 20,000 even samples of it: no extreme of the
+    /// ground or of the height above it lies beyond what the places find by more than `slack`.
+    fn places_find_the_extremes(
+        terrain: &dyn Terrain,
+        from: (f64, f64),
+        to: (f64, f64),
+        altitudes: (f64, f64),
+        slack: f64,
+    ) -> Result<(), TestCaseError> {
+        let length = (to.0 - from.0).hypot(to.1 - from.1);
+        let places = profile_places(terrain, from, to, length, 1.0, |t| {
+            let (x, y) = (from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1));
+            let ground = terrain.height_m(x, y).ok()?;
+            Some(vec![
+                ground,
+                altitudes.0 + t * (altitudes.1 - altitudes.0) - ground,
+            ])
+        });
+        prop_assert!(places.windows(2).all(|pair| pair[0] < pair[1]));
+        prop_assert!(places[0] == 0.0 && places[places.len() - 1] == 1.0);
+        let found = extremes(terrain, from, to, altitudes, places);
+        let fine = extremes(
+            terrain,
+            from,
+            to,
+            altitudes,
+            (0..=20_000).map(|k| k as f64 / 20_000.0),
+        );
+        for (index, (&found, &fine)) in found.iter().zip(&fine).enumerate() {
+            // Even indices are highest, odd lowest.
+            let missed = if index % 2 == 0 {
+                fine - found
+            } else {
+                found - fine
+            };
+            prop_assert!(
+                missed <= slack,
+                "extreme {index}: found {found}, fine sampling {fine}"
+            );
+        }
+        Ok(())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(64))]
+
+        /// A raster with a cliff one cell wide (decision 0028): every extreme is found, to
+        /// rounding (bilinear is a quadratic along a line between the cell-centre lines).
+        #[test]
+        fn profile_places_find_a_rasters_extremes(
+            heights in proptest::collection::vec(0.0f32..30.0, 36),
+            cliff in 0.0f32..20.0,
+            from in (0.0f64..24.0, 0.0f64..24.0),
+            to in (0.0f64..24.0, 0.0f64..24.0),
+            altitudes in (0.0f64..60.0, 0.0f64..60.0),
+        ) {
+            let mut heights = heights;
+            for (index, height) in heights.iter_mut().enumerate() {
+                if index / 6 >= 3 {
+                    *height += cliff;
+                }
+            }
+            let grid = Grid {
+                columns: 6,
+                rows: 6,
+                first_center_x: 2.0,
+                first_center_y: 22.0,
+                cell_x: 4.0,
+                cell_y: 4.0,
+                heights,
+                epsg: None,
+                source: "test grid".into(),
+            };
+            places_find_the_extremes(&grid, from, to, altitudes, 1e-6)?;
+        }
+
+        /// A plateau's top edge, foot and the ramp between (the ramp is not a quadratic along a
+        /// line: its extremes are found to a centimetre, within the preflight's 2 cm of slack
+        /// for rounding).
+        #[test]
+        fn profile_places_find_a_plateaus_extremes(
+            from in (-60.0f64..60.0, -60.0f64..60.0),
+            to in (-60.0f64..60.0, -60.0f64..60.0),
+            altitudes in (0.0f64..30.0, 0.0f64..30.0),
+            ramp in 0.0f64..8.0,
+        ) {
+            let terrain = Plateaus::new(
+                0.0,
+                vec![Plateau { center: [5.0, -3.0], radius_m: 20.0, height_m: 6.0, edge_ramp_m: ramp }],
+            )
+            .unwrap();
+            places_find_the_extremes(&terrain, from, to, altitudes, 0.01)?;
+        }
+    }
 }

@@ -80,6 +80,36 @@ impl Terrain for Plateaus {
         None
     }
 
+    /// Where the segment crosses each plateau's top edge and foot (the ramp bends there) and
+    /// where it passes closest to the centre (the highest point of a crossing of the ramp).
+    fn bends_along(&self, from: (f64, f64), to: (f64, f64)) -> Vec<f64> {
+        let (dx, dy) = (to.0 - from.0, to.1 - from.1);
+        let length_squared = dx * dx + dy * dy;
+        if length_squared <= 0.0 {
+            return Vec::new();
+        }
+        let mut bends = Vec::new();
+        for plateau in &self.plateaus {
+            let (cx, cy) = (from.0 - plateau.center[0], from.1 - plateau.center[1]);
+            // |from + t·d − centre|² = r²: t² L + 2 t (c·d) + |c|² − r² = 0.
+            let half_b = cx * dx + cy * dy;
+            bends.push(-half_b / length_squared);
+            for radius in [plateau.radius_m, plateau.radius_m + plateau.edge_ramp_m] {
+                let discriminant =
+                    half_b * half_b - length_squared * (cx * cx + cy * cy - radius * radius);
+                if discriminant > 0.0 {
+                    let root = discriminant.sqrt();
+                    bends.push((-half_b - root) / length_squared);
+                    bends.push((-half_b + root) / length_squared);
+                }
+            }
+        }
+        bends.retain(|t| *t > 0.0 && *t < 1.0);
+        bends.sort_by(f64::total_cmp);
+        bends.dedup();
+        bends
+    }
+
     fn describe(&self) -> String {
         format!(
             "ground at {} m with {} plateau(s) up to {} m",

@@ -11,6 +11,7 @@
 //! free_waypoints = 10
 //! margin_m = 300                      # planning area: start, goal and threats, plus this
 //! threats = [[105.6333, -10.4904, 250]]   # lon, lat, radius (m)
+//! # origin = [126.63, 45.75]         # with crs = "local": where (0, 0) goes in the files
 //! ```
 //!
 //! The track is planned in the UTM zone of the start (metres), on the DEM sampled every 2 m
@@ -51,7 +52,13 @@ struct OperatorScenario {
     population: usize,
     #[serde(default = "iterations")]
     iterations: usize,
+    /// With `crs = "local"`: the longitude and latitude local (0, 0) is placed at in the
+    /// mission files (default 126.63, 45.75, as `plan --origin`).
+    origin: Option<[f64; 2]>,
 }
+
+/// Where local (0, 0) is placed without an `origin`: seed 001's farm, as `plan --origin`.
+pub const DEFAULT_ORIGIN: [f64; 2] = [126.63, 45.75];
 
 fn lonlat() -> String {
     "lonlat".into()
@@ -104,6 +111,14 @@ pub fn read(path: &Path, text: &str) -> Result<TrackScenario, InputError> {
             why: "need margin ≥ 0, population ≥ 2 and iterations ≥ 1".into(),
         }));
     }
+    if parsed.crs == "lonlat" && parsed.origin.is_some() {
+        return Err(fail(Fault::InvalidValue {
+            what: "origin".into(),
+            value: format!("{:?}", parsed.origin.unwrap_or_default()),
+            why: "it places local metres (crs = \"local\"); lon/lat points are placed already"
+                .into(),
+        }));
+    }
     let (frame, georeference) = match parsed.crs.as_str() {
         "lonlat" => {
             let [lon, lat, _] = parsed.start;
@@ -113,13 +128,18 @@ pub fn read(path: &Path, text: &str) -> Result<TrackScenario, InputError> {
             let zone = UtmZone::containing(lon, lat);
             (CoordinateSystem::Utm(zone), Georeference::Utm { zone })
         }
-        "local" => (
-            CoordinateSystem::Local,
-            Georeference::Local {
-                lon: 126.63,
-                lat: 45.75,
-            },
-        ),
+        "local" => {
+            let [lon, lat] = parsed.origin.unwrap_or(DEFAULT_ORIGIN);
+            if !(-180.0..=180.0).contains(&lon) || !(-80.0..=84.0).contains(&lat) {
+                return Err(fail(Fault::InvalidValue {
+                    what: "origin".into(),
+                    value: format!("[{lon}, {lat}]"),
+                    why: "expected [lon, lat] with longitude in -180..180 and latitude in -80..84"
+                        .into(),
+                }));
+            }
+            (CoordinateSystem::Local, Georeference::Local { lon, lat })
+        }
         other => {
             return Err(fail(Fault::InvalidValue {
                 what: "crs".into(),

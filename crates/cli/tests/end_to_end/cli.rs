@@ -1770,3 +1770,89 @@ fn a_negative_start_is_a_value_not_an_option() {
     );
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+/// Decision 0028: a track in local metres goes where its `origin` says, and the summary says
+/// where; without one, at the default origin, and the summary says that too.
+#[test]
+fn a_local_track_is_placed_at_its_origin_and_says_where() {
+    let folder = scratch("track-local-origin");
+    std::fs::create_dir_all(&folder).unwrap();
+    let scenario = |origin: &str| {
+        format!(
+            "name = \"local hop\"\ncrs = \"local\"\n{origin}\nterrain = {{ kind = \"flat\", height_m = 3 }}\nstart = [0, 0, 20]\ngoal = [400, 300, 20]\nheight_band_m = [10, 60]\nfree_waypoints = 4\nthreats = [[200, 150, 40]]\n"
+        )
+    };
+    for (name, origin, home, words) in [
+        (
+            "given",
+            "origin = [5.5, 52.5]",
+            (52.5, 5.5),
+            "(the scenario's origin)",
+        ),
+        (
+            "default",
+            "",
+            (45.75, 126.63),
+            "the default origin, near Harbin",
+        ),
+    ] {
+        let file = folder.join(format!("{name}.toml"));
+        std::fs::write(&file, scenario(origin)).unwrap();
+        let out = folder.join(format!("out-{name}"));
+        let output = agripath(
+            &[
+                "track",
+                file.to_str().unwrap(),
+                "--runs",
+                "1",
+                "--evaluations",
+                "300",
+                "--algorithm",
+                "lattice",
+                "--out",
+                out.to_str().unwrap(),
+            ],
+            &folder,
+        );
+        let printed = stdout(&output);
+        assert!(
+            printed
+                .lines()
+                .any(|line| line.starts_with("placed: local (0, 0)") && line.contains(words)),
+            "{printed}"
+        );
+        let waypoints = std::fs::read_to_string(out.join("lattice.waypoints")).unwrap();
+        let home_line: Vec<f64> = waypoints
+            .lines()
+            .nth(1)
+            .unwrap()
+            .split('\t')
+            .skip(8)
+            .take(2)
+            .map(|v| v.parse().unwrap())
+            .collect();
+        assert!(
+            (home_line[0] - home.0).abs() < 1e-9 && (home_line[1] - home.1).abs() < 1e-9,
+            "{home_line:?}"
+        );
+    }
+    // An origin has nothing to place in lon/lat.
+    let lonlat = folder.join("lonlat.toml");
+    std::fs::write(
+        &lonlat,
+        scenario("origin = [5.5, 52.5]").replace("crs = \"local\"", "crs = \"lonlat\""),
+    )
+    .unwrap();
+    let output = agripath(
+        &[
+            "track",
+            lonlat.to_str().unwrap(),
+            "--out",
+            folder.join("never").to_str().unwrap(),
+        ],
+        &folder,
+    );
+    assert_eq!(output.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&output.stderr).contains("origin"));
+    std::fs::remove_dir_all(folder).unwrap();
+}

@@ -141,14 +141,19 @@ pub struct SortieMission {
 /// legs at the same spacing).
 pub const TRANSIT_SAMPLE_M: f64 = 1.0;
 
-/// The highest ground under the straight leg a → b, sampled every [`TRANSIT_SAMPLE_M`].
+/// The highest ground under the straight leg a → b, sampled every [`TRANSIT_SAMPLE_M`] and
+/// at the terrain's bends and peaks between ([`crate::terrain::profile_places`]).
 pub fn highest_ground(terrain: &dyn Terrain, a: (f64, f64), b: (f64, f64)) -> Result<f64, Fault> {
     let length = (b.0 - a.0).hypot(b.1 - a.1);
-    let steps = (length / TRANSIT_SAMPLE_M).ceil().max(1.0) as usize;
+    let place = |t: f64| (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1));
+    let places = crate::terrain::profile_places(terrain, a, b, length, TRANSIT_SAMPLE_M, |t| {
+        let (x, y) = place(t);
+        terrain.height_m(x, y).ok().map(|ground| vec![ground])
+    });
     let mut highest = f64::NEG_INFINITY;
-    for step in 0..=steps {
-        let t = step as f64 / steps as f64;
-        highest = highest.max(terrain.height_m(a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1))?);
+    for t in places {
+        let (x, y) = place(t);
+        highest = highest.max(terrain.height_m(x, y)?);
     }
     Ok(highest)
 }
