@@ -214,7 +214,25 @@ fn choose_supply(
         settings.sorties.planner.is_some(),
         &ground,
     );
-    let auto = crate::supply::choose_auto(&scenario.farm, &work_route, &evaluator, listed)
+    // Level ground first (decision 0029); where none serves the route, any ground, with a
+    // warning naming the slope.
+    let level = crate::supply::level::OnLevelGround {
+        inner: &evaluator,
+        ground: &ground,
+    };
+    let mut slope_warning = None;
+    let mut auto = crate::supply::choose_auto(&scenario.farm, &work_route, &level, listed)
+        .or_else(|_| {
+            let auto =
+                crate::supply::choose_auto(&scenario.farm, &work_route, &evaluator, listed)?;
+            let slope = crate::supply::level::slope_at(&ground, auto.best().point);
+            slope_warning = Some(format!(
+                "its ground slopes {}, and no place of at most {:.0}% serves the route (a drone takes off and lands on level ground: give one with --supply X,Y)",
+                slope.map_or("where the terrain has no height".into(), |slope| format!("{:.1}%", 100.0 * slope)),
+                100.0 * crate::supply::level::MAX_SLOPE
+            ));
+            Ok(auto)
+        })
         .map_err(|fault| match fault {
             // No point serves the route: a share of the battery kept for landing may be why.
             Fault::Structure(why) if vehicle.battery_reserve_percent > 0.0 => {
@@ -245,6 +263,11 @@ fn choose_supply(
             }
             other => other,
         })?;
+    // The old rule's point is scored as it is, level or not: the saving stays like for like.
+    if !auto.first_point.cost_s.is_finite() {
+        auto.first_point.cost_s =
+            crate::supply::SupplyCost::cost_s(&evaluator, auto.first_point.point);
+    }
     let best = auto.best().point;
     Ok(SupplyPlan {
         choice: Some(SupplyChoice {
@@ -255,7 +278,7 @@ fn choose_supply(
                 ground_m: scenario.terrain.height_m(best.x, best.y)?,
             },
             auto: Some(auto),
-            standing_warning: None,
+            standing_warning: slope_warning,
         }),
         closed_tour: Some(closed_tour),
     })

@@ -27,6 +27,7 @@
 //! folder as it is now); the flight itself in [`flown`], the measure of what it sprays in
 //! [`sprayed`].
 
+mod dose;
 pub mod flown;
 pub mod folder;
 mod heights;
@@ -43,14 +44,14 @@ use crate::coverage::region::GroundPatches;
 use crate::geometry::rings;
 use crate::limits::MIN_GROUND_CLEARANCE_M;
 use crate::mission::flight::GeoFrame;
-use crate::mission::flight::SprayerCommand;
 use crate::mission::mavlink::Command;
 use crate::model::{Farm, Vehicle};
 use crate::terrain::Terrain;
-use flown::{Leg, Motion};
+use flown::Motion;
 use sprayed::{Rings, Strip};
 use verdict::Tally;
 
+pub use dose::MAX_SPRAY_SPEED_SHARE;
 pub use folder::check_folder;
 pub use settings::{PreflightSettings, Promise};
 pub use verdict::{CheckResult, FieldFlown, SortieFlown, Verdict};
@@ -64,10 +65,6 @@ const ROW_M: f64 = 0.1;
 const SLACK_M: f64 = 0.02;
 /// Most sprayed area outside the fields, as a share of the sprayed area (the default layout).
 pub const MAX_OUTSIDE_FRACTION: f64 = 0.005;
-/// Most a spray leg's commanded speed may differ from the vehicle's spray speed, as a share
-/// of it: the dose then stays within ±10 % of the rate, the tolerance sprayer inspections
-/// (ISO 16122) hold a nozzle's flow to.
-pub const MAX_SPRAY_SPEED_SHARE: f64 = 0.10;
 /// Smallest change of direction between two spray legs that sweeps a turn's disc, radians.
 const MIN_TURN_RAD: f64 = 0.5 * std::f64::consts::PI / 180.0;
 
@@ -79,26 +76,6 @@ pub struct World<'a> {
     pub terrain: &'a dyn Terrain,
     /// The drone: heights, speeds, swath width, tank and battery.
     pub vehicle: &'a Vehicle,
-}
-
-/// The places a horizontal leg is sampled at: both ends, every [`SAMPLE_M`], every bend of
-/// the terrain under it (a raster's lines through its cell centres, a plateau's edges), and
-/// between two bends where the ground and the height above it are highest and lowest
-/// ([`crate::terrain::profile_places`]). At 1 m alone, a step in the ground one cell wide was
-/// stepped over: a flight 1.08 m off spray height read 0.89 m (decision 0028).
-fn samples(leg: &Leg, terrain: &dyn Terrain) -> Vec<f64> {
-    crate::terrain::profile_places(
-        terrain,
-        (leg.from.x, leg.from.y),
-        (leg.to.x, leg.to.y),
-        leg.horizontal_m(),
-        SAMPLE_M,
-        |t| {
-            let (x, y, altitude) = leg.at(t, terrain).ok()?;
-            let ground = terrain.height_m(x, y).ok()?;
-            Some(vec![ground, altitude - ground])
-        },
-    )
 }
 
 /// Runs the check on the mission files among `files` (name, bytes).
@@ -118,15 +95,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         settings.terrain_tolerance_m,
         "m from spray height",
     );
-    // The dose per hectare is the flow over the speed: a spray leg flown faster or slower
-    // than the vehicle's spray speed (a speed item edited in a ground station) under- or
-    // over-doses the crop however well it covers it.
-    let mut spray_speed = Tally::new(
-        "spray speed",
-        "≤",
-        MAX_SPRAY_SPEED_SHARE,
-        "share off the spray speed",
-    );
+    let mut spray_speed = dose::tally();
     let mut transit = Tally::new(
         "transit clearance",
         "≥",
@@ -273,14 +242,14 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 (horizontal / leg.speed_mps).max(vertical / vehicle.climb_speed_mps);
             // Where the terrain has no answer (a waypoint off the DEM), the leg cannot be
             // checked: that is a failure, and the leg's other checks are skipped.
-            let sampled: Result<Vec<(f64, f64, f64, f64)>, crate::TerrainError> =
-                samples(leg, terrain)
-                    .into_iter()
-                    .map(|t| {
-                        let (x, y, altitude) = leg.at(t, terrain)?;
-                        Ok((x, y, altitude, terrain.height_m(x, y)?))
-                    })
-                    .collect();
+            let sampled: Result<Vec<(f64, f64, f64, f64)>, crate::TerrainError> = leg
+                .sample_places(terrain)
+                .into_iter()
+                .map(|t| {
+                    let (x, y, altitude) = leg.at(t, terrain)?;
+                    Ok((x, y, altitude, terrain.height_m(x, y)?))
+                })
+                .collect();
             let points = match sampled {
                 Ok(points) => points,
                 Err(error) => {
@@ -321,44 +290,14 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             heights.record((sortie, leg.item), &points, shape, &place);
             if leg.spraying && horizontal > 0.0 {
                 figures.spray_m += horizontal;
-                // Over ground steeper than the vehicle climbs at the commanded speed, the
-                // climb (or descent) holds it back along the leg (the autopilot keeps its
-                // vertical speed limit). A pump on a servo output runs at one flow, so the
-                // slower crossing doses more; ArduPilot's sprayer (DO_SPRAYER) pumps in
-                // proportion to ground speed, and a camera triggers by distance, so theirs
-                // does not change (decision 0028).
-                let constant_flow = matches!(settings.sprayer, SprayerCommand::Servo { .. })
-                    && vehicle.camera.is_none();
-                let over_ground_mps = if constant_flow {
-                    horizontal
-                        / (horizontal / leg.speed_mps).max(vertical / vehicle.climb_speed_mps)
-                } else {
-                    leg.speed_mps
-                };
-                let off = (over_ground_mps / vehicle.spray_speed_mps - 1.0).abs();
-                spray_speed.record(off, off > MAX_SPRAY_SPEED_SHARE, || {
-                    if over_ground_mps < leg.speed_mps * (1.0 - 1e-9) {
-                        format!(
-                            "sortie {sortie}, item {}: the ground climbs or falls {:.1} m over {:.1} m, more than the vehicle's climb speed ({} m/s) lets it follow at {:.1} m/s: it crosses at {:.1} m/s and the dose would be {:.0}% of the rate (terrain too steep to spray along; spray across the slope, or a vehicle that climbs faster)",
-                            leg.item,
-                            vertical,
-                            horizontal,
-                            vehicle.climb_speed_mps,
-                            leg.speed_mps,
-                            over_ground_mps,
-                            100.0 * vehicle.spray_speed_mps / over_ground_mps
-                        )
-                    } else {
-                        format!(
-                            "sortie {sortie}, item {}: spraying at {:.1} m/s, not the vehicle's {} m/s (± {:.0}%): the dose would be {:.0}% of the rate",
-                            leg.item,
-                            leg.speed_mps,
-                            vehicle.spray_speed_mps,
-                            100.0 * MAX_SPRAY_SPEED_SHARE,
-                            100.0 * vehicle.spray_speed_mps / leg.speed_mps
-                        )
-                    }
-                });
+                dose::record(
+                    &mut spray_speed,
+                    leg,
+                    (horizontal, vertical),
+                    vehicle,
+                    settings.sprayer,
+                    sortie,
+                );
                 let (a, b) = (points[0], points[points.len() - 1]);
                 let half = vehicle.swath_width_m / 2.0;
                 let strip = Strip::new(Coord { x: a.0, y: a.1 }, Coord { x: b.0, y: b.1 }, half);
@@ -651,7 +590,7 @@ mod tests {
 
     use super::*;
     use crate::input::{geojson, CoordinateChoice};
-    use crate::mission::flight::AltitudeReference;
+    use crate::mission::flight::{AltitudeReference, SprayerCommand};
     use crate::pipeline::{plan_mission, preflight_settings, render};
     use crate::scenario::Scenario;
     use crate::scenario::ScenarioParts;

@@ -165,7 +165,7 @@ impl SupplyReport {
             .unwrap_or_default();
         match &self.auto {
             Some(auto) => format!(
-                "supply point (auto{}): {place}, where the least time is spent not {working}: estimated {:.0} s, against {:.0} s from the route's first point (the old rule{}), {}{}\n",
+                "supply point (auto{}): {place}, where the least time is spent not {working}: estimated {:.0} s, against {:.0} s from the route's first point (the old rule{}), {}{}\n{}",
                 if auto.on_access { ", on access features" } else { "" },
                 self.cost_s.unwrap_or(f64::NAN),
                 auto.first_point.cost_s,
@@ -191,7 +191,8 @@ impl SupplyReport {
                     format!("; {} candidates in report.json", auto.candidates.len())
                 } else {
                     String::new()
-                }
+                },
+                warning
             ),
             None => format!("supply point ({}): {place}\n{warning}", self.rule),
         }

@@ -15,6 +15,7 @@
 
 pub mod candidates;
 pub mod evaluator;
+pub mod level;
 pub mod search;
 pub mod standing;
 
@@ -437,6 +438,40 @@ mod tests {
         // The yard, beside the field's middle, beats a track 30 m off its short side.
         let best = choice.best().point;
         assert!((160.0..=180.0).contains(&best.x), "{best:?}");
+    }
+
+    /// Decision 0029: where the cheapest place is on a slope, `auto` on level ground stands
+    /// on level ground, at a cost a little above it.
+    #[test]
+    fn on_level_ground_the_choice_avoids_a_slope() {
+        let farm = farm_of(vec![Field::new(
+            "F",
+            Polygon::new(rectangle(0.0, 0.0, 150.0, 100.0), vec![]),
+        )]);
+        let work_route = free_route(&farm);
+        let vehicle = Vehicle::default();
+        let model = SortieModel::new(&vehicle, work_route.points()[0], 36.0);
+        let evaluator = FixedRouteSplit::new(&work_route, model, true, &flat);
+        let free = choose_auto(&farm, &work_route, &evaluator, 0).unwrap();
+        let best = free.best().point;
+        // A bank rising 30 % within 40 m of that point, level beyond.
+        let bank = move |x: f64, y: f64| {
+            let distance = (x - best.x).hypot(y - best.y);
+            Some(if distance < 40.0 {
+                0.3 * (x - best.x)
+            } else {
+                0.0
+            })
+        };
+        let level = level::OnLevelGround {
+            inner: &evaluator,
+            ground: &bank,
+        };
+        let chosen = choose_auto(&farm, &work_route, &level, 0).unwrap().best();
+        let slope = level::slope_at(&bank, chosen.point).unwrap();
+        assert!(slope <= level::MAX_SLOPE, "{chosen:?} on {slope}");
+        assert!(chosen.cost_s >= free.best().cost_s - 1e-9);
+        assert!(chosen.cost_s.is_finite());
     }
 
     #[test]

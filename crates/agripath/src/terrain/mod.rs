@@ -281,7 +281,7 @@ pub fn load_grid(path: &Path, cell_m: Option<f64>) -> Result<Grid, InputError> {
 }
 
 #[cfg(test)]
-mod profile_tests {
+mod tests {
     use super::*;
     use proptest::prelude::*;
 
