@@ -100,7 +100,8 @@ with tempfile.TemporaryDirectory() as scratch:
     check_folder(island, {10})
     # A pump on a servo output (DO_SET_SERVO, 183). Not on the island: a constant-flow pump
     # slowed by its climbs over the island's terraces overdoses, and that plan exits 3
-    # (decision 0028); the seed 001 farm is level.
+    # (decision 0028). The seed 001 farm's one plateau rises 3 m over a 5 m ramp: 1.8 m/s of
+    # climb at the 3 m/s spray speed, within the vehicle's 2 m/s.
     servo = os.path.join(scratch, "servo")
     subprocess.run([AGRIPATH, "plan", os.path.join(ROOT, "data/scenarios/seed001_farm.toml"),
                     "--sprayer", "servo:9:1900:1100", "--out", servo], check=True, stdout=subprocess.DEVNULL)

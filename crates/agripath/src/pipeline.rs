@@ -225,12 +225,15 @@ fn choose_supply(
         .or_else(|_| {
             let auto =
                 crate::supply::choose_auto(&scenario.farm, &work_route, &evaluator, listed)?;
+            // The search is a heuristic: on any ground it may still end on level ground.
             let slope = crate::supply::level::slope_at(&ground, auto.best().point);
-            slope_warning = Some(format!(
-                "its ground slopes {}, and no place of at most {:.0}% serves the route (a drone takes off and lands on level ground: give one with --supply X,Y)",
-                slope.map_or("where the terrain has no height".into(), |slope| format!("{:.1}%", 100.0 * slope)),
-                100.0 * crate::supply::level::MAX_SLOPE
-            ));
+            if slope.is_none_or(|slope| slope > crate::supply::level::MAX_SLOPE) {
+                slope_warning = Some(format!(
+                    "its ground slopes {}, and no place of at most {:.0}% serves the route (a drone takes off and lands on level ground: give one with --supply X,Y)",
+                    slope.map_or("where the terrain has no height".into(), |slope| format!("{:.1}%", 100.0 * slope)),
+                    100.0 * crate::supply::level::MAX_SLOPE
+                ));
+            }
             Ok(auto)
         })
         .map_err(|fault| match fault {

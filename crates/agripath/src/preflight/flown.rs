@@ -415,4 +415,54 @@ mod tests {
         assert_eq!(error.item, items.len() - 1);
         assert!(error.why.contains("without a landing"), "{}", error.why);
     }
+
+    /// Decision 0028's leg: 4 m of spray over a 12 m step one cell (4 m) wide, its ends at
+    /// spray height over the ground. The places the preflight samples find its worst height
+    /// above the ground as 1 cm samples do; 1 m samples miss it by more than 10 cm.
+    #[test]
+    fn sample_places_find_the_worst_height_over_a_step_one_cell_wide() {
+        let (columns, rows) = (10, 10);
+        let grid = crate::terrain::Grid {
+            columns,
+            rows,
+            first_center_x: 2.0,
+            first_center_y: 38.0,
+            cell_x: 4.0,
+            cell_y: 4.0,
+            heights: (0..rows * columns)
+                .map(|index| if index / columns < 5 { 12.0 } else { 0.0 })
+                .collect(),
+            epsg: None,
+            source: "step".into(),
+        };
+        let place = |x: f64, y: f64| Place {
+            x,
+            y,
+            height: Height::SeaLevel(grid.height_m(x, y).unwrap() + 2.5),
+        };
+        let leg = Leg {
+            item: 2,
+            from: place(21.83, 23.9),
+            to: place(21.69, 19.9),
+            spraying: true,
+            speed_mps: 5.0,
+            motion: Motion::Flight,
+        };
+        let worst = |places: &mut dyn Iterator<Item = f64>| {
+            places
+                .map(|t| {
+                    let (x, y, altitude) = leg.at(t, &grid).unwrap();
+                    (altitude - grid.height_m(x, y).unwrap() - 2.5).abs()
+                })
+                .fold(0.0, f64::max)
+        };
+        let sampled = worst(&mut leg.sample_places(&grid).into_iter());
+        let fine = worst(&mut (0..=400).map(|k| f64::from(k) / 400.0));
+        let metre = worst(&mut crate::geometry::leg_samples(leg.horizontal_m(), 1.0));
+        assert!(sampled >= fine - 1e-9, "{sampled} against {fine}");
+        assert!(
+            fine - metre > 0.1,
+            "the case: {metre} at 1 m against {fine}"
+        );
+    }
 }

@@ -75,8 +75,9 @@ pub trait Terrain: Send + Sync {
     /// (0, 1), ascending. Between two bends the surface along the segment is smooth (on a
     /// raster, bilinear between cell centres: a quadratic along a line). A check that samples
     /// a leg only every metre steps over a step in the ground one cell wide; sampled at the
-    /// bends and at each piece's extremes ([`profile_places`]) it sees the surface as modelled.
-    /// The default, for smooth models: none.
+    /// bends and at each piece's extremes ([`profile_places`]) it sees a raster as modelled.
+    /// The default: none, for the analytic models (flat ground; seed 000's composite hills,
+    /// whose crests and ripples of a few metres the 1 m samples read to about 0.1 m).
     fn bends_along(&self, _from: (f64, f64), _to: (f64, f64)) -> Vec<f64> {
         Vec::new()
     }
@@ -102,8 +103,9 @@ pub trait Terrain: Send + Sync {
     }
 }
 
-/// Most bends of one segment taken from a raster: beyond, the segment is sampled as a smooth
-/// one (a leg of 100 km over a 1 m grid; no flight of this tool is that long).
+/// Most lines of one axis a segment's bends are taken from: beyond (a leg 200 km along one
+/// axis of a 1 m grid; the fields lie within 200 km of the supply point at most), that axis's
+/// bends are left out and the leg is sampled every [`profile_places`]'s spacing only.
 pub const MAX_BENDS: usize = 200_000;
 
 /// The fractions of the straight segment `from`–`to` where the lines `origin + k·step`
@@ -164,14 +166,17 @@ pub fn profile_places(
         .chain(bends.iter().copied())
         .chain(std::iter::once(1.0))
         .collect();
-    for piece in bounds.windows(2) {
+    // Each bound is asked once, shared by the pieces either side of it.
+    let at_bounds: Vec<Option<Vec<f64>>> = bounds.iter().map(|&t| values(t)).collect();
+    for (index, piece) in bounds.windows(2).enumerate() {
         let (a, b) = (piece[0], piece[1]);
-        let (Some(at_a), Some(at_middle), Some(at_b)) =
-            (values(a), values((a + b) / 2.0), values(b))
-        else {
+        let (Some(at_a), Some(at_b)) = (&at_bounds[index], &at_bounds[index + 1]) else {
             continue;
         };
-        for ((&first, &middle), &last) in at_a.iter().zip(&at_middle).zip(&at_b) {
+        let Some(at_middle) = values((a + b) / 2.0) else {
+            continue;
+        };
+        for ((&first, &middle), &last) in at_a.iter().zip(&at_middle).zip(at_b) {
             // f(s) = first + s·(−3·first + 4·middle − last) + s²·(2·first − 4·middle + 2·last)
             let linear = -3.0 * first + 4.0 * middle - last;
             let square = 2.0 * first - 4.0 * middle + 2.0 * last;

@@ -105,11 +105,26 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
             continue;
         }
         let horizontal = planar_length(b[0] - a[0], b[1] - a[1]);
-        let steps = ((horizontal / spacing).ceil() as usize).max(1);
+        let at = |t: f64| [0, 1, 2].map(|axis| a[axis] + t * (b[axis] - a[axis]));
+        // Every `spacing`, and where the ground bends and peaks between (a raster's lines
+        // through its cell centres: a peak one cell wide lies between two samples; decision
+        // 0028's review measured 8.7 m of clearance missed on a 1 m raster).
+        let places = crate::terrain::profile_places(
+            scenario.true_terrain(),
+            (a[0], a[1]),
+            (b[0], b[1]),
+            horizontal,
+            spacing,
+            |t| {
+                let p = at(t);
+                let ground = scenario.true_ground(p[0], p[1])?;
+                Some(vec![ground, p[2] - ground])
+            },
+        );
         let mut leg_lowest = (f64::INFINITY, [a[0], a[1]]);
         let mut off_model = None;
-        for (step, t) in crate::geometry::leg_samples(horizontal, spacing).enumerate() {
-            let p = [0, 1, 2].map(|axis| a[axis] + t * (b[axis] - a[axis]));
+        for (index, &t) in places.iter().enumerate() {
+            let p = at(t);
             let Some(ground) = scenario.true_ground(p[0], p[1]) else {
                 off_model.get_or_insert([p[0], p[1]]);
                 continue;
@@ -119,8 +134,11 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
                 leg_lowest = (clearance, [p[0], p[1]]);
             }
             if let Some((low, high)) = scenario.height_band {
-                if step < steps && !(low..=high).contains(&clearance) {
-                    outside_band_m += horizontal / steps as f64 * scenario.unit_m;
+                // The stretch to the next place counts as this place's.
+                if let Some(&next) = places.get(index + 1) {
+                    if !(low..=high).contains(&clearance) {
+                        outside_band_m += horizontal * (next - t) * scenario.unit_m;
+                    }
                 }
             }
         }

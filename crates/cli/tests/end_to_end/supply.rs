@@ -253,3 +253,97 @@ fn a_point_given_too_far_or_with_lon_and_lat_swapped_blames_the_flag() {
     assert!(!folder.join("out").exists(), "nothing written");
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+/// An ESRI ASCII grid under the farm of [`farm_file`] (x -200..800, y -200..400, 10 m cells)
+/// rising `east` per metre to the east everywhere, with `ridges`: blocks 6 m high and 20 m
+/// wide every 40 m between the fields (x 170..450), whose sides slope 60 % between cell centres.
+fn tilted_grid(folder: &Path, name: &str, east: f64, ridges: bool) -> String {
+    let (columns, rows, cell, x0, y0) = (100, 60, 10.0, -200.0, -200.0);
+    let mut text = format!(
+        "ncols {columns}\nnrows {rows}\nxllcorner {x0}\nyllcorner {y0}\ncellsize {cell}\nNODATA_value -9999\n"
+    );
+    for _ in 0..rows {
+        let row: Vec<String> = (0..columns)
+            .map(|column| {
+                let x = x0 + (f64::from(column) + 0.5) * cell;
+                let ridge =
+                    ridges && (170.0..=450.0).contains(&x) && ((x - 170.0) / 20.0) as i64 % 2 == 0;
+                format!("{:.3}", 100.0 + east * x + if ridge { 6.0 } else { 0.0 })
+            })
+            .collect();
+        text += &(row.join(" ") + "\n");
+    }
+    std::fs::write(folder.join(name), text).unwrap();
+    name.to_string()
+}
+
+/// Decision 0029: `auto` stands on level ground where such ground serves the route; on a
+/// hillside with none, it stands anyway and the summary warns with the slope.
+#[test]
+fn auto_keeps_to_level_ground_and_warns_on_a_hillside() {
+    let folder = scratch("level");
+    let fields = farm_file(&folder, "farm.geojson", "");
+    // The slope by the program's own `terrain sample`, 2 m either way (decision 0029's rule).
+    let slope_at = |grid: &str, x: f64, y: f64| {
+        let mut arguments = vec!["terrain".to_string(), "sample".into(), grid.into()];
+        for (dx, dy) in [(2.0, 0.0), (-2.0, 0.0), (0.0, 2.0), (0.0, -2.0)] {
+            arguments.extend([(x + dx).to_string(), (y + dy).to_string()]);
+        }
+        let arguments: Vec<&str> = arguments.iter().map(String::as_str).collect();
+        let heights: Vec<f64> = stdout(&agripath(&arguments, &folder))
+            .lines()
+            .map(|line| line.split_whitespace().last().unwrap().parse().unwrap())
+            .collect();
+        ((heights[0] - heights[1]) / 4.0).hypot((heights[2] - heights[3]) / 4.0)
+    };
+    // Ridges between the fields, where the choice stood before (165.0, 92.1: a 30 % slope by
+    // this measure); level ground between them and beyond.
+    let banked = tilted_grid(&folder, "banked.asc", 0.0, true);
+    let text = stdout(&agripath(
+        &[
+            "plan",
+            "--fields",
+            &fields,
+            "--terrain",
+            &banked,
+            "--out",
+            "banked",
+        ],
+        &folder,
+    ));
+    assert!(!text.contains("warning: a vehicle cannot stand"), "{text}");
+    let supply = &report(&folder, "banked")["supply"];
+    let [x, y] = [0, 1].map(|k| supply["point_m"][k].as_f64().unwrap());
+    assert!(slope_at(&banked, x, y) <= 0.10 + 1e-9, "{supply}");
+    // A hillside of 20 % everywhere.
+    let hillside = tilted_grid(&folder, "hillside.asc", 0.2, false);
+    let text = stdout(&agripath(
+        &[
+            "plan",
+            "--fields",
+            &fields,
+            "--terrain",
+            &hillside,
+            "--out",
+            "hillside",
+        ],
+        &folder,
+    ));
+    assert!(
+        text.contains(
+            "warning: a vehicle cannot stand at the supply point: its ground slopes 20.0%"
+        ),
+        "{text}"
+    );
+    let report = report(&folder, "hillside");
+    assert!(report["supply"]["warning"]
+        .as_str()
+        .unwrap()
+        .contains("no place of at most 10%"));
+    let auto = &report["supply"]["auto"];
+    assert!(
+        auto["first_point"]["cost_s"].as_f64().unwrap().is_finite(),
+        "{auto}"
+    );
+    std::fs::remove_dir_all(&folder).unwrap();
+}

@@ -283,6 +283,14 @@ impl TrackScenario {
         self.limits.min_clearance_m + 0.6
     }
 
+    /// The ground the flight is checked against, as a terrain (its bends sample a leg).
+    pub fn true_terrain(&self) -> &dyn Terrain {
+        match &self.ground_truth {
+            GroundTruth::Raster => &self.terrain,
+            GroundTruth::Model(model) => model.as_ref(),
+        }
+    }
+
     /// The height of the terrain as given (the verdict's ground), `None` off the model.
     pub fn true_ground(&self, x: f64, y: f64) -> Option<f64> {
         match &self.ground_truth {
