@@ -123,6 +123,9 @@ pub struct GroundPatches {
     pub unreachable: Vec<MultiPolygon<f64>>,
     /// Reachable ground the flight left unsprayed.
     pub missed: Vec<MultiPolygon<f64>>,
+    /// Where the preflight's checks failed (plan metres; at most 200 per check): the map of
+    /// an unsafe plan marks them (decision 0028).
+    pub failures: Vec<[f64; 2]>,
 }
 
 /// The closed rings of a region (outer boundaries and holes), first point repeated last.

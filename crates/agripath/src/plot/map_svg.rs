@@ -103,6 +103,10 @@ const UNREACHABLE_COLOUR: &str = "#37474f";
 
 /// Fill of reachable ground the flight missed: signal red.
 const MISSED_COLOUR: &str = "#d50000";
+/// The rings where a preflight check failed: colour, and radius in px (also the least gap
+/// between two rings).
+const FAILURE_COLOUR: &str = "#d50000";
+const FAILURE_RING_PX: f64 = 9.0;
 
 /// A round scale-bar length near a fifth of the map width.
 pub(super) fn scale_bar_m(width_m: f64) -> f64 {
@@ -362,6 +366,27 @@ pub fn plan_svg(
         }
         let _ = writeln!(svg, "</g>");
     }
+    // Where the preflight's checks failed (an unsafe plan's map): a ring each, one per
+    // marker's width, so a leg failing at every sample reads as a row of rings.
+    if !ground.failures.is_empty() {
+        let _ = writeln!(svg, r##"<g id="failures" fill="none">"##);
+        let mut drawn: Vec<(f64, f64)> = Vec::new();
+        for &[x, y] in &ground.failures {
+            let (x, y) = (canvas.x(x), canvas.y(y));
+            if drawn
+                .iter()
+                .any(|&(a, b)| (a - x).hypot(b - y) < FAILURE_RING_PX)
+            {
+                continue;
+            }
+            drawn.push((x, y));
+            let _ = writeln!(
+                svg,
+                r##"<circle cx="{x:.2}" cy="{y:.2}" r="{FAILURE_RING_PX}" stroke="white" stroke-width="5"/><circle cx="{x:.2}" cy="{y:.2}" r="{FAILURE_RING_PX}" stroke="{FAILURE_COLOUR}" stroke-width="2.5"/>"##
+            );
+        }
+        let _ = writeln!(svg, "</g>");
+    }
     let _ = writeln!(
         svg,
         r##"<g id="labels" font-size="13" fill="#111" text-anchor="middle">"##
@@ -437,6 +462,14 @@ pub fn plan_svg(
         swatches.push((
             boxed(&format!(r##"fill="{MISSED_COLOUR}""##)),
             "missed as flown",
+        ));
+    }
+    if !ground.failures.is_empty() {
+        swatches.push((
+            format!(
+                r##"<circle cx="14" cy="0" r="6" fill="none" stroke="{FAILURE_COLOUR}" stroke-width="2.5"/>"##
+            ),
+            "a check failed here",
         ));
     }
     if !farm.obstacles.is_empty() {
@@ -554,7 +587,7 @@ fn points_along(line: &[(f64, f64)], step: f64) -> Vec<(f64, f64)> {
 }
 
 #[cfg(test)]
-mod label_tests {
+mod tests {
     use super::*;
 
     #[test]

@@ -45,7 +45,8 @@ pub(super) fn record(
         leg.speed_mps
     };
     let off = (over_ground_mps / vehicle.spray_speed_mps - 1.0).abs();
-    tally.record(off, off > MAX_SPRAY_SPEED_SHARE, || {
+    let middle = ((leg.from.x + leg.to.x) / 2.0, (leg.from.y + leg.to.y) / 2.0);
+    tally.record_at(middle, off, off > MAX_SPRAY_SPEED_SHARE, || {
         if over_ground_mps < leg.speed_mps * (1.0 - 1e-9) {
             format!(
                 "sortie {sortie}, item {}: the ground climbs or falls {:.1} m over {:.1} m, more than the vehicle's climb speed ({} m/s) lets it follow at {:.1} m/s: it crosses at {:.1} m/s and the dose would be {:.0}% of the rate (terrain too steep to spray along; spray across the slope, or a vehicle that climbs faster)",

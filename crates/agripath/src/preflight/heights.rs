@@ -106,7 +106,7 @@ impl HeightBounds {
         for &(x, y, altitude, ground) in points {
             let clearance = altitude - ground;
             self.lowest_clearance_m = self.lowest_clearance_m.min(clearance);
-            self.floor.record(clearance, clearance < MIN_GROUND_CLEARANCE_M - SLACK_M, || {
+            self.floor.record_at((x, y), clearance, clearance < MIN_GROUND_CLEARANCE_M - SLACK_M, || {
                 format!(
                     "sortie {sortie}, item {item} at {}: {clearance:.2} m above the ground (never below {MIN_GROUND_CLEARANCE_M} m)",
                     place(x, y)
@@ -177,7 +177,7 @@ impl HeightBounds {
         let ceiling = self.ceiling.limit;
         for &(sortie, item, x, y, altitude) in samples {
             let height = altitude - highest;
-            self.ceiling.record(height, height > ceiling + SLACK_M, || {
+            self.ceiling.record_at((x, y), height, height > ceiling + SLACK_M, || {
                 format!(
                     "sortie {sortie}, item {item} at {}: {height:.1} m above the highest ground under the leg (ceiling {ceiling:.1} m: the cruise height and {CEILING_SLACK_M} m)",
                     place(x, y)
@@ -214,7 +214,7 @@ mod tests {
         bounds.end_sortie(&place);
         let (mut checks, mut lines) = (Vec::new(), Vec::new());
         for tally in bounds.tallies() {
-            tally.finish(&mut checks, &mut lines);
+            tally.finish(&mut checks, &mut lines, &mut Vec::new());
         }
         assert!(checks[0].passed, "the floor: {lines:?}");
         lines.len()

@@ -260,7 +260,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             for &(x, y, _, _) in &points {
                 let p = Coord { x, y };
                 let outside = fences.iter().any(|polygon| polygon.breached_at(p));
-                fence.record(f64::from(u8::from(outside)), outside, || {
+                fence.record_at((x, y), f64::from(u8::from(outside)), outside, || {
                     format!(
                         "sortie {sortie}, item {} at {}: outside the geofence",
                         leg.item,
@@ -269,13 +269,18 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 });
                 // Spray legs are asked below, against obstacles grown by the margin.
                 let in_obstacle = !(leg.spraying && horizontal > 0.0) && zones.in_obstacle(p);
-                no_go.record(f64::from(u8::from(in_obstacle)), in_obstacle, || {
-                    format!(
-                        "sortie {sortie}, item {} at {}: flying through an obstacle",
-                        leg.item,
-                        place(x, y)
-                    )
-                });
+                no_go.record_at(
+                    (x, y),
+                    f64::from(u8::from(in_obstacle)),
+                    in_obstacle,
+                    || {
+                        format!(
+                            "sortie {sortie}, item {} at {}: flying through an obstacle",
+                            leg.item,
+                            place(x, y)
+                        )
+                    },
+                );
             }
             if leg.motion != Motion::Flight {
                 continue;
@@ -339,7 +344,8 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                     let error = (altitude - ground - vehicle.spray_height_m).abs();
                     figures.worst_spray_height_error_m =
                         figures.worst_spray_height_error_m.max(error);
-                    spray_height.record(
+                    spray_height.record_at(
+                        (x, y),
                         error,
                         error > settings.terrain_tolerance_m + SLACK_M,
                         || {
@@ -354,7 +360,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                         },
                     );
                     let inside = zones.no_go(Coord { x, y });
-                    no_go.record(f64::from(u8::from(inside)), inside, || {
+                    no_go.record_at((x, y), f64::from(u8::from(inside)), inside, || {
                         format!(
                             "sortie {sortie}, item {} at {}: spraying inside a hole or an obstacle",
                             leg.item,
@@ -371,7 +377,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                     .map(|&(_, _, altitude, ground)| altitude - ground)
                     .fold(f64::INFINITY, f64::min);
                 let (x, y, _, _) = points[0];
-                low_legs.record(lowest, lowest < low_limit - SLACK_M, || {
+                low_legs.record_at((x, y), lowest, lowest < low_limit - SLACK_M, || {
                     format!(
                         "sortie {sortie}, item {} at {}: {:.2} m above the ground (needs ≥ {:.2} m)",
                         leg.item,
@@ -388,7 +394,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             if within_field {
                 for &(x, y, altitude, ground) in &points {
                     let clearance = altitude - ground;
-                    low_legs.record(clearance, clearance < low_limit - SLACK_M, || {
+                    low_legs.record_at((x, y), clearance, clearance < low_limit - SLACK_M, || {
                         format!(
                             "sortie {sortie}, item {} at {}: turn {:.2} m above the ground (needs ≥ {:.2} m)",
                             leg.item,
@@ -407,7 +413,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                             m.min(margin - vehicle.safe_height_m)
                         }),
                 );
-                transit.record(margin, margin < vehicle.safe_height_m - SLACK_M, || {
+                transit.record_at((x, y), margin, margin < vehicle.safe_height_m - SLACK_M, || {
                     format!(
                         "sortie {sortie}, item {} at {}: transit {:.2} m above the highest ground under the leg (needs ≥ h = {} m)",
                         leg.item,
@@ -525,12 +531,13 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
     });
     let lowest_clearance = heights.lowest_clearance_m;
     let bounds = heights.tallies();
+    let mut failure_places = Vec::new();
     for tally in [read, frames, spray_height, spray_speed, transit, low_legs]
         .into_iter()
         .chain(bounds)
         .chain([no_go, fence, coverage, outside, tank, battery])
     {
-        tally.finish(&mut checks, &mut failures);
+        tally.finish(&mut checks, &mut failures, &mut failure_places);
     }
     let round = |value: f64| crate::numbers::round(value, 1e-4);
     for check in &mut checks {
@@ -578,6 +585,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 .map(|region| region.unreachable)
                 .collect(),
             missed: std::mem::take(&mut measured.missed),
+            failures: failure_places,
         },
     }
 }
@@ -929,7 +937,17 @@ mod tests {
             plan_settings.mission.sprayer = sprayer;
             let mission = plan_mission(&scenario, &plan_settings).unwrap();
             let rendered = render(&scenario, &mission).unwrap();
+            let map = rendered
+                .files
+                .iter()
+                .find(|(name, _)| name == "plan.svg")
+                .map(|(_, bytes)| String::from_utf8_lossy(bytes).into_owned())
+                .unwrap();
             let verdict = rendered.verdict;
+            // The map rings where the check failed, and only then.
+            assert_eq!(!verdict.ground.failures.is_empty(), overdoses);
+            assert_eq!(map.contains(r#"<g id="failures""#), overdoses);
+            assert_eq!(map.contains("a check failed here"), overdoses);
             let spray_speed = verdict
                 .checks
                 .iter()

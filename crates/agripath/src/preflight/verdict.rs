@@ -7,6 +7,8 @@ use crate::mission::flight::AltitudeReference;
 
 /// Lines reported per failed check (the count of the rest follows).
 const LINES_PER_CHECK: usize = 3;
+/// Places of failures one check keeps for the map.
+const PLACES_PER_CHECK: usize = 200;
 
 /// One check and its figure.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -186,6 +188,9 @@ pub(super) struct Tally {
     worst: Option<f64>,
     lines: Vec<String>,
     failed: usize,
+    /// Where the failures recorded with a place lie (plan metres), at most
+    /// [`PLACES_PER_CHECK`]: the map marks them.
+    places: Vec<[f64; 2]>,
 }
 
 impl Tally {
@@ -203,6 +208,7 @@ impl Tally {
             worst: None,
             lines: Vec::new(),
             failed: 0,
+            places: Vec::new(),
         }
     }
 
@@ -223,6 +229,20 @@ impl Tally {
         }
     }
 
+    /// As [`Self::record`], at the plan's place `(x, y)`, which the map marks when it fails.
+    pub(super) fn record_at(
+        &mut self,
+        (x, y): (f64, f64),
+        figure: f64,
+        bad: bool,
+        line: impl FnOnce() -> String,
+    ) {
+        if bad && self.places.len() < PLACES_PER_CHECK {
+            self.places.push([x, y]);
+        }
+        self.record(figure, bad, line);
+    }
+
     /// A failure with no figure of its own (a file that cannot be read, a frame): the figure
     /// is then the count of failures, so the check never reads "FAIL 0 faults".
     pub(super) fn fail(&mut self, line: String) {
@@ -233,7 +253,15 @@ impl Tally {
         }
     }
 
-    pub(super) fn finish(self, checks: &mut Vec<CheckResult>, failures: &mut Vec<String>) {
+    /// Adds the check's figure to `checks`, its failure lines to `failures` and the places
+    /// of its failures to `places`.
+    pub(super) fn finish(
+        self,
+        checks: &mut Vec<CheckResult>,
+        failures: &mut Vec<String>,
+        places: &mut Vec<[f64; 2]>,
+    ) {
+        places.extend(self.places);
         checks.push(CheckResult {
             name: self.name,
             passed: self.failed == 0,
