@@ -296,39 +296,23 @@ fn auto_keeps_to_level_ground_and_warns_on_a_hillside() {
             .collect();
         ((heights[0] - heights[1]) / 4.0).hypot((heights[2] - heights[3]) / 4.0)
     };
+    let plan_over = |grid: &str, out: &str| {
+        stdout(&agripath(
+            &["plan", "--fields", &fields, "--terrain", grid, "--out", out],
+            &folder,
+        ))
+    };
     // Ridges between the fields, where the choice stood before (165.0, 92.1: a 30 % slope by
     // this measure); level ground between them and beyond.
     let banked = tilted_grid(&folder, "banked.asc", 0.0, true);
-    let text = stdout(&agripath(
-        &[
-            "plan",
-            "--fields",
-            &fields,
-            "--terrain",
-            &banked,
-            "--out",
-            "banked",
-        ],
-        &folder,
-    ));
+    let text = plan_over(&banked, "banked");
     assert!(!text.contains("warning: a vehicle cannot stand"), "{text}");
     let supply = &report(&folder, "banked")["supply"];
     let [x, y] = [0, 1].map(|k| supply["point_m"][k].as_f64().unwrap());
     assert!(slope_at(&banked, x, y) <= 0.10 + 1e-9, "{supply}");
     // A hillside of 20 % everywhere.
     let hillside = tilted_grid(&folder, "hillside.asc", 0.2, false);
-    let text = stdout(&agripath(
-        &[
-            "plan",
-            "--fields",
-            &fields,
-            "--terrain",
-            &hillside,
-            "--out",
-            "hillside",
-        ],
-        &folder,
-    ));
+    let text = plan_over(&hillside, "hillside");
     assert!(
         text.contains(
             "warning: a vehicle cannot stand at the supply point: its ground slopes 20.0%"
