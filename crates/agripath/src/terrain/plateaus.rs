@@ -93,7 +93,7 @@ impl Terrain for Plateaus {
             let (cx, cy) = (from.0 - plateau.center[0], from.1 - plateau.center[1]);
             // |from + t·d − centre|² = r²: t² L + 2 t (c·d) + |c|² − r² = 0.
             let half_b = cx * dx + cy * dy;
-            bends.push(-half_b / length_squared);
+            let mut crosses = false;
             for radius in [plateau.radius_m, plateau.radius_m + plateau.edge_ramp_m] {
                 let discriminant =
                     half_b * half_b - length_squared * (cx * cx + cy * cy - radius * radius);
@@ -101,7 +101,12 @@ impl Terrain for Plateaus {
                     let root = discriminant.sqrt();
                     bends.push((-half_b - root) / length_squared);
                     bends.push((-half_b + root) / length_squared);
+                    crosses = true;
                 }
+            }
+            // The closest approach, only where the line meets the plateau at all.
+            if crosses {
+                bends.push(-half_b / length_squared);
             }
         }
         bends.retain(|t| *t > 0.0 && *t < 1.0);
