@@ -270,6 +270,20 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             bad("gap_between_fields.asc"),
             "which the flight crosses (a transfer, a return to the supply point or a transit between fields)",
         ),
+        // A supply point off the DEM names the flag, not a file.
+        (
+            plan(
+                &data("seed001_farm.geojson"),
+                &[
+                    "--terrain",
+                    &bad("gap_between_fields.asc"),
+                    "--supply",
+                    "750,200",
+                ],
+            ),
+            "--supply/--start".into(),
+            "the terrain has no height there (the terrain model covers (-100.0, -350.0) to (700.0, 250.0))",
+        ),
         (
             plan(&bad("speck.geojson"), &[]),
             bad("speck.geojson"),

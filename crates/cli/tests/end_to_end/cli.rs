@@ -15,6 +15,11 @@ fn demo_writes_its_folder_and_is_byte_identical_when_run_again() {
     let folder = scratch("demo");
     let text = stdout(&agripath(&["demo"], &folder));
     assert!(text.contains("S4") && text.contains("covered"), "{text}");
+    // The demo's farm is in local metres: the summary says where the files put it.
+    assert!(
+        text.contains("placed: local (0, 0) at lon 126.630000, lat 45.750000 in the mission files (the default origin"),
+        "{text}"
+    );
     let out = folder.join("agripath-demo");
     // plan.png only with the `png` feature, and listed only when written.
     assert_eq!(out.join("plan.png").is_file(), cfg!(feature = "png"));
