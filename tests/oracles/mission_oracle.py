@@ -5,7 +5,9 @@ lon/lat over the real DEM, with sea-level altitudes, with terrain-frame altitude
 by a camera drone; the seed 001 farm with a pump on a servo output) is loaded with
 pymavlink's `mavwp.MAVWPLoader` (what MAVProxy and Mission Planner-compatible tools use),
 each item packed as an ArduPilot MISSION_ITEM (which refuses out-of-range fields), and the
-matching `.plan` must hold the same commands, frames and parameters. A point-to-point track
+matching `.plan` must hold the same commands, frames and parameters. A field over a cliff one
+cell wide, in a grid this script writes, is flown leg by leg against the script's own
+interpolation of that grid (`cliff_flown`). A point-to-point track
 over SPSO's DEM is loaded the same way, and its start and goal must sit where PROJ puts the
 DEM's pixels (EPSG:28348 → GDA94 longitude/latitude).
 
@@ -85,6 +87,76 @@ def check_folder(folder, frames, with_plan=True):
                   f"{name}: item {index + 1} params {plan_item['params']} vs {params}")
 
 
+def cliff_flown(scratch):
+    """Plans a field over a 12 m step one 4 m cell wide, in local metres over an ESRI grid
+    written here, and flies every spray leg of the `.waypoints` against numpy's bilinear
+    interpolation of that grid (cell centres, held flat beyond the outer ones), every 2 cm:
+    within 1 m (the default tolerance) of the 2 m spray height, never under 0.5 m."""
+    import numpy
+    from pyproj import Transformer
+
+    columns, rows, cell, x0, y0 = 60, 60, 4.0, -20.0, -20.0
+    centres_x = x0 + (numpy.arange(columns) + 0.5) * cell
+    centres_y = y0 + (numpy.arange(rows) + 0.5) * cell  # south to north
+    heights = 100.0 + 0.05 * centres_x[None, :] + 12.0 * (centres_y[:, None] > 100.0)
+    folder = os.path.join(scratch, "cliff")
+    os.makedirs(folder)
+    with open(os.path.join(folder, "cliff.asc"), "w") as handle:
+        handle.write(f"ncols {columns}\nnrows {rows}\nxllcorner {x0}\nyllcorner {y0}\ncellsize {cell}\nNODATA_value -9999\n")
+        for row in heights[::-1]:
+            handle.write(" ".join(f"{value:.3f}" for value in row) + "\n")
+    field = {"type": "FeatureCollection", "crs": "local", "features": [{"type": "Feature", "properties": {"name": "slope"},
+             "geometry": {"type": "Polygon", "coordinates": [[[20, 30], [180, 38], [172, 190], [28, 182], [20, 30]]]}}]}
+    with open(os.path.join(folder, "field.geojson"), "w") as handle:
+        json.dump(field, handle)
+    out = os.path.join(folder, "out")
+    subprocess.run([AGRIPATH, "plan", "--fields", "field.geojson", "--terrain", "cliff.asc", "--heading", "85",
+                    "--out", out], check=True, stdout=subprocess.DEVNULL, cwd=folder)
+
+    def ground(x, y):
+        u = numpy.clip((x - centres_x[0]) / cell, 0, columns - 1)
+        v = numpy.clip((y - centres_y[0]) / cell, 0, rows - 1)
+        i = numpy.minimum(numpy.floor(u).astype(int), columns - 2)
+        j = numpy.minimum(numpy.floor(v).astype(int), rows - 2)
+        fu, fv = u - i, v - j
+        return (heights[j, i] * (1 - fu) * (1 - fv) + heights[j, i + 1] * fu * (1 - fv)
+                + heights[j + 1, i] * (1 - fu) * fv + heights[j + 1, i + 1] * fu * fv)
+
+    to_utm = Transformer.from_crs("EPSG:4326", "EPSG:32652", always_xy=True)
+    east0, north0 = to_utm.transform(126.63, 45.75)
+    worst_error, lowest, legs = 0.0, math.inf, 0
+    for path in sorted(glob.glob(os.path.join(out, "sortie_*.waypoints"))):
+        loader = mavwp.MAVWPLoader()
+        loader.load(path)
+        spraying, previous = False, None
+        for index in range(1, loader.count()):
+            item = loader.wp(index)
+            if item.command == 216:
+                spraying = item.param1 >= 0.5
+                continue
+            if item.command != 16:
+                previous = None
+                continue
+            check(item.frame == 0, f"cliff {os.path.basename(path)}: item {index} in frame {item.frame}, not sea level")
+            east, north = to_utm.transform(item.y, item.x)
+            here = (east - east0, north - north0, item.z)
+            if previous is not None:
+                length = math.hypot(here[0] - previous[0], here[1] - previous[1])
+                t = numpy.linspace(0.0, 1.0, max(2, int(length / 0.02) + 1))
+                x = previous[0] + t * (here[0] - previous[0])
+                y = previous[1] + t * (here[1] - previous[1])
+                above = previous[2] + t * (here[2] - previous[2]) - ground(x, y)
+                lowest = min(lowest, float(above.min()))
+                if spraying:
+                    legs += 1
+                    worst_error = max(worst_error, float(numpy.abs(above - 2.0).max()))
+            previous = here
+    check(legs > 50, f"cliff: {legs} spray legs flown")
+    check(worst_error <= 1.0 + 0.02, f"cliff: a spray leg flies {worst_error:.3f} m off the 2 m spray height")
+    check(lowest >= 0.5 - 0.02, f"cliff: a leg flies {lowest:.3f} m above the ground")
+    print(f"cliff: {legs} spray legs, worst {worst_error:.3f} m off spray height, lowest {lowest:.3f} m above the ground")
+
+
 with tempfile.TemporaryDirectory() as scratch:
     demo = os.path.join(scratch, "demo")
     subprocess.run([AGRIPATH, "demo", "--out", demo], check=True, stdout=subprocess.DEVNULL)
@@ -143,6 +215,12 @@ with tempfile.TemporaryDirectory() as scratch:
     with open(os.path.join(track, "report.json")) as handle:
         report = json.load(handle)
     check(all(p["safe_runs"] == p["runs"] for p in report["planners"]), "every track run over the DEM is safe")
+
+    # A cliff one cell wide, in a grid written here and flown here: every spray leg of the
+    # written files, between its waypoints as the autopilot flies them, sampled every 2 cm
+    # against this script's own bilinear interpolation of the grid (decision 0028: 1 m samples
+    # had passed a leg 1.08 m off spray height, beyond the 1 m tolerance).
+    cliff_flown(scratch)
 
 print(f"missions: {passed} passed, {failed} failed")
 sys.exit(1 if failed else 0)

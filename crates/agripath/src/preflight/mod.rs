@@ -1000,26 +1000,20 @@ mod tests {
     #[test]
     fn a_stray_copy_or_a_missing_sortie_fails_the_read() {
         let (scenario, settings, files) = planned();
-        let mut copied = files.clone();
-        let first = copied
+        let first = files
             .iter()
             .find(|(name, _)| name == "sortie_01.plan")
             .unwrap()
             .1
             .clone();
-        copied.push(("sortie_01 copy.plan".to_string(), first));
+        let mut copied = files.clone();
+        copied.push(("sortie_01 copy.plan".to_string(), first.clone()));
         let with_copy = verdict(&scenario, &settings, &copied);
         assert_eq!(failed(&with_copy), vec!["files read back"]);
         assert!(with_copy.failures[0].contains("sortie_01 copy.plan is not"));
         // The same sortie under two numberings: named, not taken for a missing sortie 2.
         let mut twice = files.clone();
-        let first_plan = twice
-            .iter()
-            .find(|(name, _)| name == "sortie_01.plan")
-            .unwrap()
-            .1
-            .clone();
-        twice.push(("sortie_001.plan".to_string(), first_plan));
+        twice.push(("sortie_001.plan".to_string(), first));
         let doubled = verdict(&scenario, &settings, &twice);
         assert!(
             doubled

@@ -568,7 +568,7 @@ impl Report {
         // only the sheet said (a trial's finding, decision 0028).
         if self.coordinate_system == crate::model::CoordinateSystem::Local.describe() {
             let (lon, lat) = self.mission.local_origin;
-            let default = crate::mission::flight::MissionSettings::default().local_origin;
+            let default = crate::mission::flight::DEFAULT_LOCAL_ORIGIN;
             text.push_str(&format!(
                 "placed: local (0, 0) at lon {lon:.6}, lat {lat:.6} in the mission files ({}; --origin LON,LAT places them)\n",
                 if (lon, lat) == default {

@@ -154,7 +154,7 @@ impl TrackJob {
         // Local metres have no place on Earth: say where the files put them (decision 0028).
         if let crate::track::scenario::Georeference::Local { lon, lat } = self.scenario.georeference
         {
-            let given = if [lon, lat] == crate::track::operator::DEFAULT_ORIGIN {
+            let given = if (lon, lat) == crate::mission::flight::DEFAULT_LOCAL_ORIGIN {
                 "the default origin, near Harbin, China; `origin = [lon, lat]` in an operator's TOML places them"
             } else {
                 "the scenario's origin"

@@ -191,12 +191,12 @@ impl Terrain for Grid {
 
     /// The lines through the cell centres: bilinear interpolation bends there.
     fn bends_along(&self, from: (f64, f64), to: (f64, f64)) -> Vec<f64> {
-        let mut bends = Vec::new();
-        super::grid_line_crossings(from, to, 0, self.first_center_x, self.cell_x, &mut bends);
-        super::grid_line_crossings(from, to, 1, self.first_center_y, self.cell_y, &mut bends);
-        bends.sort_by(f64::total_cmp);
-        bends.dedup();
-        bends
+        super::lattice_bends(
+            from,
+            to,
+            (self.first_center_x, self.first_center_y),
+            (self.cell_x, self.cell_y),
+        )
     }
 
     fn describe(&self) -> String {

@@ -108,10 +108,27 @@ pub trait Terrain: Send + Sync {
 /// bends are left out and the leg is sampled every [`profile_places`]'s spacing only.
 pub const MAX_BENDS: usize = 200_000;
 
+/// Where the straight segment `from`–`to` crosses the lines of a lattice with nodes at
+/// `origin + (i·step.0, j·step.1)`, as fractions of it strictly inside, ascending: where
+/// bilinear interpolation between those nodes bends along the segment.
+pub fn lattice_bends(
+    from: (f64, f64),
+    to: (f64, f64),
+    origin: (f64, f64),
+    step: (f64, f64),
+) -> Vec<f64> {
+    let mut bends = Vec::new();
+    grid_line_crossings(from, to, 0, origin.0, step.0, &mut bends);
+    grid_line_crossings(from, to, 1, origin.1, step.1, &mut bends);
+    bends.sort_by(f64::total_cmp);
+    bends.dedup();
+    bends
+}
+
 /// The fractions of the straight segment `from`–`to` where the lines `origin + k·step`
 /// (x = … for `axis` 0, y = … for 1) cross it, strictly inside; appended to `bends`.
 /// Nothing when there would be more than [`MAX_BENDS`].
-pub fn grid_line_crossings(
+fn grid_line_crossings(
     from: (f64, f64),
     to: (f64, f64),
     axis: usize,

@@ -57,9 +57,6 @@ struct OperatorScenario {
     origin: Option<[f64; 2]>,
 }
 
-/// Where local (0, 0) is placed without an `origin`: seed 001's farm, as `plan --origin`.
-pub const DEFAULT_ORIGIN: [f64; 2] = [126.63, 45.75];
-
 fn lonlat() -> String {
     "lonlat".into()
 }
@@ -129,7 +126,10 @@ pub fn read(path: &Path, text: &str) -> Result<TrackScenario, InputError> {
             (CoordinateSystem::Utm(zone), Georeference::Utm { zone })
         }
         "local" => {
-            let [lon, lat] = parsed.origin.unwrap_or(DEFAULT_ORIGIN);
+            let [lon, lat] = parsed.origin.unwrap_or({
+                let (lon, lat) = crate::mission::flight::DEFAULT_LOCAL_ORIGIN;
+                [lon, lat]
+            });
             if !(-180.0..=180.0).contains(&lon) || !(-80.0..=84.0).contains(&lat) {
                 return Err(fail(Fault::InvalidValue {
                     what: "origin".into(),

@@ -31,8 +31,8 @@ use terrain_following::follow_terrain;
 
 pub use geo_frame::GeoFrame;
 pub use settings::{
-    sea_level_known, AltitudeReference, MissionSettings, SprayerCommand, SERVO_CHANNELS,
-    SERVO_PWM_US,
+    sea_level_known, AltitudeReference, MissionSettings, SprayerCommand, DEFAULT_LOCAL_ORIGIN,
+    SERVO_CHANNELS, SERVO_PWM_US,
 };
 
 /// One autopilot command.

@@ -182,6 +182,10 @@ pub struct MissionSettings {
     pub fence_margin_m: f64,
 }
 
+/// Where local metres are placed on Earth unless told otherwise (lon, lat): Harbin,
+/// Heilongjiang, the Northeast Agricultural University fields of seed 003.
+pub const DEFAULT_LOCAL_ORIGIN: (f64, f64) = (126.63, 45.75);
+
 impl Default for MissionSettings {
     fn default() -> Self {
         Self {
@@ -189,8 +193,7 @@ impl Default for MissionSettings {
             sprayer: SprayerCommand::DoSprayer,
             terrain_tolerance_m: 1.0,
             sample_spacing_m: 1.0,
-            // Harbin, Heilongjiang: the Northeast Agricultural University fields of seed 003.
-            local_origin: (126.63, 45.75),
+            local_origin: DEFAULT_LOCAL_ORIGIN,
             fence_margin_m: 10.0,
         }
     }

@@ -305,12 +305,12 @@ impl Terrain for HeightMap {
 
     /// The lattice's lines: bilinear interpolation bends there.
     fn bends_along(&self, from: (f64, f64), to: (f64, f64)) -> Vec<f64> {
-        let mut bends = Vec::new();
-        crate::terrain::grid_line_crossings(from, to, 0, self.origin_x, self.cell, &mut bends);
-        crate::terrain::grid_line_crossings(from, to, 1, self.origin_y, self.cell, &mut bends);
-        bends.sort_by(f64::total_cmp);
-        bends.dedup();
-        bends
+        crate::terrain::lattice_bends(
+            from,
+            to,
+            (self.origin_x, self.origin_y),
+            (self.cell, self.cell),
+        )
     }
 
     fn describe(&self) -> String {
@@ -331,8 +331,8 @@ mod tests {
         HeightMap::new((0.0, 0.0), 2.0, 3, 3, heights, Sampling::Bilinear)
     }
 
-    /// A 1 m lattice with one node 20 m higher (decision 0028's review: 1 m samples read the
-    /// peak 8.7 m low): the places a track leg is checked at find it, as 0.5 mm samples do.
+    /// A 1 m lattice with one node 20 m higher (1 m samples along this leg read it as 15.45 m,
+    /// decision 0028): the places a track leg is checked at find it, as 0.5 mm samples do.
     #[test]
     fn a_peak_one_cell_wide_is_found_along_a_leg() {
         let (columns, rows) = (12, 12);
