@@ -110,8 +110,9 @@ def cliff_flown(scratch):
     with open(os.path.join(folder, "field.geojson"), "w") as handle:
         json.dump(field, handle)
     out = os.path.join(folder, "out")
-    subprocess.run([AGRIPATH, "plan", "--fields", "field.geojson", "--terrain", "cliff.asc", "--heading", "85",
-                    "--out", out], check=True, stdout=subprocess.DEVNULL, cwd=folder)
+    subprocess.run([AGRIPATH, "plan", "--fields", os.path.join(folder, "field.geojson"), "--terrain",
+                    os.path.join(folder, "cliff.asc"), "--heading", "85", "--out", out],
+                   check=True, stdout=subprocess.DEVNULL)
 
     def ground(x, y):
         u = numpy.clip((x - centres_x[0]) / cell, 0, columns - 1)
