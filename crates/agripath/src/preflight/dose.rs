@@ -13,6 +13,15 @@ use crate::model::Vehicle;
 /// (ISO 16122) hold a nozzle's flow to.
 pub const MAX_SPRAY_SPEED_SHARE: f64 = 0.10;
 
+/// ArduPilot's sprayer stops its pump below this ground speed (`SPRAY_SPEED_MIN`, default
+/// 100 cm/s, `AC_Sprayer`) once it has been below it for [`SPRAYER_SHUT_OFF_DELAY_S`]: a
+/// spray leg held back below it by a climb for longer goes unsprayed.
+pub const SPRAYER_SPEED_MIN_MPS: f64 = 1.0;
+
+/// How long ArduPilot's sprayer keeps pumping below `SPRAY_SPEED_MIN`, seconds
+/// (`AC_SPRAYER_DEFAULT_SHUT_OFF_DELAY`, 1,000 ms).
+pub const SPRAYER_SHUT_OFF_DELAY_S: f64 = 1.0;
+
 /// The check's tally, before any leg.
 pub(super) fn tally() -> Tally {
     Tally::new(
@@ -24,7 +33,11 @@ pub(super) fn tally() -> Tally {
 }
 
 /// Records spray leg `leg` of sortie `sortie` (`horizontal` and `vertical` metres) flown by
-/// `vehicle` with its pump switched by `sprayer`.
+/// `vehicle` with its pump switched by `sprayer`; `slow_s` is how long the spray legs just
+/// before it were crossed below [`SPRAYER_SPEED_MIN_MPS`] (0 after any other leg). Returns
+/// whether ArduPilot's pump is stopped on this leg: its strip is then not sprayed, which the
+/// coverage as flown counts (a bank a few metres high leaves a short gap; a face climbed for
+/// a swath's length fails the coverage).
 pub(super) fn record(
     tally: &mut Tally,
     leg: &Leg,
@@ -32,15 +45,29 @@ pub(super) fn record(
     vehicle: &Vehicle,
     sprayer: SprayerCommand,
     sortie: usize,
-) {
+    slow_s: &mut f64,
+) -> bool {
     // Over ground steeper than the vehicle climbs at the commanded speed, the climb (or
     // descent) holds it back along the leg (the autopilot keeps its vertical speed limit). A
     // pump on a servo output runs at one flow, so the slower crossing doses more; ArduPilot's
     // sprayer (DO_SPRAYER) pumps in proportion to ground speed, and a camera triggers by
     // distance, so theirs does not change.
+    // But below SPRAY_SPEED_MIN for longer than its shut-off delay ArduPilot's pump stops:
+    // over ground that steep (a third trial's swaths up an 80° face, crossed at 0.6 m/s) the
+    // strip goes unsprayed.
+    let held_back_mps =
+        horizontal / (horizontal / leg.speed_mps).max(vertical / vehicle.climb_speed_mps);
     let constant_flow = matches!(sprayer, SprayerCommand::Servo { .. }) && vehicle.camera.is_none();
+    let do_sprayer = matches!(sprayer, SprayerCommand::DoSprayer) && vehicle.camera.is_none();
+    let pump_stops = if do_sprayer && held_back_mps < SPRAYER_SPEED_MIN_MPS {
+        *slow_s += horizontal / held_back_mps;
+        *slow_s > SPRAYER_SHUT_OFF_DELAY_S
+    } else {
+        *slow_s = 0.0;
+        false
+    };
     let over_ground_mps = if constant_flow {
-        horizontal / (horizontal / leg.speed_mps).max(vertical / vehicle.climb_speed_mps)
+        held_back_mps
     } else {
         leg.speed_mps
     };
@@ -69,4 +96,5 @@ pub(super) fn record(
             )
         }
     });
+    pump_stops
 }

@@ -4,7 +4,8 @@
 //! 250 m inserted in a ground station read SAFE too).
 //!
 //! - The floor: no sample, spraying or not, nearer the ground than
-//!   [`MIN_GROUND_CLEARANCE_M`].
+//!   [`MIN_GROUND_CLEARANCE_M`], straight down or sideways (a slope beside the leg:
+//!   `terrain::nearness`, decision 0030).
 //! - The ceiling: no sample higher above the highest ground under its leg than a transit
 //!   flies (the cruise height: spray height + max(h, 5 m)) and [`CEILING_SLACK_M`]. Every leg
 //!   agripath writes keeps to it over any terrain, because a transit's altitude is set from
@@ -75,7 +76,7 @@ impl HeightBounds {
                 "clearance floor",
                 "≥",
                 MIN_GROUND_CLEARANCE_M,
-                "m above the ground, any airborne sample",
+                "m from the ground, any airborne sample, in any direction",
             ),
             ceiling: Tally::new(
                 "height ceiling",
@@ -184,6 +185,30 @@ impl HeightBounds {
                 )
             });
         }
+    }
+
+    /// Records how near leg `item` of sortie `sortie` comes to the ground sideways, where
+    /// nearer than the floor (`near`, from `terrain::nearness`; `beneath`: its least height
+    /// above the ground beneath, which the floor holds already).
+    pub fn record_sideways(
+        &mut self,
+        (sortie, item): (usize, usize),
+        near: crate::terrain::nearness::Nearest,
+        beneath: f64,
+        place: &dyn Fn(f64, f64) -> String,
+    ) {
+        let distance = near.distance_m;
+        if distance >= beneath || beneath < MIN_GROUND_CLEARANCE_M - SLACK_M {
+            return;
+        }
+        self.lowest_clearance_m = self.lowest_clearance_m.min(distance);
+        let [x, y] = near.at;
+        self.floor.record_at((x, y), distance, distance < MIN_GROUND_CLEARANCE_M - SLACK_M, || {
+            format!(
+                "sortie {sortie}, item {item} at {}: {distance:.2} m from the ground beside it, a slope or a bank ({beneath:.2} m above the ground beneath; never nearer than {MIN_GROUND_CLEARANCE_M} m in any direction)",
+                place(x, y)
+            )
+        });
     }
 
     /// The two checks, floor first.

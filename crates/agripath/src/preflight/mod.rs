@@ -46,6 +46,7 @@ use crate::limits::MIN_GROUND_CLEARANCE_M;
 use crate::mission::flight::GeoFrame;
 use crate::mission::mavlink::Command;
 use crate::model::{Farm, Vehicle};
+use crate::terrain::nearness::GroundNearness;
 use crate::terrain::Terrain;
 use flown::Motion;
 use sprayed::{Rings, Strip};
@@ -109,6 +110,12 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         "m above the ground on legs that do not spray",
     );
     let mut heights = heights::HeightBounds::new(vehicle);
+    let mut nearness = GroundNearness::new(
+        terrain,
+        |x, y| terrain.height_m(x, y).ok(),
+        1.0,
+        MIN_GROUND_CLEARANCE_M,
+    );
     let mut no_go = Tally::new("holes and obstacles", "≤", 0.0, "samples inside");
     let mut fence = Tally::new("fence", "≤", 0.0, "samples outside");
     let mut tank = Tally::new("tank", "≤", 1.0, "tanks");
@@ -234,8 +241,14 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             battery_fraction: 0.0,
             worst_spray_height_error_m: 0.0,
             least_transit_margin_m: None,
+            pump_stopped_m: 0.0,
         };
+        // How long the spray legs just flown were crossed below the sprayer's least speed.
+        let mut slow_s = 0.0;
         for (leg_index, leg) in legs.iter().enumerate() {
+            if !leg.spraying {
+                slow_s = 0.0;
+            }
             let horizontal = leg.horizontal_m();
             let vertical = leg.vertical_m(terrain).unwrap_or(0.0);
             figures.flight_time_s +=
@@ -293,16 +306,38 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 heights::LegShape::Along
             };
             heights.record((sortie, leg.item), &points, shape, &place);
+            // Sideways too, between consecutive samples (a terrain-following leg bends with
+            // the ground only at them).
+            let beneath = points
+                .iter()
+                .map(|&(_, _, altitude, ground)| altitude - ground)
+                .fold(f64::INFINITY, f64::min);
+            let nearest = points
+                .windows(2)
+                .filter_map(|pair| {
+                    nearness.leg(
+                        [pair[0].0, pair[0].1, pair[0].2],
+                        [pair[1].0, pair[1].1, pair[1].2],
+                    )
+                })
+                .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
+            if let Some(near) = nearest {
+                heights.record_sideways((sortie, leg.item), near, beneath, &place);
+            }
             if leg.spraying && horizontal > 0.0 {
                 figures.spray_m += horizontal;
-                dose::record(
+                let pump_stops = dose::record(
                     &mut spray_speed,
                     leg,
                     (horizontal, vertical),
                     vehicle,
                     settings.sprayer,
                     sortie,
+                    &mut slow_s,
                 );
+                if pump_stops {
+                    figures.pump_stopped_m += horizontal;
+                }
                 let (a, b) = (points[0], points[points.len() - 1]);
                 let half = vehicle.swath_width_m / 2.0;
                 let strip = Strip::new(Coord { x: a.0, y: a.1 }, Coord { x: b.0, y: b.1 }, half);
@@ -325,7 +360,9 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                         && next.horizontal_m() > 0.0
                         && cross.atan2(dot).abs() > MIN_TURN_RAD
                 });
-                strips.extend(strip.map(|strip| {
+                // Where ArduPilot's pump stops, nothing is sprayed: the coverage as flown
+                // counts the gap.
+                strips.extend(strip.filter(|_| !pump_stops).map(|strip| {
                     if turns_on {
                         strip.turning_at_end(
                             Coord { x: b.0, y: b.1 },

@@ -72,6 +72,10 @@ pub struct SortieFlown {
     pub worst_spray_height_error_m: f64,
     /// Least margin above h over the highest ground under a transit leg, m (none: no transit).
     pub least_transit_margin_m: Option<f64>,
+    /// Horizontal metres of spray legs where ArduPilot's sprayer stops its pump: ground so
+    /// steep that the climb holds the vehicle under `SPRAY_SPEED_MIN` (1 m/s) for longer than
+    /// its shut-off delay (1 s). Not sprayed; the coverage as flown counts them missed.
+    pub pump_stopped_m: f64,
 }
 
 /// The verdict of the preflight, as `report.json` carries it.
@@ -160,8 +164,18 @@ impl Verdict {
         } else {
             String::new()
         };
+        let stopped: f64 = self
+            .sorties
+            .iter()
+            .map(|sortie| sortie.pump_stopped_m)
+            .sum();
+        let stopped = if stopped >= 0.05 {
+            format!(" (with {stopped:.1} m of spray legs where ArduPilot stops the pump: too steep to cross at its SPRAY_SPEED_MIN)")
+        } else {
+            String::new()
+        };
         format!(
-            "preflight ({} altitudes, read back from {} mission file(s)): {}; coverage as flown {:.2}% in the least covered field{missed}{unreachable}, sprayed outside {:.3}%, lowest clearance {:.2} m (spray legs included)",
+            "preflight ({} altitudes, read back from {} mission file(s)): {}; coverage as flown {:.2}% in the least covered field{missed}{stopped}{unreachable}, sprayed outside {:.3}%, lowest clearance {:.2} m (spray legs included, in any direction)",
             self.altitude_reference.key(),
             self.sorties.len(),
             if self.safe {

@@ -199,6 +199,13 @@ impl Terrain for Grid {
         )
     }
 
+    fn lattice(&self) -> Option<((f64, f64), (f64, f64))> {
+        Some((
+            (self.first_center_x, self.first_center_y),
+            (self.cell_x, self.cell_y),
+        ))
+    }
+
     fn describe(&self) -> String {
         self.source.clone()
     }

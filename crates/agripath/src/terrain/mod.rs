@@ -11,6 +11,7 @@ pub mod frame;
 pub mod geotiff;
 pub mod grid;
 pub mod hillshade;
+pub mod nearness;
 pub mod plateaus;
 pub mod xyz;
 
@@ -80,6 +81,12 @@ pub trait Terrain: Send + Sync {
     /// whose crests and ripples of a few metres the 1 m samples read to about 0.1 m).
     fn bends_along(&self, _from: (f64, f64), _to: (f64, f64)) -> Vec<f64> {
         Vec::new()
+    }
+
+    /// The lattice the surface is bilinear on, `(origin, step)`: a raster's cell centres.
+    /// `None` for the analytic models ([`nearness`] then samples them).
+    fn lattice(&self) -> Option<((f64, f64), (f64, f64))> {
+        None
     }
 
     /// Lowest and highest height over `within`, metres. The default samples a 257 × 257

@@ -6,8 +6,10 @@
 //! [`GroundTruth`](super::scenario::GroundTruth): the formula of an analytic terrain, or the
 //! DEM bilinear on its own cells, never the planners' raster. A track is safe when
 //! - every sample of the cruise is at least [`SafetyLimits::min_clearance_m`] above the
-//!   terrain (the takeoff and landing legs, vertical above the start and the goal, start on
-//!   the ground and are exempt: their ground is the start's and the goal's);
+//!   terrain, and every leg that far from it in any direction (beside a cliff the ground
+//!   beneath may be far and the face near; `terrain::nearness`, decision 0030) (the takeoff
+//!   and landing legs, vertical above the start and the goal, start on the ground and are
+//!   exempt: their ground is the start's and the goal's);
 //! - every leg stays at least the vehicle's radius from every threat cylinder's wall (the 2D
 //!   distance from the axis to the segment, exact);
 //! - every waypoint lies in the planning area (and, for altitudes above sea level, between
@@ -21,6 +23,7 @@
 use super::cost::point_segment_distance;
 use super::height_map::planar_length;
 use super::scenario::{AltitudeReference, TrackScenario};
+use crate::terrain::nearness::GroundNearness;
 
 /// Horizontal spacing of the verdict's samples, metres: the mission preflight's.
 pub const SAMPLE_SPACING_M: f64 = crate::preflight::SAMPLE_M;
@@ -28,7 +31,7 @@ pub const SAMPLE_SPACING_M: f64 = crate::preflight::SAMPLE_M;
 /// What the check found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Verdict {
-    /// Lowest height above the terrain along the cruise (metres) and where (scenario x, y).
+    /// Least distance from the terrain along the cruise, straight down or sideways (metres).
     pub lowest_clearance_m: f64,
     /// Where the lowest clearance is, scenario (x, y).
     pub lowest_clearance_at: [f64; 2],
@@ -76,6 +79,12 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
         .len()
         .saturating_sub(1 + first_cruise_leg + usize::from(scenario.lands()));
     let spacing = SAMPLE_SPACING_M / scenario.unit_m;
+    let mut nearness = GroundNearness::new(
+        scenario.true_terrain(),
+        |x, y| scenario.true_ground(x, y),
+        scenario.unit_m,
+        limits.min_clearance_m,
+    );
     for (index, pair) in points.windows(2).enumerate() {
         let (a, b) = (pair[0], pair[1]);
         let leg = index + 1;
@@ -148,12 +157,29 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
                 place(scenario, x, y)
             ));
         }
-        let (clearance, [x, y]) = leg_lowest;
+        let (mut clearance, [mut x, mut y]) = leg_lowest;
+        // Sideways too: beside a cliff the ground beneath may be far and the face near.
+        let vertical_fails = clearance < limits.min_clearance_m;
+        if let Some(near) = nearness.leg(a, b) {
+            if near.distance_m < clearance {
+                if !vertical_fails && near.distance_m < limits.min_clearance_m {
+                    violations.push(format!(
+                        "leg {leg} passes {:.2} m from the terrain beside it at {} ({:.2} m above the ground beneath; minimum {} m in any direction)",
+                        near.distance_m,
+                        place(scenario, near.at[0], near.at[1]),
+                        clearance,
+                        limits.min_clearance_m
+                    ));
+                }
+                clearance = near.distance_m;
+                [x, y] = near.at;
+            }
+        }
         if clearance < lowest_clearance_m {
             lowest_clearance_m = clearance;
             lowest_clearance_at = [x, y];
         }
-        if clearance < limits.min_clearance_m {
+        if vertical_fails {
             violations.push(if clearance < 0.0 {
                 format!(
                     "leg {leg} goes {:.2} m under the terrain at {}",

@@ -325,8 +325,12 @@ pub fn build_missions(
                         &points[index],
                         spray_height,
                     ));
-                    let run =
-                        follow_terrain(&points[index..=end], scenario.terrain.as_ref(), settings)?;
+                    let run = follow_terrain(
+                        &points[index..=end],
+                        scenario.terrain.as_ref(),
+                        settings,
+                        vehicle.spray_height_m,
+                    )?;
                     for point in &run[1..] {
                         items.push(item(Action::Waypoint, point, spray_height));
                     }
@@ -344,6 +348,7 @@ pub fn build_missions(
                         &points[index..=index + 1],
                         scenario.terrain.as_ref(),
                         settings,
+                        vehicle.spray_height_m,
                     )?;
                     for point in &run[1..] {
                         items.push(item(Action::Waypoint, point, spray_height));
@@ -450,7 +455,7 @@ mod tests {
             sample_spacing_m: 1.0,
             ..MissionSettings::default()
         };
-        let kept = follow_terrain(&points, &Waves, &settings).unwrap();
+        let kept = follow_terrain(&points, &Waves, &settings, 2.5).unwrap();
         assert!(
             kept.iter().any(|p| p.x == 100.0 && p.y == 0.0),
             "the corner is a waypoint"

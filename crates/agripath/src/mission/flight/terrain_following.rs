@@ -2,12 +2,19 @@
 //! waypoints kept are those a vertical Douglas-Peucker keeps at `terrain_tolerance_m`: between
 //! two waypoints the straight climb or descent stays within the tolerance of terrain + spray
 //! height (what QGroundControl's terrain following precomputes), and flat stretches need
-//! only their ends.
+//! only their ends. Where a straight climb between two waypoints would pass a bank nearer than
+//! the floor sideways, every sample between them is kept.
 
 use super::MissionSettings;
 use crate::error::Fault;
+use crate::limits::MIN_GROUND_CLEARANCE_M;
 use crate::sortie::route::RoutePoint;
+use crate::terrain::nearness::GroundNearness;
 use crate::terrain::Terrain;
+
+/// What the planner keeps beyond the preflight's floor sideways, metres: the margin its
+/// bound may err by on a steep bank.
+const SIDEWAYS_MARGIN_M: f64 = 0.25;
 
 /// Keeps the samples a vertical Douglas-Peucker keeps: (distance along, height) pairs.
 pub(super) fn simplify(
@@ -44,6 +51,7 @@ pub(super) fn follow_terrain(
     points: &[RoutePoint],
     terrain: &dyn Terrain,
     settings: &MissionSettings,
+    spray_height_m: f64,
 ) -> Result<Vec<RoutePoint>, Fault> {
     let mut samples = vec![points[0]];
     let mut anchors = vec![0];
@@ -104,6 +112,28 @@ pub(super) fn follow_terrain(
         keep[pair[1]] = true;
         simplify(&profile, tolerance.max(0.01), &mut keep, pair[0], pair[1]);
     }
+    // Sideways too: between two waypoints kept, the straight climb may pass a bank nearer
+    // than the preflight's floor though well above the ground beneath (the island's terrace
+    // edges, 0.48 m beside a 65° bank and 1.33 m above the ground; decision 0030). There every
+    // sample is kept: the flight then holds the spray height over each.
+    let mut nearness = GroundNearness::new(
+        terrain,
+        |x, y| terrain.height_m(x, y).ok(),
+        1.0,
+        MIN_GROUND_CLEARANCE_M + SIDEWAYS_MARGIN_M,
+    );
+    let kept: Vec<usize> = (0..samples.len()).filter(|&index| keep[index]).collect();
+    for pair in kept.windows(2) {
+        let (first, last) = (pair[0], pair[1]);
+        let at = |point: &RoutePoint| [point.x, point.y, point.ground_m + spray_height_m];
+        if last > first + 1
+            && nearness
+                .leg(at(&samples[first]), at(&samples[last]))
+                .is_some()
+        {
+            keep[first..=last].fill(true);
+        }
+    }
     Ok(samples
         .into_iter()
         .zip(keep)
@@ -156,7 +186,7 @@ mod tests {
         for tenth in 0..10 {
             let start = 65.0 + 0.1 * f64::from(tenth);
             let run = [point(51.83, start), point(51.69, start - 44.0)];
-            let kept = follow_terrain(&run, &grid, &settings).unwrap();
+            let kept = follow_terrain(&run, &grid, &settings, 2.5).unwrap();
             for pair in kept.windows(2) {
                 let (a, b) = (pair[0], pair[1]);
                 let length = (b.x - a.x).hypot(b.y - a.y);

@@ -313,6 +313,10 @@ impl Terrain for HeightMap {
         )
     }
 
+    fn lattice(&self) -> Option<((f64, f64), (f64, f64))> {
+        Some(((self.origin_x, self.origin_y), (self.cell, self.cell)))
+    }
+
     fn describe(&self) -> String {
         format!("height map of {} m cells", self.cell())
     }

@@ -184,8 +184,9 @@ impl std::fmt::Debug for GroundTruth {
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct SafetyLimits {
-    /// Least height above the terrain a safe track keeps along its cruise, metres
-    /// (checked every 1 m against the terrain as given).
+    /// Least distance from the terrain a safe track keeps along its cruise, in any
+    /// direction (straight down and sideways to a slope), metres; at least 0.5 (checked
+    /// every 1 m and at the raster's bends against the terrain as given).
     #[cfg_attr(
         feature = "cli",
         arg(
@@ -349,15 +350,18 @@ impl TrackScenario {
 
     /// The same scenario checked with other safety limits (start and goal checked again).
     pub fn with_limits(mut self, limits: SafetyLimits) -> Result<Self, Fault> {
-        for (what, value) in [
-            ("--min-clearance", limits.min_clearance_m),
-            ("--vehicle-radius", limits.vehicle_radius_m),
+        // The clearance has `plan`'s floor under it: a track 0.19 m above the ground read
+        // safe at `--min-clearance 0` (decision 0030).
+        let floor = crate::limits::MIN_GROUND_CLEARANCE_M;
+        for (what, value, least) in [
+            ("--min-clearance", limits.min_clearance_m, floor),
+            ("--vehicle-radius", limits.vehicle_radius_m, 0.0),
         ] {
-            if !(0.0..=1000.0).contains(&value) {
+            if !(least..=1000.0).contains(&value) {
                 return Err(Fault::InvalidValue {
                     what: what.into(),
                     value: value.to_string(),
-                    why: "must be 0..=1000 metres".into(),
+                    why: format!("must be {least}..=1000 metres"),
                 });
             }
         }
