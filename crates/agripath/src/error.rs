@@ -232,8 +232,21 @@ pub enum Fault {
         /// The hole's number, counted from 1 in file order.
         hole: usize,
     },
+    #[error("holes {first} and {second} touch along their edges near ({x:.3}, {y:.3}) without overlapping: draw them as one hole, or leave a gap between them")]
+    /// Two holes whose edges meet along a line (or at a point) with no area in common: a
+    /// polygon's holes may not share edges, and agripath does not guess which outline is meant.
+    HolesTouch {
+        /// The first hole's number, counted from 1 in file order.
+        first: usize,
+        /// The second hole's number, counted from 1 in file order.
+        second: usize,
+        /// Where they touch.
+        x: f64,
+        /// Where they touch.
+        y: f64,
+    },
     #[error("holes {first} and {second} overlap")]
-    /// Two holes that touch, cross, or lie one inside the other.
+    /// Two holes that cross, or lie one inside the other.
     HolesOverlap {
         /// The first hole's number, counted from 1 in file order.
         first: usize,

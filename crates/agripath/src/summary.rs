@@ -139,13 +139,18 @@ impl ScenarioSummary {
             "fields    {} ({})\n",
             self.fields_file, self.coordinate_system
         ));
+        let name_width = self
+            .fields
+            .iter()
+            .map(|field| field.name.chars().count())
+            .fold(14, usize::max);
         text.push_str(&format!(
-            "          {:<14} {:>10} {:>6} {:>9}  {}\n",
+            "          {:<name_width$} {:>10} {:>6} {:>9}  {}\n",
             "name", "area ha", "holes", "vertices", "terrain"
         ));
         for field in &self.fields {
             text.push_str(&format!(
-                "          {:<14} {:>10.3} {:>6} {:>9}  {}\n",
+                "          {:<name_width$} {:>10.3} {:>6} {:>9}  {}\n",
                 field.name,
                 field.area_m2 / 10_000.0,
                 field.holes,

@@ -330,7 +330,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         on("deep.kml", "nested deeper than 256"),
         on(
             "nan_coordinate.kml",
-            "Placemark 0 (A): coordinate is not a finite number",
+            "Placemark 1 (A): coordinate is not a finite number",
         ),
         on("latitude_out_of_range.kml", "out of range"),
         on("empty_coordinates.kml", "no field polygons found"),
@@ -706,13 +706,13 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             fields("self_intersecting.geojson"),
             bad("self_intersecting.geojson"),
-            "feature 0 (bowtie): boundary intersects itself near (5.000, 5.000)",
+            "feature 1 (bowtie): boundary intersects itself near (5.000, 5.000)",
         ),
         (
             // Lon/lat input: the place is given in lon/lat, not in the UTM metres checked.
             fields("self_intersecting_lonlat.geojson"),
             bad("self_intersecting_lonlat.geojson"),
-            "feature 0 (bowtie): boundary intersects itself near lon 105.625000, lat -10.485000",
+            "feature 1 (bowtie): boundary intersects itself near lon 105.625000, lat -10.485000",
         ),
         (
             fields("hole_outside.geojson"),
@@ -1068,7 +1068,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             track_with(&bad("track_start_in_threat.json"), &[]),
             bad("track_start_in_threat.json"),
-            "start = (505, 500) is invalid: inside threat cylinder 0",
+            "start = (505, 500) is invalid: inside threat cylinder 1",
         ),
         (
             track_with(&bad("track_goal_under_terrain.json"), &[]),

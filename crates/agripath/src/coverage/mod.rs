@@ -4,12 +4,13 @@
 pub mod drape;
 pub mod edge_corners;
 pub mod edge_cut;
+mod edge_passes;
 pub mod heading;
 pub mod measure;
 pub mod region;
 pub mod scan_lines;
 
-use geo::{Area, Coord, MapCoords, MultiPolygon};
+use geo::{Area, MapCoords, MultiPolygon};
 use serde::Serialize;
 
 use crate::error::Fault;
@@ -18,6 +19,7 @@ use crate::model::{Farm, Vehicle};
 use crate::terrain::Terrain;
 use drape::{drape, draped_length, path_length_3d, GroundPoint};
 pub use edge_cut::EdgeCut;
+use edge_passes::edge_passes;
 use heading::{
     choose_heading, near_best_headings, HeadingChoice, HeadingObjective, HeadingSample,
     DOSE_CANDIDATES, DOSE_TOLERANCE,
@@ -268,7 +270,7 @@ pub fn plan_coverage(
             && sprayable.unsigned_area() >= vehicle.swath_width_m.powi(2)
         {
             return Err(Fault::Structure(format!(
-                "field '{}' is narrower than one swath ({} m) wherever it can be sprayed: nothing to lay out",
+                "field '{}' is narrower than one swath ({} m) everywhere: no swath fits inside it, and every footprint is kept inside its field (decision 0023)",
                 field.name, vehicle.swath_width_m
             )));
         }
@@ -519,77 +521,12 @@ pub fn cover_field(
     })
 }
 
-/// Edge passes along every ring of each pass region, sampled every `spacing_m`: closed, or,
-/// with `corner_width_m`, opened where a corner is cut ([`edge_corners`]); and the corners cut.
-fn edge_passes(
-    field: usize,
-    pass_regions: &[MultiPolygon<f64>],
-    terrain: &dyn Terrain,
-    spacing_m: f64,
-    corner_width_m: Option<f64>,
-) -> Result<(Vec<EdgePass>, edge_corners::CornerCuts), Fault> {
-    let mut passes = Vec::new();
-    let mut all_cuts = edge_corners::CornerCuts::default();
-    for (pass, region) in pass_regions.iter().enumerate() {
-        for ring in rings(region) {
-            if geo::Polygon::new(geo::LineString::new(ring.clone()), vec![]).unsigned_area() == 0.0
-            {
-                continue;
-            }
-            let paths = match corner_width_m {
-                Some(width_m) => {
-                    let cuts = edge_corners::cut_corners(&ring, region, width_m);
-                    all_cuts.corners += cuts.corners;
-                    all_cuts.double_saved_m2 += cuts.double_saved_m2;
-                    cuts.paths
-                }
-                None => vec![ring],
-            };
-            for path in paths {
-                let mut points = Vec::new();
-                for pair in path.windows(2) {
-                    let (start, end) = (pair[0], pair[1]);
-                    let length = (end.x - start.x).hypot(end.y - start.y);
-                    let steps = (length / spacing_m).ceil().max(1.0) as usize;
-                    for step in 0..steps {
-                        let t = step as f64 / steps as f64;
-                        points.push(ground_point(
-                            Coord {
-                                x: start.x + t * (end.x - start.x),
-                                y: start.y + t * (end.y - start.y),
-                            },
-                            terrain,
-                        )?);
-                    }
-                }
-                if let Some(&last) = path.last() {
-                    points.push(ground_point(last, terrain)?);
-                }
-                passes.push(EdgePass {
-                    field,
-                    pass,
-                    length_m: path_length_3d(&points),
-                    points,
-                });
-            }
-        }
-    }
-    Ok((passes, all_cuts))
-}
-
-fn ground_point(point: Coord<f64>, terrain: &dyn Terrain) -> Result<GroundPoint, Fault> {
-    Ok(GroundPoint {
-        x: point.x,
-        y: point.y,
-        ground_m: terrain.height_m(point.x, point.y)?,
-    })
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::model::Field;
     use crate::terrain::Flat;
+    use geo::Coord;
     use geo::{LineString, Polygon};
     use proptest::prelude::*;
 

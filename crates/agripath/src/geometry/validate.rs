@@ -6,7 +6,7 @@
 //! overlapping) comes from which rings the two edges belong to. The sweep is
 //! O((n + k) log n) on ordinary fields, so a 50,000-vertex boundary is checked in milliseconds.
 
-use geo::{Coord, LineString, Polygon};
+use geo::{Area, BooleanOps, Coord, LineString, Polygon};
 
 use crate::error::Fault;
 
@@ -78,7 +78,25 @@ pub fn validate_polygon(polygon: &Polygon<f64>) -> Result<(), Fault> {
         return Err(match (contact.first_ring, contact.second_ring) {
             (a, b) if a == b => Fault::SelfIntersection { x, y },
             (0, hole) | (hole, 0) => Fault::HoleCrossesShell { hole, x, y },
-            (first, second) => Fault::HolesOverlap { first, second },
+            (first, second) => {
+                let hole = |number: usize| Polygon::new(rings[number].clone(), vec![]);
+                let common = hole(first).intersection(&hole(second)).unsigned_area();
+                if common
+                    <= 1e-9
+                        * hole(first)
+                            .unsigned_area()
+                            .max(hole(second).unsigned_area())
+                {
+                    Fault::HolesTouch {
+                        first,
+                        second,
+                        x,
+                        y,
+                    }
+                } else {
+                    Fault::HolesOverlap { first, second }
+                }
+            }
         });
     }
     // No edges touch, so each hole is wholly inside or wholly outside every other ring: one
@@ -300,8 +318,22 @@ mod tests {
             Err(Fault::HoleCrossesShell { hole: 1, .. })
         ));
         assert!(matches!(
-            validate_polygon(&Polygon::new(shell, vec![first, inside_first])),
+            validate_polygon(&Polygon::new(
+                shell.clone(),
+                vec![first.clone(), inside_first]
+            )),
             Err(Fault::HolesOverlap { .. })
+        ));
+        // Side by side, sharing the edge x = 5: they touch, and the fault says so (a third
+        // trial's adjacent no-spray patches read "overlap").
+        let beside_first = ring(&[(5.0, 1.0), (8.0, 1.0), (8.0, 5.0), (5.0, 5.0)]);
+        assert!(matches!(
+            validate_polygon(&Polygon::new(shell, vec![first, beside_first])),
+            Err(Fault::HolesTouch {
+                first: 1,
+                second: 2,
+                ..
+            })
         ));
     }
 

@@ -55,7 +55,8 @@ pub fn parse(path: &Path, text: &str, choice: CoordinateChoice) -> Result<Farm, 
                 })?;
             let mut features = Vec::with_capacity(list.len());
             for (index, feature) in list.iter().enumerate() {
-                let place = format!("feature {index}");
+                // Counted from 1, as people count (the mission files' sorties and rows too).
+                let place = format!("feature {}", index + 1);
                 if let Some(feature) =
                     read_feature(feature, &place).map_err(|fault| fail(fault).at(place.clone()))?
                 {
@@ -64,8 +65,8 @@ pub fn parse(path: &Path, text: &str, choice: CoordinateChoice) -> Result<Farm, 
             }
             features
         }
-        "Feature" => read_feature(&root, "feature 0")
-            .map_err(|fault| fail(fault).at("feature 0"))?
+        "Feature" => read_feature(&root, "feature 1")
+            .map_err(|fault| fail(fault).at("feature 1"))?
             .into_iter()
             .collect(),
         _ => vec![RawFeature {
@@ -321,7 +322,7 @@ mod tests {
           {"type":"Feature","properties":{"name":"path"},"geometry":{"type":"LineString","coordinates":[[-10,0],[-10,100]]}}]}"#;
         let message = farm(plain).unwrap_err().to_string();
         assert!(
-            message.contains("feature 1 (path)") && message.contains("'access'"),
+            message.contains("feature 2 (path)") && message.contains("'access'"),
             "{message}"
         );
         let single = r#"{"type":"FeatureCollection","crs":"local","features":[
@@ -386,7 +387,7 @@ mod tests {
           {"type":"Feature","properties":{"name":"bad"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[10,10],[10,0],[0,10],[0,0]]]}}]}"#;
         let message = farm(bow_tie).unwrap_err().to_string();
         assert!(
-            message.starts_with("test.geojson: feature 1 (bad): boundary intersects itself"),
+            message.starts_with("test.geojson: feature 2 (bad): boundary intersects itself"),
             "{message}"
         );
         let lon_lat_out_of_range =

@@ -285,8 +285,8 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                 let place = || {
                     let index = features.len();
                     match placemark.as_ref().and_then(|state| state.name.as_ref()) {
-                        Some(name) => format!("Placemark {index} ({name})"),
-                        None => format!("Placemark {index}"),
+                        Some(name) => format!("Placemark {} ({name})", index + 1),
+                        None => format!("Placemark {}", index + 1),
                     }
                 };
                 match name.as_str() {
@@ -367,8 +367,8 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                         let state = placemark.take().unwrap_or_default();
                         let index = features.len();
                         let place = match &state.name {
-                            Some(name) => format!("Placemark {index} ({name})"),
-                            None => format!("Placemark {index}"),
+                            Some(name) => format!("Placemark {} ({name})", index + 1),
+                            None => format!("Placemark {}", index + 1),
                         };
                         let kind = state.kind.or(match folders.last() {
                             Some(FolderKind::Obstacles) => Some("obstacle".to_string()),

@@ -14,6 +14,7 @@
 use super::verdict::Tally;
 use crate::limits::MIN_GROUND_CLEARANCE_M;
 use crate::model::Vehicle;
+use crate::terrain::nearness::GroundNearness;
 
 /// How far above the cruise height (over the highest ground under a leg) a file may fly.
 pub const CEILING_SLACK_M: f64 = 10.0;
@@ -187,16 +188,33 @@ impl HeightBounds {
         }
     }
 
-    /// Records how near leg `item` of sortie `sortie` comes to the ground sideways, where
-    /// nearer than the floor (`near`, from `terrain::nearness`; `beneath`: its least height
-    /// above the ground beneath, which the floor holds already).
-    pub fn record_sideways(
+    /// Records how near the airborne leg `item` of sortie `sortie` (its samples `points`,
+    /// `(x, y, altitude, ground)`) comes to the ground sideways, between consecutive samples
+    /// (a terrain-following leg bends with the ground only at them), where nearer than the
+    /// ground beneath, which the floor holds already.
+    pub fn record_sideways<H: Fn(f64, f64) -> Option<f64>>(
         &mut self,
         (sortie, item): (usize, usize),
-        near: crate::terrain::nearness::Nearest,
-        beneath: f64,
+        points: &[(f64, f64, f64, f64)],
+        nearness: &mut GroundNearness<'_, H>,
         place: &dyn Fn(f64, f64) -> String,
     ) {
+        let beneath = points
+            .iter()
+            .map(|&(_, _, altitude, ground)| altitude - ground)
+            .fold(f64::INFINITY, f64::min);
+        let Some(near) = points
+            .windows(2)
+            .filter_map(|pair| {
+                nearness.leg(
+                    [pair[0].0, pair[0].1, pair[0].2],
+                    [pair[1].0, pair[1].1, pair[1].2],
+                )
+            })
+            .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m))
+        else {
+            return;
+        };
         let distance = near.distance_m;
         if distance >= beneath || beneath < MIN_GROUND_CLEARANCE_M - SLACK_M {
             return;

@@ -49,7 +49,7 @@ use crate::model::{Farm, Vehicle};
 use crate::terrain::nearness::GroundNearness;
 use crate::terrain::Terrain;
 use flown::Motion;
-use sprayed::{Rings, Strip};
+use sprayed::Rings;
 use verdict::Tally;
 
 pub use dose::MAX_SPRAY_SPEED_SHARE;
@@ -306,24 +306,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 heights::LegShape::Along
             };
             heights.record((sortie, leg.item), &points, shape, &place);
-            // Sideways too, between consecutive samples (a terrain-following leg bends with
-            // the ground only at them).
-            let beneath = points
-                .iter()
-                .map(|&(_, _, altitude, ground)| altitude - ground)
-                .fold(f64::INFINITY, f64::min);
-            let nearest = points
-                .windows(2)
-                .filter_map(|pair| {
-                    nearness.leg(
-                        [pair[0].0, pair[0].1, pair[0].2],
-                        [pair[1].0, pair[1].1, pair[1].2],
-                    )
-                })
-                .min_by(|a, b| a.distance_m.total_cmp(&b.distance_m));
-            if let Some(near) = nearest {
-                heights.record_sideways((sortie, leg.item), near, beneath, &place);
-            }
+            heights.record_sideways((sortie, leg.item), &points, &mut nearness, &place);
             if leg.spraying && horizontal > 0.0 {
                 figures.spray_m += horizontal;
                 let pump_stops = dose::record(
@@ -340,43 +323,12 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 }
                 let (a, b) = (points[0], points[points.len() - 1]);
                 let half = vehicle.swath_width_m / 2.0;
-                let strip = Strip::new(Coord { x: a.0, y: a.1 }, Coord { x: b.0, y: b.1 }, half);
-                // The run goes on spraying through the next leg in another direction: the
-                // footprint turns here (not at the waypoints of a straight swath that only
-                // follow the terrain).
-                let next_direction = legs
-                    .get(leg_index + 1)
-                    .map(|next| Coord {
-                        x: next.to.x - next.from.x,
-                        y: next.to.y - next.from.y,
-                    })
-                    .unwrap_or(Coord { x: 0.0, y: 0.0 });
-                let turns_on = legs.get(leg_index + 1).is_some_and(|next| {
-                    let (dx, dy) = (b.0 - a.0, b.1 - a.1);
-                    let (nx, ny) = (next.to.x - next.from.x, next.to.y - next.from.y);
-                    let cross = dx * ny - dy * nx;
-                    let dot = dx * nx + dy * ny;
-                    next.spraying
-                        && next.horizontal_m() > 0.0
-                        && cross.atan2(dot).abs() > MIN_TURN_RAD
-                });
                 // Where ArduPilot's pump stops, nothing is sprayed: the coverage as flown
                 // counts the gap.
-                strips.extend(strip.filter(|_| !pump_stops).map(|strip| {
-                    if turns_on {
-                        strip.turning_at_end(
-                            Coord { x: b.0, y: b.1 },
-                            half,
-                            Coord {
-                                x: b.0 - a.0,
-                                y: b.1 - a.1,
-                            },
-                            next_direction,
-                        )
-                    } else {
-                        strip
-                    }
-                }));
+                if !pump_stops {
+                    let (from, to) = (Coord { x: a.0, y: a.1 }, Coord { x: b.0, y: b.1 });
+                    strips.extend(sprayed::leg_strip(from, to, half, legs.get(leg_index + 1)));
+                }
                 for &(x, y, altitude, ground) in &points {
                     let error = (altitude - ground - vehicle.spray_height_m).abs();
                     figures.worst_spray_height_error_m =

@@ -517,6 +517,38 @@ pub fn measure(
     result
 }
 
+/// The footprint of a spray leg from `from` to `to` (`half` the swath on either side), turning
+/// at its end when the run goes on spraying through the `next` leg in another direction (not
+/// at the waypoints of a straight swath that only follow the terrain).
+pub(super) fn leg_strip(
+    from: Coord<f64>,
+    to: Coord<f64>,
+    half: f64,
+    next: Option<&super::flown::Leg>,
+) -> Option<Strip> {
+    let strip = Strip::new(from, to, half)?;
+    let direction = Coord {
+        x: to.x - from.x,
+        y: to.y - from.y,
+    };
+    let Some(next) = next else {
+        return Some(strip);
+    };
+    let next_direction = Coord {
+        x: next.to.x - next.from.x,
+        y: next.to.y - next.from.y,
+    };
+    let cross = direction.x * next_direction.y - direction.y * next_direction.x;
+    let dot = direction.x * next_direction.x + direction.y * next_direction.y;
+    let turns_on =
+        next.spraying && next.horizontal_m() > 0.0 && cross.atan2(dot).abs() > super::MIN_TURN_RAD;
+    Some(if turns_on {
+        strip.turning_at_end(to, half, direction, next_direction)
+    } else {
+        strip
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -505,8 +505,14 @@ impl Report {
             self.settings.headland_passes,
             Self::sequencer_label(&self.sequencer)
         );
+        // The name column as wide as the longest name: the figures stay in their columns.
+        let name_width = self
+            .fields
+            .iter()
+            .map(|field| field.name.chars().count())
+            .fold(10, usize::max);
         text.push_str(&format!(
-            "{:<10} {:>9} {:>9} {:>7} {:>7} {:>11} {:>10} {:>9} {:>10}\n",
+            "{:<name_width$} {:>9} {:>9} {:>7} {:>7} {:>11} {:>10} {:>9} {:>10}\n",
             "field",
             "bearing°",
             "heading°",
@@ -519,7 +525,7 @@ impl Report {
         ));
         for field in &self.fields {
             text.push_str(&format!(
-                "{:<10} {:>9.1} {:>9.1} {:>7.0} {:>7} {:>11.1} {:>10.1} {:>8.2}% {:>10.1}\n",
+                "{:<name_width$} {:>9.1} {:>9.1} {:>7.0} {:>7} {:>11.1} {:>10.1} {:>8.2}% {:>10.1}\n",
                 field.name,
                 field.heading_bearing_deg,
                 field.heading_deg,

@@ -149,7 +149,7 @@ pub fn planning_error(scenario: &Scenario, settings: &PlanSettings, fault: Fault
                     what: what.into(),
                     value,
                     why: format!(
-                        "the route near {near} cannot be reached and flown back on one battery and one tank{usable}"
+                        "the route near {near} cannot be reached and flown back on one battery and one tank{usable}: the farm is too spread out for one supply point for this vehicle (plan the far fields as a farm of their own, or give a nearer --supply)"
                     ),
                 },
             )

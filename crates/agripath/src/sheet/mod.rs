@@ -34,9 +34,10 @@ pub struct SortieRow {
     pub sortie: usize,
     /// The fields it works in, with the passes it begins in each, in flying order.
     pub fields: Vec<(String, usize)>,
-    /// Spray length times swath width, hectares.
+    /// Spray length times swath width, hectares: horizontal, as the file flies with the pump
+    /// on (as planned when the files were not flown); overlaps between strips counted.
     pub sprayed_area_ha: f64,
-    /// Litres sprayed (`None`: the application rate is not known).
+    /// Litres sprayed, on the same length (`None`: the application rate is not known).
     pub litres: Option<f64>,
     /// A survey's photos to expect (`None` for a sprayer).
     pub photos: Option<u64>,
@@ -86,13 +87,25 @@ pub fn sortie_rows(
                     _ => fields.push((name.clone(), 1)),
                 }
             }
-            let spray_m =
+            let planned_m =
                 detail.map_or(report.spray_length_m + report.edge_length_m, |d| d.spray_m);
+            // As the file flies: horizontal metres with the pump on, the distance ArduPilot's
+            // sprayer doses by (the plan counts along the slope: 29.1 km against 27.3 km over
+            // a third trial's hills), less where the pump stops on ground too steep.
+            let sprayed_m = flown
+                .filter(|_| detail.is_some())
+                .map_or(planned_m, |sortie| sortie.spray_m - sortie.pump_stopped_m);
             SortieRow {
                 sortie: index + 1,
                 fields,
-                sprayed_area_ha: spray_m * report.swath_width_m / 10_000.0,
-                litres: detail.and_then(|d| d.litres),
+                sprayed_area_ha: sprayed_m * report.swath_width_m / 10_000.0,
+                litres: detail.and_then(|d| d.litres).map(|litres| {
+                    if planned_m > 0.0 {
+                        litres * sprayed_m / planned_m
+                    } else {
+                        litres
+                    }
+                }),
                 photos: match detail {
                     Some(detail) => detail.photos_estimate,
                     None => report.survey.as_ref().map(|survey| survey.photos_estimate),
@@ -324,8 +337,8 @@ pub fn sheet_html(parts: &SheetParts) -> String {
 fn sortie_table(html: &mut String, rows: &[SortieRow], lon_lat: bool, survey: bool) {
     let _ = writeln!(
         html,
-        "<h2>Sorties</h2>\n<table>\n<tr><th>#</th><th>fields (passes begun)</th><th class=\"number\">area ha</th><th class=\"number\">{}</th><th class=\"number\">time</th><th class=\"number\">battery used as flown</th><th class=\"number\">distance km</th><th>return point</th></tr>",
-        if survey { "photos" } else { "litres" }
+        "<h2>Sorties</h2>\n<table>\n<tr><th>#</th><th>fields (passes begun)</th><th class=\"number\">strip ha (overlaps counted)</th><th class=\"number\">{}</th><th class=\"number\">time</th><th class=\"number\">battery used as flown</th><th class=\"number\">distance km</th><th>return point</th></tr>",
+        if survey { "photos" } else { "litres as flown" }
     );
     // A survey's column is its photos; a sprayer's its litres.
     let amount = |row: &SortieRow| {

@@ -166,7 +166,7 @@ pub fn read(path: &Path, text: &str) -> Result<TrackScenario, InputError> {
     for (index, threat) in parsed.threats.iter().enumerate() {
         if threat[2] <= 0.0 {
             return Err(fail(Fault::InvalidValue {
-                what: format!("threats[{index}] radius"),
+                what: format!("threat {} radius", index + 1),
                 value: threat[2].to_string(),
                 why: "a threat cylinder needs a positive radius".into(),
             }));
@@ -220,10 +220,21 @@ pub fn read(path: &Path, text: &str) -> Result<TrackScenario, InputError> {
     }
     let cell = 2.0; // HeightMap::sample coarsens it for large areas
     let map = HeightMap::sample(terrain.as_ref(), area, cell).map_err(|error| {
+        // The place in the file's own coordinates (lon/lat), not the planning frame's UTM
+        // metres, which the operator never gave (a third trial).
+        let (crate::TerrainError::Outside { x, y } | crate::TerrainError::NoData { x, y }) = error;
+        let (a, b) = frame.to_input(x, y);
+        let place = match frame {
+            CoordinateSystem::Utm(_) => format!("lon {a:.6}, lat {b:.6}"),
+            CoordinateSystem::Local => format!("({a:.1}, {b:.1})"),
+        };
         fail(Fault::InvalidValue {
             what: "planning area".into(),
             value: format!("{:.0} × {:.0} m", area.2 - area.0, area.3 - area.1),
-            why: format!("the terrain model does not cover it: {error}"),
+            why: format!(
+                "the terrain model has no height at {place}, inside the area (the start and goal's box grown by margin_m = {}): give a smaller margin_m, or a DEM that covers it",
+                crate::error::figure(parsed.margin_m)
+            ),
         })
     })?;
     validated(TrackScenario {

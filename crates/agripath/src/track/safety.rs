@@ -96,13 +96,15 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
                 let closest = closest_point(threat.x, threat.y, a, b);
                 violations.push(if margin < 0.0 {
                     format!(
-                        "leg {leg} enters threat cylinder {threat_index} by {:.2} m at {}",
+                        "leg {leg} enters threat cylinder {} by {:.2} m at {}",
+                        threat_index + 1,
                         -margin,
                         place(scenario, closest[0], closest[1])
                     )
                 } else {
                     format!(
-                        "leg {leg} passes {margin:.2} m from threat cylinder {threat_index} at {} (the vehicle's radius is {} m)",
+                        "leg {leg} passes {margin:.2} m from threat cylinder {} at {} (the vehicle's radius is {} m)",
+                        threat_index + 1,
                         place(scenario, closest[0], closest[1]),
                         limits.vehicle_radius_m
                     )
@@ -254,12 +256,12 @@ mod tests {
         ];
         let verdict = check(&scenario, &through);
         assert!(!verdict.is_safe());
-        assert!(verdict.violations[0].contains("enters threat cylinder 0"));
+        assert!(verdict.violations[0].contains("enters threat cylinder 1"));
         // Half a metre from the wall: inside the vehicle's 1 m radius.
         let y = threat.y + threat.radius + 0.5;
         let grazing = [[threat.x - 100.0, y, 300.0], [threat.x + 100.0, y, 300.0]];
         let verdict = check(&scenario, &grazing);
-        assert!(verdict.violations[0].contains("passes 0.50 m from threat cylinder 0"));
+        assert!(verdict.violations[0].contains("passes 0.50 m from threat cylinder 1"));
         assert!((verdict.threat_margin_m.unwrap() - 0.5).abs() < 1e-9);
         // Under the terrain near the highest hill (350, 650).
         let under = [[300.0, 650.0, 50.0], [400.0, 650.0, 50.0]];

@@ -69,3 +69,44 @@ fn without_sorties_or_a_launch_point_the_flight_is_an_open_path() {
     assert!(flown > open["transfer_length_m"].as_f64().unwrap() + 100.0);
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+/// A third trial's small squares (decision 0030): the edge pass began and ended at a corner,
+/// both ends of its spray strip square, so that corner was never sprayed (a 20 m square
+/// 97.92 % covered as flown and refused by its own preflight, after "100.00 % as planned").
+/// The pass now begins in the middle of a side.
+#[test]
+fn a_small_square_field_is_sprayed_to_its_corners() {
+    let folder = scratch("small-square");
+    std::fs::write(
+        folder.join("square.geojson"),
+        r#"{"type":"FeatureCollection","crs":"local","features":[{"type":"Feature","properties":{"name":"square"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[20,0],[20,20],[0,20],[0,0]]]}}]}"#,
+    )
+    .unwrap();
+    let vehicle = common::data("vehicles/dji_t16.toml");
+    let output = agripath(
+        &[
+            "plan",
+            "--fields",
+            "square.geojson",
+            "--vehicle",
+            vehicle.to_str().unwrap(),
+            "--out",
+            "out",
+        ],
+        &folder,
+    );
+    assert!(
+        output.status.success(),
+        "status {:?}: {}",
+        output.status.code(),
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(folder.join("out/report.json")).unwrap()).unwrap();
+    let field = &report["preflight"]["fields"][0];
+    assert!(
+        field["covered_fraction"].as_f64().unwrap() > 0.9999,
+        "{field}"
+    );
+    assert!(field["missed_m2"].as_f64().unwrap() < 0.01, "{field}");
+}

@@ -92,8 +92,10 @@ pub(in crate::track) fn validated(mut scenario: TrackScenario) -> Result<TrackSc
                 what: what.into(),
                 value: place,
                 why: format!(
-                    "inside threat cylinder {index} (centre ({}, {}), radius {}, plus the vehicle's {} m)",
-                    threat.x, threat.y, threat.radius, scenario.limits.vehicle_radius_m
+                    "inside threat cylinder {} (centre ({}, {}), radius {}, plus the vehicle's {} m)",
+                    index + 1,
+                    threat.x,
+                    threat.y, threat.radius, scenario.limits.vehicle_radius_m
                 ),
             });
         }

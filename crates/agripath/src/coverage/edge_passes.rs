@@ -1,0 +1,138 @@
+//! The edge passes: one pass along every ring of each pass region (the field's boundary and
+//! its holes' walls, grown inwards pass by pass), draped on the terrain.
+
+use geo::{Area, Coord, MultiPolygon};
+
+use super::drape::{path_length_3d, GroundPoint};
+use super::region::rings;
+use super::{edge_corners, EdgePass};
+use crate::error::Fault;
+use crate::terrain::Terrain;
+
+/// Edge passes along every ring of each pass region, sampled every `spacing_m`: closed, or,
+/// with `corner_width_m`, opened where a corner is cut ([`edge_corners`]); and the corners cut.
+pub(super) fn edge_passes(
+    field: usize,
+    pass_regions: &[MultiPolygon<f64>],
+    terrain: &dyn Terrain,
+    spacing_m: f64,
+    corner_width_m: Option<f64>,
+) -> Result<(Vec<EdgePass>, edge_corners::CornerCuts), Fault> {
+    let mut passes = Vec::new();
+    let mut all_cuts = edge_corners::CornerCuts::default();
+    for (pass, region) in pass_regions.iter().enumerate() {
+        for ring in rings(region) {
+            if geo::Polygon::new(geo::LineString::new(ring.clone()), vec![]).unsigned_area() == 0.0
+            {
+                continue;
+            }
+            let paths = match corner_width_m {
+                Some(width_m) => {
+                    let cuts = edge_corners::cut_corners(&ring, region, width_m);
+                    all_cuts.corners += cuts.corners;
+                    all_cuts.double_saved_m2 += cuts.double_saved_m2;
+                    cuts.paths
+                }
+                None => vec![ring],
+            };
+            for path in paths.into_iter().map(start_mid_side) {
+                let mut points = Vec::new();
+                for pair in path.windows(2) {
+                    let (start, end) = (pair[0], pair[1]);
+                    let length = (end.x - start.x).hypot(end.y - start.y);
+                    let steps = (length / spacing_m).ceil().max(1.0) as usize;
+                    for step in 0..steps {
+                        let t = step as f64 / steps as f64;
+                        points.push(ground_point(
+                            Coord {
+                                x: start.x + t * (end.x - start.x),
+                                y: start.y + t * (end.y - start.y),
+                            },
+                            terrain,
+                        )?);
+                    }
+                }
+                if let Some(&last) = path.last() {
+                    points.push(ground_point(last, terrain)?);
+                }
+                passes.push(EdgePass {
+                    field,
+                    pass,
+                    length_m: path_length_3d(&points),
+                    points,
+                });
+            }
+        }
+    }
+    Ok((passes, all_cuts))
+}
+
+/// A closed ring turned to start and end in the middle of its longest side. A pass's
+/// spray strip ends square where it starts and where it stops: at a corner that leaves the
+/// corner's square unsprayed (a third trial: 8.1 m² of a 20 m square field, 97.9 % covered as
+/// flown; decision 0030); on a straight side the two ends meet. Open paths are kept.
+fn start_mid_side(path: Vec<Coord<f64>>) -> Vec<Coord<f64>> {
+    let closed = path.len() >= 4 && path.first() == path.last();
+    if !closed {
+        return path;
+    }
+    let corners = &path[..path.len() - 1];
+    let count = corners.len();
+    let side = |k: usize| {
+        let (a, b) = (corners[k], corners[(k + 1) % count]);
+        (b.x - a.x).hypot(b.y - a.y)
+    };
+    let longest = (0..count)
+        .max_by(|&a, &b| side(a).total_cmp(&side(b)).then(b.cmp(&a)))
+        .unwrap_or(0);
+    let (a, b) = (corners[longest], corners[(longest + 1) % count]);
+    let middle = Coord {
+        x: (a.x + b.x) / 2.0,
+        y: (a.y + b.y) / 2.0,
+    };
+    let mut turned = Vec::with_capacity(count + 2);
+    turned.push(middle);
+    turned.extend((1..=count).map(|k| corners[(longest + k) % count]));
+    turned.push(middle);
+    turned
+}
+
+fn ground_point(point: Coord<f64>, terrain: &dyn Terrain) -> Result<GroundPoint, Fault> {
+    Ok(GroundPoint {
+        x: point.x,
+        y: point.y,
+        ground_m: terrain.height_m(point.x, point.y)?,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_closed_ring_starts_in_the_middle_of_its_longest_side_and_keeps_every_corner() {
+        let corner = |x: f64, y: f64| Coord { x, y };
+        let ring = vec![
+            corner(0.0, 0.0),
+            corner(10.0, 0.0),
+            corner(10.0, 30.0),
+            corner(0.0, 30.0),
+            corner(0.0, 0.0),
+        ];
+        let turned = start_mid_side(ring.clone());
+        assert_eq!(turned.first(), Some(&corner(10.0, 15.0)));
+        assert_eq!(turned.last(), Some(&corner(10.0, 15.0)));
+        assert_eq!(
+            &turned[1..5],
+            &[
+                corner(10.0, 30.0),
+                corner(0.0, 30.0),
+                corner(0.0, 0.0),
+                corner(10.0, 0.0)
+            ]
+        );
+        // An open path (a corner cut) is kept as it is.
+        let open = ring[..4].to_vec();
+        assert_eq!(start_mid_side(open.clone()), open);
+    }
+}
