@@ -359,7 +359,10 @@ mod properties {
         /// Against brute force on the formula itself, sampled every 0.25 m: a leg that comes
         /// closer to the terrain than the minimum (by more than the terrain's change between
         /// 1 m samples) or to a threat's wall than the vehicle's radius is always reported, and
-        /// a leg clear of both by that margin never is.
+        /// a leg clear of both by that margin never is. Clear of the terrain in any direction
+        /// (decision 0030): the ground within 2.2 m of each sample, every 0.2 m, wherever the
+        /// sample is less than 4 m above the ground beneath (the hills are nowhere steeper than
+        /// 1 in 1, so higher samples are more than 2.8 m from any ground).
         #[test]
         fn the_check_agrees_with_dense_sampling_of_the_exact_terrain(
             ax in 0.0..1000.0f64, ay in 0.0..1000.0f64, az in 0.0..160.0f64,
@@ -371,11 +374,24 @@ mod properties {
             let length = (bx - ax).hypot(by - ay);
             let steps = ((length / 0.25).ceil() as usize).max(1);
             let mut lowest: f64 = f64::INFINITY;
+            let mut nearest: f64 = f64::INFINITY;
             let mut threat_margin: f64 = f64::INFINITY;
             for step in 0..=steps {
                 let t = step as f64 / steps as f64;
                 let (x, y, z) = (ax + t * (bx - ax), ay + t * (by - ay), az + t * (bz - az));
-                lowest = lowest.min(z - exact.height_m(x, y).unwrap());
+                let beneath = z - exact.height_m(x, y).unwrap();
+                lowest = lowest.min(beneath);
+                nearest = nearest.min(beneath);
+                if beneath < 4.0 {
+                    for i in -11..=11 {
+                        for j in -11..=11 {
+                            let (dx, dy) = (f64::from(i) * 0.2, f64::from(j) * 0.2);
+                            if let Ok(ground) = exact.height_m(x + dx, y + dy) {
+                                nearest = nearest.min(dx.hypot(dy).hypot((z - ground).max(0.0)));
+                            }
+                        }
+                    }
+                }
                 for threat in &scenario.threats {
                     threat_margin = threat_margin.min((x - threat.x).hypot(y - threat.y) - threat.radius);
                 }
@@ -384,7 +400,7 @@ mod properties {
             let says_low = verdict.violations.iter().any(|v| v.contains("terrain"));
             let says_threat = verdict.violations.iter().any(|v| v.contains("threat cylinder"));
             if lowest < 2.0 - 0.2 { prop_assert!(says_low, "lowest {lowest}"); }
-            if lowest > 2.0 + 0.01 { prop_assert!(!says_low, "lowest {lowest}"); }
+            if nearest > 2.0 + 0.25 { prop_assert!(!says_low, "lowest {lowest}, nearest {nearest}"); }
             if threat_margin < 1.0 - 0.01 { prop_assert!(says_threat); }
             if threat_margin > 1.0 + 0.01 { prop_assert!(!says_threat); }
         }
