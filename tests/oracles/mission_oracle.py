@@ -109,9 +109,15 @@ def cliff_flown(scratch):
              "geometry": {"type": "Polygon", "coordinates": [[[20, 30], [180, 38], [172, 190], [28, 182], [20, 30]]]}}]}
     with open(os.path.join(folder, "field.geojson"), "w") as handle:
         json.dump(field, handle)
+    # A vehicle that climbs 4 m/s: the default's 2 m/s crosses the step at 0.67 m/s, under
+    # ArduPilot's SPRAY_SPEED_MIN, the pump stops there, and the plan is refused for its
+    # coverage (decision 0030); this test is about the heights flown.
+    with open(os.path.join(folder, "vehicle.toml"), "w") as handle:
+        handle.write('name = "climbs 4 m/s"\nclimb_speed_mps = 4.0\n')
     out = os.path.join(folder, "out")
     subprocess.run([AGRIPATH, "plan", "--fields", os.path.join(folder, "field.geojson"), "--terrain",
-                    os.path.join(folder, "cliff.asc"), "--heading", "85", "--out", out],
+                    os.path.join(folder, "cliff.asc"), "--vehicle", os.path.join(folder, "vehicle.toml"),
+                    "--heading", "85", "--out", out],
                    check=True, stdout=subprocess.DEVNULL)
 
     def ground(x, y):

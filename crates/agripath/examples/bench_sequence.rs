@@ -7,7 +7,7 @@
 //! costs as JSON, for `benches/ordering_vs_lkh.py`, which runs this and prints ours / LKH. `--lkh-only` skips the first and last parts. Run:
 //!
 //! ```sh
-//! cargo run --release -p agripath --example bench_sequence [-- --export DIR] [--lkh-only] [--kicks N] [--seed N]
+//! cargo run --release -p agripath --example bench_sequence [-- --export DIR] [--lkh-only] [--kicks N] [--seed N] [--restarts N]
 //! ```
 //!
 //! `--kicks N` and `--seed N` run `best` with N kicks or seed N instead of the defaults (to
@@ -158,7 +158,8 @@ fn export(folder: &str, instance: &Instance) {
     .unwrap();
 }
 
-/// `best`'s settings: the default, or `--kicks N` kicks and `--seed N`.
+/// `best`'s settings: the default, or `--kicks N` kicks, `--seed N` and `--restarts N`
+/// (chained-LK runs on closed tours).
 fn best_settings() -> LocalSearchSettings {
     let arguments: Vec<String> = std::env::args().collect();
     let kicks = arguments
@@ -172,9 +173,15 @@ fn best_settings() -> LocalSearchSettings {
         .nth(1)
         .map(|value| value.parse().expect("--seed takes a whole number"));
     let default = LocalSearchSettings::default();
+    let restarts = arguments
+        .iter()
+        .skip_while(|arg| *arg != "--restarts")
+        .nth(1)
+        .map(|value| value.parse().expect("--restarts takes a whole number"));
     LocalSearchSettings {
         kicks: kicks.unwrap_or(default.kicks),
         seed: seed.unwrap_or(default.seed),
+        restarts: restarts.unwrap_or(default.restarts),
     }
 }
 

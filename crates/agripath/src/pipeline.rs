@@ -195,7 +195,13 @@ fn choose_supply(
     // The flight will come back to the point being chosen: the route it is scored along is
     // the closed tour, flown open from and back to each candidate (decision 0018).
     let (problem, groups) = ordering_problem(coverage, transfers, Start::Closed);
-    let closed_tour = settings.sequencer.sequencer().order(&problem, &groups);
+    // Scored fast: the closed tour only places the candidates (the flight is ordered again
+    // from the point chosen), and the demo's whole plan has 250 ms (decision 0018).
+    let closed_tour = settings
+        .sequencer
+        .without_restarts()
+        .sequencer()
+        .order(&problem, &groups);
     let free = route_of_tour(coverage, transfers, &problem, &closed_tour);
     let work_route = WorkRoute::from_route(&free, Speeds::of(vehicle));
     let Some(&first) = work_route.points().first() else {

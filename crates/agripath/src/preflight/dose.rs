@@ -22,6 +22,16 @@ pub const SPRAYER_SPEED_MIN_MPS: f64 = 1.0;
 /// (`AC_SPRAYER_DEFAULT_SHUT_OFF_DELAY`, 1,000 ms).
 pub const SPRAYER_SHUT_OFF_DELAY_S: f64 = 1.0;
 
+/// ArduPilot's pump through one spray run (`AC_Sprayer`): off when `DO_SPRAYER` switches the
+/// sprayer on until the vehicle is at `SPRAY_SPEED_MIN` (after 100 ms, not modelled), then on
+/// until it has been under that speed for [`SPRAYER_SHUT_OFF_DELAY_S`]. A new run starts
+/// it afresh ([`Pump::default`]).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct Pump {
+    pumping: bool,
+    slow_s: f64,
+}
+
 /// The check's tally, before any leg.
 pub(super) fn tally() -> Tally {
     Tally::new(
@@ -33,11 +43,11 @@ pub(super) fn tally() -> Tally {
 }
 
 /// Records spray leg `leg` of sortie `sortie` (`horizontal` and `vertical` metres) flown by
-/// `vehicle` with its pump switched by `sprayer`; `slow_s` is how long the spray legs just
-/// before it were crossed below [`SPRAYER_SPEED_MIN_MPS`] (0 after any other leg). Returns
-/// whether ArduPilot's pump is stopped on this leg: its strip is then not sprayed, which the
-/// coverage as flown counts (a bank a few metres high leaves a short gap; a face climbed for
-/// a swath's length fails the coverage).
+/// `vehicle` with its pump switched by `sprayer`. Returns
+/// whether ArduPilot's pump is off on this leg (`pump`: its state through the run): its strip
+/// is then not sprayed, which the coverage as flown counts (a bank a few metres high leaves a
+/// short gap; a face climbed for a swath's length fails the coverage). A leg on which the pump
+/// stops counts whole: the second it keeps pumping is not credited.
 pub(super) fn record(
     tally: &mut Tally,
     leg: &Leg,
@@ -45,7 +55,7 @@ pub(super) fn record(
     vehicle: &Vehicle,
     sprayer: SprayerCommand,
     sortie: usize,
-    slow_s: &mut f64,
+    pump: &mut Pump,
 ) -> bool {
     // Over ground steeper than the vehicle climbs at the commanded speed, the climb (or
     // descent) holds it back along the leg (the autopilot keeps its vertical speed limit). A
@@ -59,12 +69,21 @@ pub(super) fn record(
         horizontal / (horizontal / leg.speed_mps).max(vertical / vehicle.climb_speed_mps);
     let constant_flow = matches!(sprayer, SprayerCommand::Servo { .. }) && vehicle.camera.is_none();
     let do_sprayer = matches!(sprayer, SprayerCommand::DoSprayer) && vehicle.camera.is_none();
-    let pump_stops = if do_sprayer && held_back_mps < SPRAYER_SPEED_MIN_MPS {
-        *slow_s += horizontal / held_back_mps;
-        *slow_s > SPRAYER_SHUT_OFF_DELAY_S
-    } else {
-        *slow_s = 0.0;
+    let pump_stops = if !do_sprayer {
         false
+    } else if held_back_mps >= SPRAYER_SPEED_MIN_MPS {
+        *pump = Pump {
+            pumping: true,
+            slow_s: 0.0,
+        };
+        false
+    } else if pump.pumping {
+        pump.slow_s += horizontal / held_back_mps;
+        pump.pumping = pump.slow_s <= SPRAYER_SHUT_OFF_DELAY_S;
+        !pump.pumping
+    } else {
+        // A run that starts slow, or a pump already stopped: nothing until speed is back.
+        true
     };
     let over_ground_mps = if constant_flow {
         held_back_mps

@@ -243,11 +243,11 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             least_transit_margin_m: None,
             pump_stopped_m: 0.0,
         };
-        // How long the spray legs just flown were crossed below the sprayer's least speed.
-        let mut slow_s = 0.0;
+        // ArduPilot's pump through each spray run (decision 0030).
+        let mut pump = dose::Pump::default();
         for (leg_index, leg) in legs.iter().enumerate() {
             if !leg.spraying {
-                slow_s = 0.0;
+                pump = dose::Pump::default();
             }
             let horizontal = leg.horizontal_m();
             let vertical = leg.vertical_m(terrain).unwrap_or(0.0);
@@ -316,7 +316,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                     vehicle,
                     settings.sprayer,
                     sortie,
-                    &mut slow_s,
+                    &mut pump,
                 );
                 if pump_stops {
                     figures.pump_stopped_m += horizontal;

@@ -175,7 +175,7 @@ impl Verdict {
             String::new()
         };
         format!(
-            "preflight ({} altitudes, read back from {} mission file(s)): {}; coverage as flown {:.2}% in the least covered field{missed}{stopped}{unreachable}, sprayed outside {:.3}%, lowest clearance {:.2} m (spray legs included, in any direction)",
+            "preflight ({} altitudes, read back from {} mission file(s)): {}; coverage as flown {:.2}% in the least covered field{missed}{stopped}{unreachable}, sprayed outside {:.3}%, lowest clearance {:.2} m (spray legs included; beside a slope where nearer than 0.5 m)",
             self.altitude_reference.key(),
             self.sorties.len(),
             if self.safe {

@@ -31,7 +31,8 @@ pub const SAMPLE_SPACING_M: f64 = crate::preflight::SAMPLE_M;
 /// What the check found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Verdict {
-    /// Least distance from the terrain along the cruise, straight down or sideways (metres).
+    /// Least height above the terrain along the cruise, or the least distance to it sideways
+    /// where that is nearer and within `--min-clearance` (metres).
     pub lowest_clearance_m: f64,
     /// Where the lowest clearance is, scenario (x, y).
     pub lowest_clearance_at: [f64; 2],
@@ -159,9 +160,10 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
                 place(scenario, x, y)
             ));
         }
-        let (mut clearance, [mut x, mut y]) = leg_lowest;
+        let (clearance, [x, y]) = leg_lowest;
         // Sideways too: beside a cliff the ground beneath may be far and the face near.
         let vertical_fails = clearance < limits.min_clearance_m;
+        let (mut lowest, mut lowest_at) = (clearance, [x, y]);
         if let Some(near) = nearness.leg(a, b) {
             if near.distance_m < clearance {
                 if !vertical_fails && near.distance_m < limits.min_clearance_m {
@@ -173,13 +175,12 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
                         limits.min_clearance_m
                     ));
                 }
-                clearance = near.distance_m;
-                [x, y] = near.at;
+                (lowest, lowest_at) = (near.distance_m, near.at);
             }
         }
-        if clearance < lowest_clearance_m {
-            lowest_clearance_m = clearance;
-            lowest_clearance_at = [x, y];
+        if lowest < lowest_clearance_m {
+            lowest_clearance_m = lowest;
+            lowest_clearance_at = lowest_at;
         }
         if vertical_fails {
             violations.push(if clearance < 0.0 {

@@ -490,7 +490,7 @@ mod tests {
             let start = starts[start];
             let problem = OrderingProblem::new(ends, start, &model);
             let tour = scattered_tour(&problem, &field_of, seed);
-            let settings = LocalSearchSettings { kicks: 20, seed };
+            let settings = LocalSearchSettings { kicks: 20, seed, restarts: 0 };
             let replanned = replan_field_stretches(&problem, &field_of, tour.clone(), &settings);
             prop_assert!(is_permutation(&replanned, 30));
             prop_assert!(problem.tour_cost(&replanned) <= problem.tour_cost(&tour) + 1e-9);
