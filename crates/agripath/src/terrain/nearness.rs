@@ -191,7 +191,7 @@ impl<'t, H: Fn(f64, f64) -> Option<f64>> GroundNearness<'t, H> {
     }
 
     /// Bounds the quarters of the square at `corner` of `side` (inside one cell), and theirs
-    /// where still within reach, down to [`Self::smallest`]; the least bound goes to `nearest`.
+    /// where still within reach, down to `smallest_m`; the least bound goes to `nearest`.
     fn refine(
         &self,
         a: [f64; 3],

@@ -222,19 +222,8 @@ fn closed_tour(
 ) -> Vec<Step> {
     let n = problem.passes();
     let searched = iterated(problem, groups, settings, kick_budget(settings, n));
-    // The near ends by cost, and the cheapest in other fields (what 2-opt and Or-opt use).
-    let field_of = group_of(groups, n);
-    let mut neighbours = cheapest_ends(problem, NEIGHBOURS, |end, other| other / 2 != end / 2);
-    let across = cheapest_ends(problem, OTHER_FIELD_NEIGHBOURS, |end, other| {
-        field_of[other / 2] != field_of[end / 2]
-    });
-    for (list, extra) in neighbours.iter_mut().zip(across) {
-        for end in extra {
-            if !list.contains(&end) {
-                list.push(end);
-            }
-        }
-    }
+    // The near ends 2-opt and Or-opt use.
+    let neighbours = near_ends(problem, &group_of(groups, n), groups.len());
     let restarted = lin_kernighan::restarted(
         problem,
         &neighbours,
@@ -248,6 +237,26 @@ fn closed_tour(
     } else {
         searched
     }
+}
+
+/// Each end's near ends: the cheapest ends of any other pass, and the cheapest in other
+/// fields (`group_of` each pass's, of `groups` fields). Without the latter a field's own swath
+/// ends (a swath width apart) fill the list and moves between fields are never tried.
+fn near_ends(problem: &OrderingProblem, group_of: &[usize], groups: usize) -> Vec<Vec<End>> {
+    let mut neighbours = cheapest_ends(problem, NEIGHBOURS, |end, other| other / 2 != end / 2);
+    if groups > 1 {
+        let across = cheapest_ends(problem, OTHER_FIELD_NEIGHBOURS, |end, other| {
+            group_of[other / 2] != group_of[end / 2]
+        });
+        for (list, extra) in neighbours.iter_mut().zip(across) {
+            for end in extra {
+                if !list.contains(&end) {
+                    list.push(end);
+                }
+            }
+        }
+    }
+    neighbours
 }
 
 /// Each of `n` passes' group (its field) in `groups`.
@@ -381,24 +390,7 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
             .flatten()
             .collect();
         self.group_of = group_of(groups, n);
-        // Cheap ends of any other pass, and cheap ends in other fields: without the latter, a
-        // field's own swath ends (a swath width apart) fill the list and moves between fields
-        // are never tried.
-        let group_of = &self.group_of;
-        let mut neighbours = cheapest_ends(problem, NEIGHBOURS, |end, other| other / 2 != end / 2);
-        if groups.len() > 1 {
-            let across = cheapest_ends(problem, OTHER_FIELD_NEIGHBOURS, |end, other| {
-                group_of[other / 2] != group_of[end / 2]
-            });
-            for (list, extra) in neighbours.iter_mut().zip(across) {
-                for end in extra {
-                    if !list.contains(&end) {
-                        list.push(end);
-                    }
-                }
-            }
-        }
-        self.neighbours = neighbours;
+        self.neighbours = near_ends(problem, &self.group_of, groups.len());
         self.incumbent = Workspace::default();
         // Each start's run search draws its kicks' seed from this run's stream, in order.
         let seeded: Vec<(Vec<Step>, u64)> = starts
