@@ -1,4 +1,4 @@
-//! Chained Lin-Kernighan on closed tours (decision 0018, eleventh step): Lin and Kernighan's
+//! Chained Lin-Kernighan on closed tours (decision 0018, eleventh and twelfth steps): Lin and Kernighan's
 //! variable-depth search (1973) made of 2-opt flips, as Johnson and McGeoch describe it
 //! ("The traveling salesman problem: a case study in local optimization", 1997, §4), with
 //! Martin, Otto and Felten's double-bridge kicks between descents (docs/references.md).
