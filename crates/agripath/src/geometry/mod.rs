@@ -87,14 +87,21 @@ pub fn leg_samples(length: f64, spacing: f64) -> impl Iterator<Item = f64> {
 
 /// Distance from `point` to the segment `start`–`end`, metres.
 pub fn distance_to_segment(point: Coord<f64>, start: Coord<f64>, end: Coord<f64>) -> f64 {
+    let t = nearest_fraction_on_segment(point, start, end);
+    let (dx, dy) = (end.x - start.x, end.y - start.y);
+    (point.x - start.x - t * dx).hypot(point.y - start.y - t * dy)
+}
+
+/// Where on the segment `start`–`end` lies the point nearest `point`, as a fraction of it
+/// from 0 to 1 (0 for a segment of no length).
+pub fn nearest_fraction_on_segment(point: Coord<f64>, start: Coord<f64>, end: Coord<f64>) -> f64 {
     let (dx, dy) = (end.x - start.x, end.y - start.y);
     let length_squared = dx * dx + dy * dy;
-    let t = if length_squared > 0.0 {
+    if length_squared > 0.0 {
         (((point.x - start.x) * dx + (point.y - start.y) * dy) / length_squared).clamp(0.0, 1.0)
     } else {
         0.0
-    };
-    (point.x - start.x - t * dx).hypot(point.y - start.y - t * dy)
+    }
 }
 
 #[cfg(test)]

@@ -117,3 +117,68 @@ pub(super) fn record(
     });
     pump_stops
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::preflight::flown::{Height, Motion, Place};
+
+    /// A spray leg `horizontal` metres east that climbs `climb` metres, at 5 m/s.
+    fn leg(horizontal: f64, climb: f64) -> (Leg, (f64, f64)) {
+        let place = |x: f64, z: f64| Place {
+            x,
+            y: 0.0,
+            height: Height::SeaLevel(z),
+        };
+        let leg = Leg {
+            item: 1,
+            from: place(0.0, 0.0),
+            to: place(horizontal, climb),
+            spraying: true,
+            speed_mps: 5.0,
+            motion: Motion::Flight,
+        };
+        (leg, (horizontal, climb))
+    }
+
+    /// `AC_Sprayer`'s pump through runs of legs, at the default vehicle's 2 m/s climb: a
+    /// 3 m climb over 1 m is crossed at 0.67 m/s (under SPRAY_SPEED_MIN), each such leg in
+    /// 1.5 s; a level leg at 5 m/s. Returns whether the pump is off on each leg.
+    fn run(legs: &[(f64, f64)], sprayer: SprayerCommand) -> Vec<bool> {
+        let vehicle = Vehicle::default();
+        let mut tally = tally();
+        let mut pump = Pump::default();
+        legs.iter()
+            .map(|&(horizontal, climb)| {
+                let (leg, figures) = leg(horizontal, climb);
+                record(&mut tally, &leg, figures, &vehicle, sprayer, 1, &mut pump)
+            })
+            .collect()
+    }
+
+    #[test]
+    fn the_pump_follows_ardupilots_sprayer_through_a_run() {
+        let (level, steep, short_steep) = ((5.0, 0.0), (1.0, 3.0), (0.5, 1.5));
+        let sprayer = SprayerCommand::DoSprayer;
+        // Up to speed, then under it for 0.75 s: still pumping; for 1.5 s more: stopped;
+        // back to speed: pumping again.
+        assert_eq!(
+            run(&[level, short_steep, steep, level], sprayer),
+            [false, false, true, false]
+        );
+        // A run that starts slow never started its pump.
+        assert_eq!(run(&[short_steep, level], sprayer), [true, false]);
+        // A servo pump runs at one flow whatever the speed (its overdose is the check's).
+        assert_eq!(
+            run(
+                &[level, steep, steep],
+                SprayerCommand::Servo {
+                    channel: 9,
+                    on_pwm: 1900,
+                    off_pwm: 1100
+                }
+            ),
+            [false, false, false]
+        );
+    }
+}

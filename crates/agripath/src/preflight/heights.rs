@@ -196,7 +196,7 @@ impl HeightBounds {
         &mut self,
         (sortie, item): (usize, usize),
         points: &[(f64, f64, f64, f64)],
-        nearness: &mut GroundNearness<'_, H>,
+        nearness: &mut GroundNearness<H>,
         place: &dyn Fn(f64, f64) -> String,
     ) {
         let beneath = points

@@ -24,7 +24,11 @@
 
 use std::collections::HashMap;
 
+use geo::Coord;
+
 use super::Terrain;
+use crate::geometry::validate::segment_contact;
+use crate::geometry::{distance_to_segment, nearest_fraction_on_segment};
 
 /// The smallest squares are the reach over this: their bound errs by the slope across one.
 const SMALLEST_SHARE: f64 = 32.0;
@@ -43,7 +47,7 @@ pub struct Nearest {
 
 /// Bounds the distance from legs to the ground of one model, within `reach_m`. Heights of
 /// lattice nodes are kept between legs.
-pub struct GroundNearness<'t, H: Fn(f64, f64) -> Option<f64>> {
+pub struct GroundNearness<H: Fn(f64, f64) -> Option<f64>> {
     height: H,
     /// Metres per unit of the caller's horizontal coordinates (altitudes are in metres).
     unit_m: f64,
@@ -55,13 +59,12 @@ pub struct GroundNearness<'t, H: Fn(f64, f64) -> Option<f64>> {
     /// The side of the smallest squares, metres: reach / [`SMALLEST_SHARE`].
     smallest_m: f64,
     coarse_tops: HashMap<(i64, i64), Option<f64>>,
-    _terrain: std::marker::PhantomData<&'t ()>,
 }
 
-impl<'t, H: Fn(f64, f64) -> Option<f64>> GroundNearness<'t, H> {
+impl<H: Fn(f64, f64) -> Option<f64>> GroundNearness<H> {
     /// Nearness to the ground of `terrain`, whose heights (metres) `height` gives at the
     /// caller's coordinates (`unit_m` metres each), looked for within `reach_m`.
-    pub fn new(terrain: &'t dyn Terrain, height: H, unit_m: f64, reach_m: f64) -> Self {
+    pub fn new(terrain: &dyn Terrain, height: H, unit_m: f64, reach_m: f64) -> Self {
         debug_assert!(
             reach_m > 0.0 && unit_m > 0.0,
             "a reach and a unit of length"
@@ -93,7 +96,6 @@ impl<'t, H: Fn(f64, f64) -> Option<f64>> GroundNearness<'t, H> {
             cells_per_coarse,
             smallest_m: reach_m / SMALLEST_SHARE,
             coarse_tops: HashMap::new(),
-            _terrain: std::marker::PhantomData,
         }
     }
 
@@ -265,10 +267,12 @@ impl<'t, H: Fn(f64, f64) -> Option<f64>> GroundNearness<'t, H> {
             return (quick_m.hypot(below_lowest), at);
         }
         let squared = |t: f64| {
-            let point = (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
-            let (horizontal, _) = rectangle_segment_distance(corner, side, point, point);
+            let (x, y) = (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
+            // Outside the square along each axis, 0 within its span.
+            let dx = (corner.0 - x).max(x - corner.0 - side.0).max(0.0);
+            let dy = (corner.1 - y).max(y - corner.1 - side.1).max(0.0);
             let below = (a[2] + t * (b[2] - a[2]) - top).max(0.0);
-            (horizontal * self.unit_m).powi(2) + below * below
+            (dx * dx + dy * dy) * self.unit_m * self.unit_m + below * below
         };
         let ratio = (5f64.sqrt() - 1.0) / 2.0;
         let (mut low, mut high) = (0.0, 1.0);
@@ -321,60 +325,36 @@ fn rectangle_segment_distance(
     if inside(b) {
         return (0.0, [b.0, b.1]);
     }
+    let point = |p: (f64, f64)| Coord { x: p.0, y: p.1 };
+    let (start, end) = (point(a), point(b));
     let corners = [
         (min_x, min_y),
         (max_x, min_y),
         (max_x, max_y),
         (min_x, max_y),
-    ];
+    ]
+    .map(point);
     let mut best = (f64::INFINITY, [a.0, a.1]);
-    // The segment crosses an edge: distance 0 there.
     for k in 0..4 {
         let (p, q) = (corners[k], corners[(k + 1) % 4]);
-        if let Some(t) = segment_crossing(a, b, p, q) {
-            return (0.0, [a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)]);
+        // The segment meets an edge: distance 0 there.
+        if let Some(contact) = segment_contact(start, end, p, q) {
+            return (0.0, [contact.x, contact.y]);
         }
         // Otherwise the nearest pair has an end of one segment in it.
-        for (point, from, to, on_leg) in [(p, a, b, true), (a, p, q, false), (b, p, q, false)] {
-            let (distance, t) = point_segment(point, from, to);
+        let t = nearest_fraction_on_segment(p, start, end);
+        let on_leg = point((a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1)));
+        for (distance, place) in [
+            ((p.x - on_leg.x).hypot(p.y - on_leg.y), on_leg),
+            (distance_to_segment(start, p, q), start),
+            (distance_to_segment(end, p, q), end),
+        ] {
             if distance < best.0 {
-                let place = if on_leg {
-                    [from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1)]
-                } else {
-                    [point.0, point.1]
-                };
-                best = (distance, place);
+                best = (distance, [place.x, place.y]);
             }
         }
     }
     best
-}
-
-/// Distance from `point` to the segment `from`–`to`, and the fraction along it of the nearest
-/// place.
-fn point_segment(point: (f64, f64), from: (f64, f64), to: (f64, f64)) -> (f64, f64) {
-    let (dx, dy) = (to.0 - from.0, to.1 - from.1);
-    let length_squared = dx * dx + dy * dy;
-    let t = if length_squared > 0.0 {
-        (((point.0 - from.0) * dx + (point.1 - from.1) * dy) / length_squared).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    let (x, y) = (from.0 + t * dx, from.1 + t * dy);
-    ((point.0 - x).hypot(point.1 - y), t)
-}
-
-/// Where the segments `a`–`b` and `p`–`q` cross, as a fraction of `a`–`b`.
-fn segment_crossing(a: (f64, f64), b: (f64, f64), p: (f64, f64), q: (f64, f64)) -> Option<f64> {
-    let (rx, ry) = (b.0 - a.0, b.1 - a.1);
-    let (sx, sy) = (q.0 - p.0, q.1 - p.1);
-    let denominator = rx * sy - ry * sx;
-    if denominator.abs() < 1e-15 {
-        return None;
-    }
-    let t = ((p.0 - a.0) * sy - (p.1 - a.1) * sx) / denominator;
-    let u = ((p.0 - a.0) * ry - (p.1 - a.1) * rx) / denominator;
-    ((0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u)).then_some(t)
 }
 
 #[cfg(test)]
