@@ -63,7 +63,7 @@ pub(super) fn record(
     // sprayer (DO_SPRAYER) pumps in proportion to ground speed, and a camera triggers by
     // distance, so theirs does not change.
     // But below SPRAY_SPEED_MIN for longer than its shut-off delay ArduPilot's pump stops:
-    // over ground that steep (a third trial's swaths up an 80° face, crossed at 0.6 m/s) the
+    // over ground that steep (a third trial's swaths up a 78° face, crossed at 0.61 m/s) the
     // strip goes unsprayed.
     let held_back_mps =
         horizontal / (horizontal / leg.speed_mps).max(vertical / vehicle.climb_speed_mps);

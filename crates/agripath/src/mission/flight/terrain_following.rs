@@ -114,8 +114,8 @@ pub(super) fn follow_terrain(
     }
     // Sideways too: between two waypoints kept, the straight climb may pass a bank nearer
     // than the preflight's floor though well above the ground beneath (the island's terrace
-    // edges, 0.48 m beside a 65° bank and 1.33 m above the ground; decision 0030). There every
-    // sample is kept: the flight then holds the spray height over each.
+    // edges; decision 0030). There every sample is kept: the flight then holds the spray
+    // height over each.
     let mut nearness = GroundNearness::new(
         terrain,
         |x, y| terrain.height_m(x, y).ok(),
@@ -131,8 +131,8 @@ pub(super) fn follow_terrain(
         let at = |point: &RoutePoint| [point.x, point.y, point.ground_m + spray_height_m];
         let (from, to) = (at(&samples[first]), at(&samples[last]));
         // Nearer beside than beneath: ground within reach straight down is the terrain
-        // tolerance's business (else a low spray height keeps every sample of every swath;
-        // a review measured 6,871 waypoints on the island at a 2 m tolerance against 2,017).
+        // tolerance's business (else a spray height within 0.75 m of the tolerance's low end
+        // keeps every sample of every swath).
         let span = profile[last].0 - profile[first].0;
         let beneath = (first..=last)
             .map(|index| {

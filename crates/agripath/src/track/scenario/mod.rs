@@ -350,7 +350,7 @@ impl TrackScenario {
 
     /// The same scenario checked with other safety limits (start and goal checked again).
     pub fn with_limits(mut self, limits: SafetyLimits) -> Result<Self, Fault> {
-        // The clearance has `plan`'s floor under it: a track 0.19 m above the ground read
+        // The clearance has `plan`'s floor under it: a track 0.29 m above the ground read
         // safe at `--min-clearance 0` (decision 0030).
         let floor = crate::limits::MIN_GROUND_CLEARANCE_M;
         for (what, value, least) in [
