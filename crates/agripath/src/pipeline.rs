@@ -273,9 +273,10 @@ fn choose_supply(
             other => other,
         })?;
     // The old rule's point is scored as it is, level or not: the saving stays like for like.
-    if !auto.first_point.cost_s.is_finite() {
-        auto.first_point.cost_s =
-            crate::supply::SupplyCost::cost_s(&evaluator, auto.first_point.point);
+    for old_rule in std::iter::once(&mut auto.first_point).chain(auto.first_point_moved.as_mut()) {
+        if !old_rule.cost_s.is_finite() {
+            old_rule.cost_s = crate::supply::SupplyCost::cost_s(&evaluator, old_rule.point);
+        }
     }
     let best = auto.best().point;
     Ok(SupplyPlan {

@@ -51,6 +51,30 @@ impl CandidateReport {
     }
 }
 
+/// The old rule's point moved to the nearest place a vehicle can stand, and the saving
+/// against it.
+#[derive(Debug, Clone, Serialize)]
+pub struct MovedReport {
+    /// Where it stands, and its cost.
+    #[serde(flatten)]
+    pub scored: CandidateReport,
+    /// Its cost less the chosen point's, seconds (≥ 0: the search weighs it).
+    pub saving_s: f64,
+    /// The saving as a share of its cost, percent.
+    pub saving_percent: f64,
+}
+
+/// `old - best` in seconds and as a share of `old`, percent, rounded for the report.
+fn saving(old: f64, best: f64) -> (f64, f64) {
+    let saving = old - best;
+    let percent = if old.is_finite() && old > 0.0 {
+        100.0 * saving / old
+    } else {
+        0.0
+    };
+    (round(saving, 1e-3), round(percent, 1e-3))
+}
+
 /// The `auto` rule's figures.
 #[derive(Debug, Clone, Serialize)]
 pub struct AutoReport {
@@ -64,6 +88,10 @@ pub struct AutoReport {
     pub saving_s: f64,
     /// The saving as a share of the old rule's cost, percent.
     pub saving_percent: f64,
+    /// Where no vehicle can stand at the old rule's point: the nearest place one can, its
+    /// cost and the saving against it (the old rule as an operator could follow it;
+    /// docs/decisions/0031); `null` when the point stands.
+    pub first_point_moved: Option<MovedReport>,
     /// Whether the candidates stood on the file's access features.
     pub on_access: bool,
     /// Distance kept from fields, holes and obstacles, metres (0 on access features).
@@ -103,21 +131,22 @@ impl SupplyReport {
     /// planned from it.
     pub fn new(choice: &SupplyChoice, frame: CoordinateSystem, planned_cost_s: f64) -> Self {
         let auto = choice.auto.as_ref().map(|auto| {
-            let (best, old) = (auto.best().cost_s, auto.first_point.cost_s);
-            let saving = old - best;
+            let best = auto.best().cost_s;
+            let (saving_s, saving_percent) = saving(auto.first_point.cost_s, best);
             AutoReport {
                 evaluator: auto.evaluator.to_string(),
                 first_point: CandidateReport::new(&auto.first_point, frame),
                 first_point_stands: auto.first_point_stands,
-                saving_s: round(saving, 1e-3),
-                saving_percent: round(
-                    if old.is_finite() && old > 0.0 {
-                        100.0 * saving / old
-                    } else {
-                        0.0
-                    },
-                    1e-3,
-                ),
+                saving_s,
+                saving_percent,
+                first_point_moved: auto.first_point_moved.map(|moved| {
+                    let (saving_s, saving_percent) = saving(moved.cost_s, best);
+                    MovedReport {
+                        scored: CandidateReport::new(&moved, frame),
+                        saving_s,
+                        saving_percent,
+                    }
+                }),
                 on_access: auto.on_access,
                 margin_m: auto.margin_m,
                 reach_m: auto.reach_m,
@@ -165,7 +194,7 @@ impl SupplyReport {
             .unwrap_or_default();
         match &self.auto {
             Some(auto) => format!(
-                "supply point (auto{}): {place}, where the least time is spent not {working}: estimated {:.0} s, against {:.0} s from the route's first point (the old rule{}), {}{}\n{}",
+                "supply point (auto{}): {place}, where the least time is spent not {working}: estimated {:.0} s, against {:.0} s from the route's first point (the old rule{}), {}{}{}\n{}",
                 if auto.on_access { ", on access features" } else { "" },
                 self.cost_s.unwrap_or(f64::NAN),
                 auto.first_point.cost_s,
@@ -174,19 +203,15 @@ impl SupplyReport {
                 } else {
                     ", where no vehicle can stand"
                 },
-                // Under half a second either way reads as a tie, not as "-0 s saved".
-                if auto.saving_s > -0.5 {
-                    format!(
-                        "{:.0} s ({:.1}%) saved",
-                        auto.saving_s.max(0.0),
-                        auto.saving_percent.max(0.0)
-                    )
-                } else {
-                    format!(
-                        "{:.0} s ({:.1}%) more",
-                        -auto.saving_s, -auto.saving_percent
-                    )
-                },
+                saved_or_more(auto.saving_s, auto.saving_percent),
+                auto.first_point_moved
+                    .as_ref()
+                    .map(|moved| format!(
+                        "; {:.0} s from the nearest place one can, {}",
+                        moved.scored.cost_s,
+                        saved_or_more(moved.saving_s, moved.saving_percent)
+                    ))
+                    .unwrap_or_default(),
                 if !auto.candidates.is_empty() {
                     format!("; {} candidates in report.json", auto.candidates.len())
                 } else {
@@ -196,5 +221,19 @@ impl SupplyReport {
             ),
             None => format!("supply point ({}): {place}\n{warning}", self.rule),
         }
+    }
+}
+
+/// "N s (P%) saved", or "N s (P%) more" when the saving is negative: under half a second
+/// either way reads as a tie, not as "-0 s saved".
+fn saved_or_more(saving_s: f64, saving_percent: f64) -> String {
+    if saving_s > -0.5 {
+        format!(
+            "{:.0} s ({:.1}%) saved",
+            saving_s.max(0.0),
+            saving_percent.max(0.0)
+        )
+    } else {
+        format!("{:.0} s ({:.1}%) more", -saving_s, -saving_percent)
     }
 }

@@ -11,7 +11,9 @@
 //! scored. The search ([`search`]) screens a coarse candidate set ([`candidates`]) by the
 //! evaluator's cheap surrogate, refines the best few by a pattern search, and keeps the best
 //! by the evaluator itself. The old rule (the first point of the route planned without a
-//! start point) is scored by the same evaluator, so the saving is like for like.
+//! start point) is scored by the same evaluator, so the saving is like for like; where no
+//! vehicle can stand there (a pass end inside a field), so is the nearest place one can, the
+//! old rule as an operator could follow it, which the search always weighs.
 
 pub mod candidates;
 pub mod evaluator;
@@ -173,6 +175,11 @@ pub struct AutoChoice {
     /// Whether a vehicle could stand at the old rule's point (it is a pass end: on or in a
     /// field, as a rule).
     pub first_point_stands: bool,
+    /// Where no vehicle can stand at the old rule's point: the nearest place one can
+    /// ([`standing::StandingRule::settle`]), scored by the same evaluator: the old rule as an
+    /// operator could follow it (docs/decisions/0031). `None` when the point stands, or when
+    /// no place is found.
+    pub first_point_moved: Option<ScoredPoint>,
     /// Times the evaluator's cost was computed.
     pub evaluations: usize,
     /// Whether the candidates stood on access features.
@@ -277,6 +284,11 @@ pub fn choose_auto(
             cost_s: ranked.reference_costs[1],
         },
         first_point_stands: standing.allows(first),
+        first_point_moved: if standing.allows(first) {
+            None
+        } else {
+            ranked.settled_references[1]
+        },
         evaluations: ranked.evaluations,
         ranked: ranked.points,
         listed,
@@ -581,6 +593,66 @@ mod tests {
         let best = choice.best();
         assert!(best.point.x < 0.0, "{best:?}");
         assert!(best.cost_s < 60.0, "{best:?}");
+    }
+
+    /// A cost whose surrogate misleads: it claims every point away from its own is cheaper,
+    /// so a pattern search on it always ends dearer by the cost itself.
+    struct Misleading(Coord<f64>);
+
+    impl SupplyCost for Misleading {
+        fn cost_s(&self, point: Coord<f64>) -> f64 {
+            (point.x - self.0.x).hypot(point.y - self.0.y)
+        }
+
+        fn cost_and_surrogate(&self, around: Coord<f64>) -> (f64, Surrogate<'_>) {
+            let cost = self.cost_s(around);
+            let away = move |point: Coord<f64>| {
+                cost - 0.5 * (point.x - around.x).hypot(point.y - around.y)
+            };
+            (cost, Box::new(away))
+        }
+    }
+
+    #[test]
+    fn the_choice_is_never_dearer_than_the_place_beside_the_old_rules_point() {
+        // The route's first point lies on the crop, where no vehicle stands; the old rule as
+        // an operator could follow it is the nearest place one can. A cost that only wants
+        // the first point, with a surrogate that leads every pattern search astray, still
+        // chooses that place: the search weighs it by the cost itself.
+        let farm = farm_of(vec![Field::new(
+            "F",
+            Polygon::new(rectangle(0.0, 0.0, 100.0, 100.0), vec![]),
+        )]);
+        let work_route = free_route(&farm);
+        let first = work_route.points()[0];
+        let first = Coord {
+            x: first.x,
+            y: first.y,
+        };
+        let choice = choose_auto(&farm, &work_route, &Misleading(first), 0).unwrap();
+        assert!(!choice.first_point_stands);
+        let moved = choice
+            .first_point_moved
+            .expect("a place beside the first point");
+        let standing = StandingRule::new(&farm);
+        assert!(standing.allows(moved.point), "{moved:?}");
+        assert!(choice.best().cost_s <= moved.cost_s, "{choice:?}");
+        // And on random farms with the default evaluator.
+        for seed in 1..=4 {
+            let farm = crate::bench::farms::irregular_farm(seed, 40, 5.0);
+            let (_, choice) = auto_on(&farm, 0);
+            assert_eq!(
+                choice.first_point_moved.is_some(),
+                !choice.first_point_stands,
+                "seed {seed}"
+            );
+            if let Some(moved) = choice.first_point_moved {
+                assert!(
+                    choice.best().cost_s <= moved.cost_s,
+                    "seed {seed}: {choice:?}"
+                );
+            }
+        }
     }
 
     #[test]

@@ -7,7 +7,9 @@
 //! 1. **Anchors.** C and S at the references R_i (the spray-weighted centroid, the route's
 //!    first and last points) and, on a farm of several fields, at each field's centroid
 //!    settled onto a place a vehicle can stand: the screen is then tight near the centre,
-//!    the route's ends and every field.
+//!    the route's ends and every field. C at each R_i settled onto the nearest place a
+//!    vehicle can stand too, kept as a finalist (step 5), so that the choice is never dearer
+//!    than the place beside the old rule's point (docs/decisions/0031).
 //! 2. **Screen.** Every candidate P is scored by S(P) = min over the anchors A of S_A(P), in
 //!    O(anchors × sorties). When S is infinite at more than half the candidates (the
 //!    anchors' sorties, at the battery's limit, fly from nowhere else as they are), the
@@ -93,6 +95,9 @@ pub struct Ranked {
     pub evaluations: usize,
     /// The evaluator's cost at each reference point, in their order.
     pub reference_costs: Vec<f64>,
+    /// Each reference point settled onto the nearest place a vehicle can stand, scored by
+    /// the evaluator, in their order (`None` where none is found).
+    pub settled_references: Vec<Option<ScoredPoint>>,
 }
 
 fn distance(a: Coord<f64>, b: Coord<f64>) -> f64 {
@@ -249,6 +254,13 @@ pub fn search(
         .iter()
         .map(|&reference| scored.score(reference).cost_s)
         .collect();
+    // The references where a vehicle can stand, scored by C and finalists too: the choice
+    // is never dearer than the place beside the old rule's point (the surrogate's pattern
+    // search from it may end dearer by C).
+    let settled_references: Vec<Option<ScoredPoint>> = references
+        .iter()
+        .map(|&reference| standing.settle(reference).map(|point| scored.score(point)))
+        .collect();
     let field_scored: Vec<ScoredPoint> = field_anchors
         .iter()
         .filter_map(|&point| standing.settle(point))
@@ -321,9 +333,11 @@ pub fn search(
     let mut finalists: Vec<ScoredPoint> = distinct(refined, SAME_PLACE_M)
         .into_iter()
         .map(|point| scored.score(point.point))
+        .chain(settled_references.iter().flatten().copied())
         .filter(|point| point.cost_s.is_finite())
         .collect();
     finalists.sort_by(by_cost_then_place);
+    let finalists = distinct(finalists, SAME_PLACE_M);
     let polished = POLISHED.max(listed);
     let mut ranked: Vec<ScoredPoint> = Vec::with_capacity(finalists.len());
     for (index, finalist) in finalists.into_iter().enumerate() {
@@ -343,5 +357,6 @@ pub fn search(
         points,
         evaluations: scored.places.len(),
         reference_costs,
+        settled_references,
     })
 }

@@ -68,6 +68,19 @@ fn without_a_marker_the_point_is_chosen_and_saves_against_the_first_point_rule()
         (old - cost - auto["saving_s"].as_f64().unwrap()).abs() < 0.01,
         "{supply}"
     );
+    // The route begins on the crop: the old rule as an operator could follow it is the
+    // nearest place a vehicle can stand, never cheaper than the choice.
+    assert_eq!(auto["first_point_stands"], false, "{supply}");
+    let moved = &auto["first_point_moved"];
+    let [moved_x, moved_y] = [0, 1].map(|k| moved["point_m"][k].as_f64().unwrap());
+    assert!(!inside_a_field(moved_x, moved_y), "{supply}");
+    assert!(moved["saving_s"].as_f64().unwrap() >= 0.0, "{supply}");
+    assert!(
+        (moved["cost_s"].as_f64().unwrap() - cost - moved["saving_s"].as_f64().unwrap()).abs()
+            < 0.01,
+        "{supply}"
+    );
+    assert!(text.contains("from the nearest place one can"), "{text}");
     assert_eq!(auto["margin_m"], 5.0);
     assert_eq!(auto["reach_m"], 200.0);
     // The flight starts and ends there.
