@@ -17,8 +17,10 @@
 //!   grazing the ground costs less than one cutting through a hill and every optimizer is
 //!   pulled out of the terrain;
 //! - the ground the costs see is raised by the verdict's minimum clearance (plus the
-//!   raster's error, [`TrackScenario::cost_clearance`]) and every cylinder grown by the
-//!   vehicle's radius, so that the costs pull towards what the safety verdict accepts;
+//!   raster's error, [`TrackScenario::cost_clearance`]), and more where a slope or a bank
+//!   beside is nearer than that ([`TrackScenario::cost_ground`], decision 0032), and every
+//!   cylinder grown by the vehicle's radius, so that the costs pull towards what the safety
+//!   verdict accepts;
 //! - out of the height band: the integrated excursion (units × metres) divided by the
 //!   straight track's leg ([`TrackScenario::reference_leg`]), at the model's own factor for
 //!   a waypoint out of the band, so that an excursion held over one leg costs what the paper
@@ -45,7 +47,7 @@ impl AlongLegs {
     fn of(scenario: &TrackScenario, points: &[[f64; 3]]) -> Self {
         let mut sums = Self::default();
         for pair in points.windows(2) {
-            let excess = scenario.terrain.leg_excess(
+            let excess = scenario.cost_ground().leg_excess(
                 pair[0],
                 pair[1],
                 scenario.cost_clearance(),
@@ -393,8 +395,9 @@ fn seed002(scenario: &TrackScenario, points: &[[f64; 3]]) -> CostBreakdown {
     let mut boundary = 0.0;
     for (leg, point) in points.windows(2).zip(&points[1..]) {
         let clearance = scenario.cost_clearance();
-        let excess = scenario.terrain.leg_excess(leg[0], leg[1], clearance, None);
-        if excess.dips || point[2] < scenario.terrain.height(point[0], point[1]) + clearance {
+        let ground = scenario.cost_ground();
+        let excess = ground.leg_excess(leg[0], leg[1], clearance, None);
+        if excess.dips || point[2] < ground.height(point[0], point[1]) + clearance {
             terrain += PENALTY;
         }
         terrain += DEPTH_PENALTY * excess.under_ground;

@@ -275,7 +275,7 @@ impl<'a> ImprovedGenetic<'a> {
     /// Whether the leg a → b stays in the space and above the terrain.
     fn leg_is_clear(&self, a: [f64; 3], b: [f64; 3]) -> bool {
         self.scenario
-            .terrain
+            .cost_ground()
             .segment_clears(a, b, self.scenario.cost_clearance())
     }
 
@@ -286,7 +286,8 @@ impl<'a> ImprovedGenetic<'a> {
             && (min_y..=max_y).contains(&gene[1])
             && (low..=high).contains(&gene[2])
             && gene[2]
-                > self.scenario.terrain.height(gene[0], gene[1]) + self.scenario.cost_clearance()
+                > self.scenario.cost_ground().height(gene[0], gene[1])
+                    + self.scenario.cost_clearance()
     }
 
     /// Steps (1)-(4) of the heuristic multi-mutation, once.

@@ -86,7 +86,8 @@ impl<'a> Lattice<'a> {
                 let index = row * columns + column;
                 let (x, y) = (min_x + column as f64 * step, min_y + row as f64 * step);
                 let ground = scenario.terrain.height(x, y);
-                let preferred = preferred_altitude(scenario, ground);
+                // Above the ground raised beside steep banks (decision 0032).
+                let preferred = preferred_altitude(scenario, scenario.cost_ground().height(x, y));
                 let sea_level = match scenario.altitude_reference {
                     AltitudeReference::AboveGround => preferred + ground,
                     AltitudeReference::SeaLevel => preferred,
@@ -281,8 +282,7 @@ fn resample(scenario: &TrackScenario, polyline: &[[f64; 3]], count: usize) -> Ve
         };
         let (a, b) = (polyline[segment], polyline[segment + 1]);
         let (x, y) = (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
-        let ground = scenario.terrain.height(x, y);
-        let mut z = preferred_altitude(scenario, ground);
+        let mut z = preferred_altitude(scenario, scenario.cost_ground().height(x, y));
         if scenario.altitude_reference == AltitudeReference::SeaLevel
             && scenario.height_band.is_none()
         {

@@ -15,6 +15,7 @@
 //! of the walking.
 
 mod legs;
+mod raised;
 
 use crate::terrain::{Extent, Grid, Terrain};
 use crate::TerrainError;

@@ -159,7 +159,17 @@ pub struct TrackScenario {
     pub cruise_goal: [f64; 3],
     /// Runs the scenario's paper makes (seed 000's `algorithms.runs`), the default of `--runs`.
     pub paper_runs: Option<u64>,
+    /// The ground the costs keep their clearance from where a slope or a bank is nearer
+    /// sideways than the verdict's clearance allows (`terrain` raised,
+    /// [`HeightMap::raised_for_clearance`]; made by `validated` for the scenario's limits);
+    /// `None` where no slope is steep enough to matter, and the costs read `terrain`.
+    pub clearance_ground: Option<HeightMap>,
 }
+
+/// Metres the costs keep over the verdict's clearance: the raster's error (the orchard's
+/// raster is within 0.6 m of its formula; a DEM resampled at 2 m, within a few decimetres of
+/// its cells).
+pub const COST_ALLOWANCE_M: f64 = 0.6;
 
 /// The terrain a track is checked against: the formula of an analytic terrain, or a DEM on
 /// its own cells, never a coarser resample.
@@ -281,7 +291,13 @@ impl TrackScenario {
     /// verdict's minimum clearance plus the raster's error (the orchard's raster is within
     /// 0.6 m of its formula; a DEM resampled at 2 m, within a few decimetres of its cells).
     pub fn cost_clearance(&self) -> f64 {
-        self.limits.min_clearance_m + 0.6
+        self.limits.min_clearance_m + COST_ALLOWANCE_M
+    }
+
+    /// The ground the costs keep [`TrackScenario::cost_clearance`] from: the terrain raised
+    /// where a slope or a bank beside is nearer than the clearance (decision 0032).
+    pub fn cost_ground(&self) -> &HeightMap {
+        self.clearance_ground.as_ref().unwrap_or(&self.terrain)
     }
 
     /// The ground the flight is checked against, as a terrain (its bends sample a leg).
@@ -448,6 +464,39 @@ mod tests {
         assert_eq!(spso.area, (1.0, 1.0, 1045.0, 879.0));
         assert_eq!(spso.threats.len(), 6);
         assert_eq!((spso.population, spso.iterations), (500, 200));
+    }
+
+    #[test]
+    fn the_papers_terrains_keep_their_costs_and_a_large_clearance_raises_the_ground() {
+        // At the default 2 m the orchard's and the survey's slopes stay within the costs'
+        // allowance, so their tables are costed as the papers cost them; SPSO's island has
+        // cliffs steeper than 40°, where the costs now keep off the face (decision 0032).
+        assert!(TrackScenario::seed000("I")
+            .unwrap()
+            .clearance_ground
+            .is_none());
+        assert!(TrackScenario::seed002().unwrap().clearance_ground.is_none());
+        assert!(TrackScenario::spso().unwrap().clearance_ground.is_some());
+        let limits = |min_clearance_m| SafetyLimits {
+            min_clearance_m,
+            ..SafetyLimits::default()
+        };
+        let orchard = TrackScenario::seed000("I").unwrap();
+        let high = orchard.with_limits(limits(30.0)).unwrap();
+        let raised = high.clearance_ground.as_ref().expect("raised at 30 m");
+        // Never below the ground, and above it somewhere.
+        let (min_x, min_y, max_x, max_y) = high.area;
+        let mut most: f64 = 0.0;
+        for i in 0..=40 {
+            for j in 0..=40 {
+                let x = min_x + (max_x - min_x) * f64::from(i) / 40.0;
+                let y = min_y + (max_y - min_y) * f64::from(j) / 40.0;
+                let lift = raised.height(x, y) - high.terrain.height(x, y);
+                assert!(lift >= -1e-3, "({x}, {y}): {lift}");
+                most = most.max(lift);
+            }
+        }
+        assert!(most > 1.0, "{most}");
     }
 
     #[test]
