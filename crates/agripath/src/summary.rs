@@ -105,7 +105,18 @@ impl ScenarioSummary {
             markers: farm
                 .markers
                 .iter()
-                .map(|marker| format!("{} ({})", marker.name, marker.kind))
+                // What the plan makes of the point: a launch point, or its kind; a point
+                // with no kind reads "marker", not the features' default "field".
+                .map(|marker| {
+                    let role = if marker.is_launch() {
+                        "launch point"
+                    } else if marker.kind == "field" {
+                        "marker"
+                    } else {
+                        marker.kind.as_str()
+                    };
+                    format!("{} ({role})", marker.name)
+                })
                 .collect(),
             total_area_m2: farm.total_area_m2(),
             farm_bounds_m: [

@@ -299,6 +299,11 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                         let kind = folder_kind(&content);
                         if let (Some(kind), Some(last)) = (kind, folders.last_mut()) {
                             *last = kind;
+                        } else if sounds_like_keep_out(&content) {
+                            skipped.push(format!(
+                                "Folder '{}' is read as fields, and its polygons are sprayed: if they are places not to spray, name the folder 'Obstacles' or give each placemark kind = obstacle",
+                                content.trim()
+                            ));
                         }
                     }
                     "value" | "SimpleData"
@@ -432,32 +437,44 @@ fn local_name(bytes: &[u8]) -> String {
 }
 
 /// What a Folder's name says its Placemarks are. Operators name such folders in their own
-/// words ("Obstacles", "No-spray zones", "Exclusions", "Keep out"): the name's letters, case
-/// aside, must be one of these whole, so that "Excluded blocks" or "Obstacle-free fields" stay
-/// fields.
+/// words ("Obstacles", "No-spray zones", "Exclusion zone", "Keep-out areas", "Trees",
+/// "Do not spray"): the name's words, case and punctuation aside and without a last
+/// "zone(s)", "area(s)" or "region(s)", must be one of these whole, so that "Excluded blocks",
+/// "Tree farm" or "Obstacle-free fields" stay fields.
 fn folder_kind(name: &str) -> Option<FolderKind> {
-    let letters: String = name
-        .chars()
-        .filter(|c| c.is_alphanumeric())
-        .flat_map(char::to_lowercase)
-        .collect();
-    const OBSTACLE_NAMES: [&str; 16] = [
+    let mut words = words_of(name);
+    if words.len() > 1
+        && matches!(
+            words.last().map(String::as_str),
+            Some("zone" | "zones" | "area" | "areas" | "region" | "regions")
+        )
+    {
+        words.pop();
+    }
+    let letters: String = words.concat();
+    const OBSTACLE_NAMES: [&str; 22] = [
         "obstacle",
         "obstacles",
         "nospray",
-        "nosprayzone",
-        "nosprayzones",
-        "nosprayarea",
-        "nosprayareas",
+        "donotspray",
+        "dontspray",
         "exclusion",
         "exclusions",
-        "exclusionzones",
+        "exclude",
         "keepout",
-        "keepoutzone",
-        "keepoutzones",
         "nofly",
-        "noflyzone",
-        "noflyzones",
+        "donotfly",
+        "nogo",
+        "hazard",
+        "hazards",
+        "tree",
+        "trees",
+        "building",
+        "buildings",
+        "avoid",
+        "buffer",
+        "buffers",
+        "restricted",
     ];
     const ACCESS_NAMES: [&str; 4] = ["access", "accessroads", "accesstracks", "roads"];
     if OBSTACLE_NAMES.contains(&letters.as_str()) {
@@ -467,6 +484,40 @@ fn folder_kind(name: &str) -> Option<FolderKind> {
     } else {
         None
     }
+}
+
+/// A folder name's words, lower case, without punctuation.
+fn words_of(name: &str) -> Vec<String> {
+    name.split(|c: char| !c.is_alphanumeric())
+        .filter(|word| !word.is_empty())
+        .map(str::to_lowercase)
+        .collect()
+}
+
+/// Whether a folder read as fields has a name that sounds like a place not to spray (a word
+/// of warning in it), for a note: its polygons are planned and sprayed.
+fn sounds_like_keep_out(name: &str) -> bool {
+    const WARNING_WORDS: [&str; 16] = [
+        "no",
+        "not",
+        "dont",
+        "avoid",
+        "keep",
+        "exclusion",
+        "exclude",
+        "hazard",
+        "danger",
+        "restricted",
+        "buffer",
+        "obstacle",
+        "obstacles",
+        "tree",
+        "trees",
+        "protected",
+    ];
+    words_of(name)
+        .iter()
+        .any(|word| WARNING_WORDS.contains(&word.as_str()))
 }
 
 /// KML `coordinates`: tuples `lon,lat[,alt]` separated by white space.
@@ -615,6 +666,14 @@ mod tests {
             "Exclusions",
             "KEEP OUT",
             "No fly",
+            // The fourth trial's names, read as fields until 2026-12-07.
+            "Exclusion zone",
+            "Keep-out areas",
+            "Hazards",
+            "Trees",
+            "Do not spray",
+            "Buffer zones",
+            "Avoid",
         ] {
             assert_eq!(folder_kind(name), Some(FolderKind::Obstacles), "{name}");
         }
@@ -625,8 +684,31 @@ mod tests {
             "Spray",
             "Excluded blocks",
             "Obstacle-free fields",
+            "Tree farm",
+            "Zone 3",
         ] {
             assert_eq!(folder_kind(name), None, "{name}");
         }
+        // A folder read as fields whose name warns gets a note, and its polygons stay fields.
+        let kml = |folder: &str| {
+            format!(
+                r#"<kml><Document><Folder><name>{folder}</name><Placemark><name>B</name><Polygon><outerBoundaryIs><LinearRing><coordinates>
+                8.50,47.30 8.51,47.30 8.51,47.31 8.50,47.30</coordinates></LinearRing></outerBoundaryIs></Polygon></Placemark></Folder></Document></kml>"#
+            )
+        };
+        let (_, notes) = read_features(&kml("Obstacle-free fields")).unwrap();
+        assert!(
+            notes
+                .iter()
+                .any(|note| note.contains("'Obstacle-free fields' is read as fields")),
+            "{notes:?}"
+        );
+        let (_, notes) = read_features(&kml("North farm")).unwrap();
+        assert!(notes.is_empty(), "{notes:?}");
+        // Fields whose folder name has a word of warning get a note.
+        assert!(sounds_like_keep_out("Obstacle-free fields"));
+        assert!(sounds_like_keep_out("Do not enter"));
+        assert!(!sounds_like_keep_out("North farm"));
+        assert!(!sounds_like_keep_out("Excluded blocks"));
     }
 }

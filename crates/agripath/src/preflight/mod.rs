@@ -116,8 +116,8 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         1.0,
         MIN_GROUND_CLEARANCE_M,
     );
-    let mut no_go = Tally::new("holes and obstacles", "≤", 0.0, "samples inside");
-    let mut fence = Tally::new("fence", "≤", 0.0, "samples outside");
+    let mut no_go = Tally::new("holes and obstacles", "≤", 0.0, "samples inside").counting();
+    let mut fence = Tally::new("fence", "≤", 0.0, "samples outside").counting();
     let mut tank = Tally::new("tank", "≤", 1.0, "tanks");
     // A sortie may not fly into the share of the battery the operator lands with.
     let usable_battery = vehicle.usable_battery_s() / vehicle.battery_endurance_s;

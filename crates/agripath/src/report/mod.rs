@@ -91,8 +91,10 @@ pub struct Report {
     /// (seed 001 eq. 8), metres; a transfer that a return to the supply point replaces is not
     /// flown and not counted.
     pub transfer_length_m: f64,
-    /// What the sequencer minimised: from the launch point through every pass (no leg home),
-    /// or the closed tour for a free start (seed 001 Table 8's measure), metres.
+    /// What the sequencer minimised, over the order before it is split into sorties: from
+    /// the launch point through every pass and home, or the open path's transfers with no
+    /// launch point (decision 0018), metres. The transfers a return replaces are in it but not
+    /// flown, so with sorties it exceeds `transfer_length_m`.
     pub tour_cost_m: f64,
     /// Number of legs flown: from the launch point, between passes, home.
     pub transfers: usize,

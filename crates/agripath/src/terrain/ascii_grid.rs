@@ -129,7 +129,13 @@ pub fn parse(text: &str) -> Result<Grid, Located> {
         } else if value.is_finite() {
             heights.push(value as f32);
         } else {
-            return Err((place(), Fault::NonFinite));
+            // A height, not a coordinate: say so, and how to mark a gap.
+            return Err((
+                place(),
+                Fault::Structure(format!(
+                    "height '{token}' is not a finite number (mark a cell with no height by the header's NODATA_value)"
+                )),
+            ));
         }
     }
     if heights.len() != columns * rows {

@@ -115,13 +115,20 @@ struct Reprojected {
 /// Longest piece of a leg carried into a reprojected DEM's coordinates as a straight line.
 const BEND_PIECE_M: f64 = 200.0;
 
-impl Terrain for Reprojected {
-    fn height_m(&self, x: f64, y: f64) -> Result<f64, TerrainError> {
+impl Reprojected {
+    /// A place of the plan's frame in the DEM's coordinates.
+    fn to_dem(&self, x: f64, y: f64) -> (f64, f64) {
         let (lon, lat) = from_utm(x, y, self.plan_zone);
-        let (dem_x, dem_y) = match self.dem {
+        match self.dem {
             DemCoordinates::LonLat => (lon, lat),
             DemCoordinates::Utm(zone) => to_utm(lon, lat, zone),
-        };
+        }
+    }
+}
+
+impl Terrain for Reprojected {
+    fn height_m(&self, x: f64, y: f64) -> Result<f64, TerrainError> {
+        let (dem_x, dem_y) = self.to_dem(x, y);
         // The fault at the plan's place, of the same kind: a gap inside the DEM is no data,
         // not outside it (its message names the DEM's extent).
         self.grid
@@ -145,13 +152,7 @@ impl Terrain for Reprojected {
     /// a long leg (the test below: a 3 km leg over a lon/lat DEM carried whole missed its
     /// lowest ground by 2 cm).
     fn bends_along(&self, from: (f64, f64), to: (f64, f64)) -> Vec<f64> {
-        let to_dem = |(x, y): (f64, f64)| {
-            let (lon, lat) = from_utm(x, y, self.plan_zone);
-            match self.dem {
-                DemCoordinates::LonLat => (lon, lat),
-                DemCoordinates::Utm(zone) => to_utm(lon, lat, zone),
-            }
-        };
+        let to_dem = |(x, y): (f64, f64)| self.to_dem(x, y);
         let length = (to.0 - from.0).hypot(to.1 - from.1);
         let pieces = (length / BEND_PIECE_M).ceil().max(1.0) as usize;
         let along = |t: f64| (from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1));
@@ -180,8 +181,36 @@ impl Terrain for Reprojected {
         )
     }
 
-    fn height_range_m(&self, _within: Extent) -> Option<(f64, f64)> {
-        self.grid.stored_range()
+    /// The DEM's range over the cells within the box that holds `within` carried into the
+    /// DEM's coordinates (its outline sampled: the box of a rotated, curved rectangle), a
+    /// little wider than `within`, never narrower. Until 2026-12-07 this was the whole DEM's
+    /// range, so `validate` gave every field the same (the fourth trial).
+    fn height_range_m(&self, within: Extent) -> Option<(f64, f64)> {
+        let to_dem = |x: f64, y: f64| self.to_dem(x, y);
+        let steps = 16;
+        let outline = (0..=steps).flat_map(|k| {
+            let t = f64::from(k) / f64::from(steps);
+            let (x, y) = (
+                within.min_x + t * within.width(),
+                within.min_y + t * within.height(),
+            );
+            [
+                to_dem(x, within.min_y),
+                to_dem(x, within.max_y),
+                to_dem(within.min_x, y),
+                to_dem(within.max_x, y),
+            ]
+        });
+        // A cell more each way: heights read between the box's outer centres blend the
+        // centres just beyond it.
+        let inner = bounding_box(outline)?;
+        let (cell_x, cell_y) = (self.grid.cell_x.abs(), self.grid.cell_y.abs());
+        self.grid.height_range_m(Extent {
+            min_x: inner.min_x - cell_x,
+            min_y: inner.min_y - cell_y,
+            max_x: inner.max_x + cell_x,
+            max_y: inner.max_y + cell_y,
+        })
     }
 }
 
@@ -264,5 +293,59 @@ mod tests {
             found.0 <= fine.0 + 0.01 && found.1 >= fine.1 - 0.01,
             "{found:?} {fine:?}"
         );
+    }
+
+    /// A field's height range over a lon/lat DEM is the range under the field, not the whole
+    /// DEM's (the fourth trial's `validate` gave every field −40..140 m): it holds every
+    /// height sampled over the field, and is far narrower than the DEM's.
+    #[test]
+    fn the_range_over_a_reprojected_dem_is_the_ground_under_the_extent() {
+        let (columns, rows) = (200, 200);
+        let cell = 0.0003;
+        let grid = Grid {
+            columns,
+            rows,
+            first_center_x: 126.60,
+            first_center_y: 45.78,
+            cell_x: cell,
+            cell_y: cell,
+            heights: (0..rows * columns)
+                .map(|index| (index % columns) as f32 + (index / columns) as f32)
+                .collect(),
+            epsg: Some(4326),
+            source: "lon/lat ramp".into(),
+        };
+        let whole = grid.stored_range().unwrap();
+        let zone = UtmZone::containing(126.63, 45.75);
+        let terrain = place(grid, CoordinateSystem::Utm(zone)).unwrap();
+        let centre = terrain.extent().unwrap();
+        let (x, y) = (
+            0.5 * (centre.min_x + centre.max_x),
+            0.5 * (centre.min_y + centre.max_y),
+        );
+        let field = Extent {
+            min_x: x - 100.0,
+            min_y: y - 100.0,
+            max_x: x + 100.0,
+            max_y: y + 100.0,
+        };
+        let (low, high) = terrain.height_range_m(field).unwrap();
+        assert!(
+            high - low < 0.1 * (whole.1 - whole.0),
+            "{low}..{high} of {whole:?}"
+        );
+        for k in 0..=20 {
+            for j in 0..=20 {
+                let (px, py) = (
+                    field.min_x + 10.0 * f64::from(k),
+                    field.min_y + 10.0 * f64::from(j),
+                );
+                let height = terrain.height_m(px, py).unwrap();
+                assert!(
+                    (low..=high).contains(&height),
+                    "{height} outside {low}..{high}"
+                );
+            }
+        }
     }
 }

@@ -84,27 +84,12 @@ impl PlannerRuns {
     }
 }
 
-/// Track points closer than this, metres, are one waypoint (the files give places to ~0.1 mm
-/// and altitudes to 1 mm).
-const SAME_PLACE_M: f64 = 0.01;
-
 /// Mission waypoints of a whole track: takeoff at the start, climbing to the cruise's first
-/// altitude (vertically above the start), the cruise's points (at most 100, evenly thinned for
-/// a smoothed curve), the point above the goal, land at the goal; altitudes above sea level.
+/// altitude (vertically above the start), the cruise's waypoints as
+/// [`super::flown::mission_cruise`] keeps them, the last above the goal, and land at the goal
+/// (a vertical descent: ArduPilot flies a NAV_LAND's place at the altitude it has, so the
+/// point above the goal is always a waypoint of its own); altitudes above sea level.
 pub fn mission(scenario: &TrackScenario, track: &[[f64; 3]]) -> String {
-    let (cruise, _) = scenario.cruise_of(track);
-    // Each place once: a lattice path or a smoothed curve may repeat a point (a clamped
-    // spline's ends, a knot the refinement left in place), which would be a waypoint flown
-    // to where the drone already is.
-    let mut points: Vec<[f64; 3]> = Vec::with_capacity(cruise.len());
-    for &point in cruise {
-        let repeated = points.last().is_some_and(|last: &[f64; 3]| {
-            (0..3).map(|k| (point[k] - last[k]).powi(2)).sum::<f64>() < SAME_PLACE_M * SAME_PLACE_M
-        });
-        if !repeated {
-            points.push(point);
-        }
-    }
     let item = |action: Action, p: [f64; 3]| {
         let (lon, lat) = scenario.lon_lat(p[0], p[1]);
         let ground = scenario.terrain.height(p[0], p[1]);
@@ -116,24 +101,23 @@ pub fn mission(scenario: &TrackScenario, track: &[[f64; 3]]) -> String {
             above_ground_m: p[2] - ground,
         }
     };
-    let stride = points.len().div_ceil(100).max(1);
+    let cruise = super::flown::mission_cruise(scenario, track);
     // A takeoff item climbs above its own position to its altitude.
-    let mut items = vec![item(Action::Takeoff, points[0])];
-    for (index, &p) in points.iter().enumerate().skip(1) {
-        if index + 1 == points.len() {
-            break;
-        }
-        if index % stride == 0 {
-            items.push(item(Action::Waypoint, p));
-        }
+    let mut items = vec![item(Action::Takeoff, cruise[0])];
+    for &point in &cruise[1..] {
+        items.push(item(Action::Waypoint, point));
     }
-    let last = points[points.len() - 1];
-    if scenario.lands() {
-        items.push(item(Action::Waypoint, last));
-        items.push(item(Action::Land, track[track.len() - 1]));
-    } else {
-        items.push(item(Action::Land, last));
-    }
+    let last = cruise[cruise.len() - 1];
+    // The landing's row gives where it ends: the goal, or the ground beneath the last point
+    // when the goal is in the air (ArduPilot ignores a NAV_LAND's altitude).
+    items.push(item(
+        Action::Land,
+        if scenario.lands() {
+            track[track.len() - 1]
+        } else {
+            [last[0], last[1], scenario.terrain.height(last[0], last[1])]
+        },
+    ));
     let mission = SortieMission {
         sortie: 1,
         // Home is the ground under the start (the start itself when the track takes off

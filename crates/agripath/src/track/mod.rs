@@ -10,6 +10,7 @@ pub mod bspline;
 pub mod cost;
 pub mod encoding;
 pub mod files;
+pub mod flown;
 pub mod height_map;
 pub mod improved_genetic;
 pub mod lattice;

@@ -13,6 +13,7 @@ use swarm::{Algorithm, ContinuousOptimizer, Record, Runner, Termination};
 use super::bspline;
 use super::cost::CostBreakdown;
 use super::encoding::Encoding;
+use super::flown;
 use super::improved_genetic::{ImprovedGenetic, ImprovedGeneticParameters};
 use super::problem::TrackProblem;
 use super::refine::LatticeRefine;
@@ -263,7 +264,8 @@ pub fn plan(
                 points.dedup_by(|a, b| a == b && *a == goal);
             }
             let cost = scenario.evaluate(&points);
-            let verdict = safety::check(scenario, &points);
+            // The track as its mission file flies it (`flown`), not the planner's polyline.
+            let verdict = safety::check(scenario, &flown::as_flown(scenario, &points));
             let smoothed = (settings.planner == Planner::ImprovedGenetic)
                 .then(|| smooth_safely(scenario, &points));
             TrackRun {
@@ -310,7 +312,7 @@ fn smooth_safely(scenario: &TrackScenario, track: &[[f64; 3]]) -> Smoothed {
         let curve = scenario.whole_track(&curve);
         let smoothed = Smoothed {
             cost: scenario.evaluate(&curve),
-            verdict: safety::check(scenario, &curve),
+            verdict: safety::check(scenario, &flown::as_flown(scenario, &curve)),
             points: curve,
             splits,
         };
@@ -411,7 +413,10 @@ mod tests {
             ] {
                 let runs = plan(&scenario, &settings(planner, 4000), &|| {}).unwrap();
                 for run in &runs {
-                    assert_eq!(run.verdict, safety::check(&scenario, &run.points));
+                    assert_eq!(
+                        run.verdict,
+                        safety::check(&scenario, &flown::as_flown(&scenario, &run.points))
+                    );
                     assert_eq!(
                         run.points.first(),
                         Some(&scenario.sea_level(scenario.start))
@@ -426,7 +431,10 @@ mod tests {
                         );
                     }
                     if let Some(smoothed) = &run.smoothed {
-                        assert_eq!(smoothed.verdict, safety::check(&scenario, &smoothed.points));
+                        assert_eq!(
+                            smoothed.verdict,
+                            safety::check(&scenario, &flown::as_flown(&scenario, &smoothed.points))
+                        );
                     }
                 }
             }

@@ -834,8 +834,9 @@ fn track_writes_safe_tracks_missions_and_pictures_and_repeats_byte_for_byte() {
     let waypoints = std::fs::read_to_string(first.join("lattice.waypoints")).unwrap();
     assert!(waypoints.starts_with("QGC WPL 110\n"));
     // Home, takeoff, 8 waypoints (the cruise's 12 points less 4 that repeat the one before:
-    // each place once, decision 0022), land.
-    assert_eq!(waypoints.lines().count(), 1 + 1 + 1 + 8 + 1);
+    // each place once, decision 0022), the last above the goal, land there (ArduPilot flies a
+    // NAV_LAND's place at the altitude it has: decision 0033).
+    assert_eq!(waypoints.lines().count(), 1 + 1 + 1 + 8 + 1 + 1);
     let geojson: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(first.join("track.geojson")).unwrap())
             .unwrap();

@@ -262,6 +262,35 @@ impl TrackScenario {
         }
     }
 
+    /// The planar point at a longitude and latitude: [`TrackScenario::lon_lat`] inverted
+    /// (for reading a written mission back).
+    pub fn from_lon_lat(&self, lon: f64, lat: f64) -> (f64, f64) {
+        match self.georeference {
+            Georeference::Local {
+                lon: origin_lon,
+                lat: origin_lat,
+            } => {
+                let zone = UtmZone::containing(origin_lon, origin_lat);
+                let (origin_e, origin_n) = crate::geometry::to_utm(origin_lon, origin_lat, zone);
+                let (easting, northing) = crate::geometry::to_utm(lon, lat, zone);
+                (easting - origin_e, northing - origin_n)
+            }
+            Georeference::Utm { zone } => crate::geometry::to_utm(lon, lat, zone),
+            Georeference::Pixels {
+                zone,
+                easting,
+                northing,
+                pixel_m,
+            } => {
+                let (e, n) = crate::geometry::to_utm(lon, lat, zone);
+                (
+                    (e - easting) / pixel_m + 0.5,
+                    (northing - n) / pixel_m + 0.5,
+                )
+            }
+        }
+    }
+
     /// A planar point as the scenario's input gave it: longitude/latitude for a scenario in
     /// lon/lat, the scenario's own x, y otherwise.
     pub fn to_input(&self, x: f64, y: f64) -> (f64, f64) {

@@ -76,13 +76,33 @@ pub(in crate::track) fn validated(mut scenario: TrackScenario) -> Result<TrackSc
         .map_or(0.0, |(low, _)| low)
         .max(scenario.limits.min_clearance_m);
     let mut ends = [scenario.start, scenario.goal];
+    // Places as the scenario's input gave them: lon/lat for a lon/lat scenario, not the
+    // planning frame's UTM metres (the fourth trial read its goal back in metres it never
+    // wrote).
+    let input_place = |x: f64, y: f64| {
+        let (a, b) = scenario.to_input(x, y);
+        if scenario.is_local() {
+            format!("({a}, {b})")
+        } else {
+            format!("(lon {a:.7}, lat {b:.7})")
+        }
+    };
+    let area = if scenario.is_local() {
+        format!("[{min_x}, {max_x}] × [{min_y}, {max_y}]")
+    } else {
+        format!(
+            "from {} to {}, the terrain model less margin_m",
+            input_place(min_x, min_y),
+            input_place(max_x, max_y)
+        )
+    };
     for (what, point) in ["start", "goal"].into_iter().zip(ends.iter_mut()) {
-        let place = format!("({}, {})", point[0], point[1]);
+        let place = input_place(point[0], point[1]);
         if !(min_x..=max_x).contains(&point[0]) || !(min_y..=max_y).contains(&point[1]) {
             return Err(Fault::InvalidValue {
                 what: what.into(),
                 value: place,
-                why: format!("outside the planning area [{min_x}, {max_x}] × [{min_y}, {max_y}]"),
+                why: format!("outside the planning area {area}"),
             });
         }
         if let Some((index, threat)) = scenario.threats.iter().enumerate().find(|(_, threat)| {
@@ -92,10 +112,11 @@ pub(in crate::track) fn validated(mut scenario: TrackScenario) -> Result<TrackSc
                 what: what.into(),
                 value: place,
                 why: format!(
-                    "inside threat cylinder {} (centre ({}, {}), radius {}, plus the vehicle's {} m)",
+                    "inside threat cylinder {} (centre {}, radius {} m, plus the vehicle's {} m)",
                     index + 1,
-                    threat.x,
-                    threat.y, threat.radius, scenario.limits.vehicle_radius_m
+                    input_place(threat.x, threat.y),
+                    threat.radius * scenario.unit_m,
+                    scenario.limits.vehicle_radius_m
                 ),
             });
         }
@@ -110,7 +131,7 @@ pub(in crate::track) fn validated(mut scenario: TrackScenario) -> Result<TrackSc
         if above < -1e-6 {
             return Err(Fault::InvalidValue {
                 what: what.into(),
-                value: format!("({}, {}, {})", point[0], point[1], point[2]),
+                value: format!("{} at {} m", input_place(point[0], point[1]), point[2]),
                 why: format!("{:.2} m under the terrain", -above),
             });
         }
