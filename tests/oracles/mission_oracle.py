@@ -9,7 +9,8 @@ matching `.plan` must hold the same commands, frames and parameters. A field ove
 cell wide, in a grid this script writes, is flown leg by leg against the script's own
 interpolation of that grid (`cliff_flown`). A point-to-point track
 over SPSO's DEM is loaded the same way, and its start and goal must sit where PROJ puts the
-DEM's pixels (EPSG:28348 → GDA94 longitude/latitude).
+DEM's pixels (EPSG:28348 → GDA94 longitude/latitude); a track to a goal above a cliff's top,
+over a grid written here, is flown item by item as ArduCopter flies it (`track_landing_flown`).
 
 Run: python tests/oracles/mission_oracle.py target/debug/agripath
 """
@@ -87,6 +88,26 @@ def check_folder(folder, frames, with_plan=True):
                   f"{name}: item {index + 1} params {plan_item['params']} vs {params}")
 
 
+def bilinear(heights, first_x, first_y, cell):
+    """The bilinear surface through a grid's cell centres (row 0 the southernmost, the first
+    centre at (first_x, first_y)), held flat beyond the outer centres: this script's own reading
+    of the grids it writes."""
+    import numpy
+
+    rows, columns = heights.shape
+
+    def ground(x, y):
+        u = numpy.clip((x - first_x) / cell, 0, columns - 1)
+        v = numpy.clip((y - first_y) / cell, 0, rows - 1)
+        i = numpy.minimum(numpy.floor(u).astype(int), columns - 2)
+        j = numpy.minimum(numpy.floor(v).astype(int), rows - 2)
+        fu, fv = u - i, v - j
+        return (heights[j, i] * (1 - fu) * (1 - fv) + heights[j, i + 1] * fu * (1 - fv)
+                + heights[j + 1, i] * (1 - fu) * fv + heights[j + 1, i + 1] * fu * fv)
+
+    return ground
+
+
 def cliff_flown(scratch):
     """Plans a field over a 12 m step one 4 m cell wide, in local metres over an ESRI grid
     written here, and flies every spray leg of the `.waypoints` against numpy's bilinear
@@ -120,14 +141,7 @@ def cliff_flown(scratch):
                     "--heading", "85", "--out", out],
                    check=True, stdout=subprocess.DEVNULL)
 
-    def ground(x, y):
-        u = numpy.clip((x - centres_x[0]) / cell, 0, columns - 1)
-        v = numpy.clip((y - centres_y[0]) / cell, 0, rows - 1)
-        i = numpy.minimum(numpy.floor(u).astype(int), columns - 2)
-        j = numpy.minimum(numpy.floor(v).astype(int), rows - 2)
-        fu, fv = u - i, v - j
-        return (heights[j, i] * (1 - fu) * (1 - fv) + heights[j, i + 1] * fu * (1 - fv)
-                + heights[j + 1, i] * (1 - fu) * fv + heights[j + 1, i + 1] * fu * fv)
+    ground = bilinear(heights, centres_x[0], centres_y[0], cell)
 
     to_utm = Transformer.from_crs("EPSG:4326", "EPSG:32652", always_xy=True)
     east0, north0 = to_utm.transform(126.63, 45.75)
@@ -162,6 +176,72 @@ def cliff_flown(scratch):
     check(worst_error <= 1.0 + 0.02, f"cliff: a spray leg flies {worst_error:.3f} m off the 2 m spray height")
     check(lowest >= 0.5 - 0.02, f"cliff: a leg flies {lowest:.3f} m above the ground")
     print(f"cliff: {legs} spray legs, worst {worst_error:.3f} m off spray height, lowest {lowest:.3f} m above the ground")
+
+
+def track_landing_flown(scratch):
+    """A track from below a 60 m cliff to a goal 50 m above its top (above the band's floor,
+    so no vertical leg is planned there), over an ESRI grid written here in local metres. Each
+    written `.waypoints` is flown as ArduCopter flies it: NAV_TAKEOFF climbs at home, a
+    NAV_WAYPOINT is flown straight, a NAV_LAND flies to its place at the altitude it has and
+    then descends (`ModeAuto::do_land`). Every airborne leg, sampled every 0.5 m against this
+    script's bilinear interpolation of the grid, keeps the 2 m minimum clearance above the
+    ground (decision 0033: the file used to end on a NAV_LAND from the last cruise waypoint,
+    flown level into the cliff)."""
+    import numpy
+    from pyproj import Transformer
+
+    columns, rows, cell = 240, 160, 5.0
+    centres_x = (numpy.arange(columns) + 0.5) * cell
+    centres_y = (numpy.arange(rows) + 0.5) * cell
+    heights = 20.0 + 60.0 * (centres_x[None, :] > 600.0) + 0.0 * centres_y[:, None]
+    folder = os.path.join(scratch, "track-cliff")
+    os.makedirs(folder)
+    with open(os.path.join(folder, "cliff.asc"), "w") as handle:
+        handle.write(f"ncols {columns}\nnrows {rows}\nxllcorner 0\nyllcorner 0\ncellsize {cell}\nNODATA_value -9999\n")
+        for row in heights[::-1]:
+            handle.write(" ".join(f"{value:.3f}" for value in row) + "\n")
+    with open(os.path.join(folder, "track.toml"), "w") as handle:
+        handle.write('name = "to the cliff top"\ncrs = "local"\nterrain = { kind = "file", path = "cliff.asc" }\n'
+                     'origin = [173.2, -41.3]\nstart = [250, 200, 20]\ngoal = [900, 600, 50]\n'
+                     'height_band_m = [20, 120]\nfree_waypoints = 8\nmargin_m = 50\npopulation = 60\n'
+                     'iterations = 60\nthreats = []\n')
+    out = os.path.join(folder, "out")
+    subprocess.run([AGRIPATH, "track", os.path.join(folder, "track.toml"), "--algorithm", "pso,ga,lattice",
+                    "--runs", "1", "--out", out], check=True, stdout=subprocess.DEVNULL)
+
+    ground = bilinear(heights, centres_x[0], centres_y[0], cell)
+
+    zone = int((173.2 + 180) // 6) + 1
+    to_utm = Transformer.from_crs("EPSG:4326", f"EPSG:{32700 + zone}", always_xy=True)
+    east0, north0 = to_utm.transform(173.2, -41.3)
+    files = sorted(glob.glob(os.path.join(out, "*.waypoints")))
+    check(len(files) >= 2, f"track to the cliff top: {len(files)} tracks written")
+    for path in files:
+        loader = mavwp.MAVWPLoader()
+        loader.load(path)
+        items = [loader.wp(index) for index in range(loader.count())]
+
+        def place(item):
+            east, north = to_utm.transform(item.y, item.x)
+            return east - east0, north - north0
+
+        home = items[0]
+        here = (*place(home), home.z)
+        lowest = math.inf
+        for item in items[1:]:
+            x, y = place(item)
+            if item.command == 22:
+                here = (here[0], here[1], item.z)
+                continue
+            to = (x, y, here[2]) if item.command == 21 else (x, y, item.z)
+            length = math.hypot(to[0] - here[0], to[1] - here[1])
+            t = numpy.linspace(0.0, 1.0, max(2, int(length / 0.5) + 1))
+            above = here[2] + t * (to[2] - here[2]) - ground(here[0] + t * (to[0] - here[0]), here[1] + t * (to[1] - here[1]))
+            lowest = min(lowest, float(above.min()))
+            here = to
+        check(items[-1].command == 21, f"{os.path.basename(path)}: ends on NAV_LAND")
+        check(lowest >= 2.0 - 0.01, f"track to the cliff top {os.path.basename(path)}: flown {lowest:.2f} m above the ground")
+        print(f"track to the cliff top {os.path.basename(path)}: lowest {lowest:.2f} m above the ground as ArduCopter flies it")
 
 
 with tempfile.TemporaryDirectory() as scratch:
@@ -228,6 +308,7 @@ with tempfile.TemporaryDirectory() as scratch:
     # against this script's own bilinear interpolation of the grid (decision 0028: 1 m samples
     # had passed a leg 1.08 m off spray height, beyond the 1 m tolerance).
     cliff_flown(scratch)
+    track_landing_flown(scratch)
 
 print(f"missions: {passed} passed, {failed} failed")
 sys.exit(1 if failed else 0)

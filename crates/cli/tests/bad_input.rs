@@ -833,7 +833,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             terrain_info("nan.asc"),
             bad("nan.asc"),
-            "row 1, column 2: coordinate is not a finite number",
+            "row 1, column 2: height 'nan' is not a finite number",
         ),
         (
             terrain_info("no_cellsize.asc"),

@@ -243,31 +243,33 @@ mod tests {
     use super::*;
     use crate::geometry::{to_utm, UtmZone};
 
+    /// A 200 × 200 lon/lat DEM of 0.0003° cells near 126.6°E, 45.8°N, heights by row and column.
+    fn lon_lat_grid(source: &str, height: impl Fn(usize, usize) -> f32) -> Grid {
+        let (columns, rows) = (200, 200);
+        Grid {
+            columns,
+            rows,
+            first_center_x: 126.60,
+            first_center_y: 45.78,
+            cell_x: 0.0003,
+            cell_y: 0.0003,
+            heights: (0..rows * columns)
+                .map(|index| height(index / columns, index % columns))
+                .collect(),
+            epsg: Some(4326),
+            source: source.into(),
+        }
+    }
+
     /// A lon/lat DEM under fields planned in UTM, rough (cells 0, 8 or 16 m apart), with a step of 30 m between two rows of
     /// cells: along a leg 3 km long, the places `profile_places` samples find the highest and
     /// lowest ground that 30,000 even samples find, to a centimetre (the leg is carried into
     /// lon/lat in pieces of 200 m; whole, its chord strays 20 cm from the leg).
     #[test]
     fn bends_of_a_long_leg_over_a_lon_lat_dem_are_found() {
-        let (columns, rows) = (200, 200);
-        let cell = 0.0003;
-        let grid = Grid {
-            columns,
-            rows,
-            first_center_x: 126.60,
-            first_center_y: 45.78,
-            cell_x: cell,
-            cell_y: cell,
-            heights: (0..rows * columns)
-                .map(|index| {
-                    let (row, column) = (index / columns, index % columns);
-                    (if row < 100 { 30.0 } else { 0.0 })
-                        + 8.0 * ((row * 7 + column * 13) % 3) as f32
-                })
-                .collect(),
-            epsg: Some(4326),
-            source: "lon/lat step".into(),
-        };
+        let grid = lon_lat_grid("lon/lat step", |row, column| {
+            (if row < 100 { 30.0 } else { 0.0 }) + 8.0 * ((row * 7 + column * 13) % 3) as f32
+        });
         let zone = UtmZone::containing(126.63, 45.75);
         let terrain = place(grid, CoordinateSystem::Utm(zone)).unwrap();
         let from = to_utm(126.605, 45.735, zone);
@@ -300,21 +302,7 @@ mod tests {
     /// height sampled over the field, and is far narrower than the DEM's.
     #[test]
     fn the_range_over_a_reprojected_dem_is_the_ground_under_the_extent() {
-        let (columns, rows) = (200, 200);
-        let cell = 0.0003;
-        let grid = Grid {
-            columns,
-            rows,
-            first_center_x: 126.60,
-            first_center_y: 45.78,
-            cell_x: cell,
-            cell_y: cell,
-            heights: (0..rows * columns)
-                .map(|index| (index % columns) as f32 + (index / columns) as f32)
-                .collect(),
-            epsg: Some(4326),
-            source: "lon/lat ramp".into(),
-        };
+        let grid = lon_lat_grid("lon/lat ramp", |row, column| (row + column) as f32);
         let whole = grid.stored_range().unwrap();
         let zone = UtmZone::containing(126.63, 45.75);
         let terrain = place(grid, CoordinateSystem::Utm(zone)).unwrap();
