@@ -299,7 +299,9 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                         let kind = folder_kind(&content);
                         if let (Some(kind), Some(last)) = (kind, folders.last_mut()) {
                             *last = kind;
-                        } else if sounds_like_keep_out(&content) {
+                        } else if folders.last() == Some(&FolderKind::Plain)
+                            && sounds_like_keep_out(&content)
+                        {
                             skipped.push(format!(
                                 "Folder '{}' is read as fields, and its polygons are sprayed: if they are places not to spray, name the folder 'Obstacles' or give each placemark kind = obstacle",
                                 content.trim()
@@ -705,6 +707,13 @@ mod tests {
         );
         let (_, notes) = read_features(&kml("North farm")).unwrap();
         assert!(notes.is_empty(), "{notes:?}");
+        // Inside an obstacles folder a folder is an obstacle, whatever its name: no note.
+        let nested = kml("Trees by the barn")
+            .replace("<Folder>", "<Folder><name>Obstacles</name><Folder>")
+            .replace("</Folder>", "</Folder></Folder>");
+        let (features, notes) = read_features(&nested).unwrap();
+        assert!(notes.is_empty(), "{notes:?}");
+        assert_eq!(features.len(), 1);
         // Fields whose folder name has a word of warning get a note.
         assert!(sounds_like_keep_out("Obstacle-free fields"));
         assert!(sounds_like_keep_out("Do not enter"));

@@ -117,7 +117,8 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         MIN_GROUND_CLEARANCE_M,
     );
     let mut no_go = Tally::new("holes and obstacles", "≤", 0.0, "samples inside").counting();
-    let mut fence = Tally::new("fence", "≤", 0.0, "samples outside").counting();
+    // Samples outside, and a fence missing or unusable counted as one failure each.
+    let mut fence = Tally::new("fence", "≤", 0.0, "failures").counting();
     let mut tank = Tally::new("tank", "≤", 1.0, "tanks");
     // A sortie may not fly into the share of the battery the operator lands with.
     let usable_battery = vehicle.usable_battery_s() / vehicle.battery_endurance_s;

@@ -58,7 +58,9 @@ pub struct MovedReport {
     /// Where it stands, and its cost.
     #[serde(flatten)]
     pub scored: CandidateReport,
-    /// Its cost less the chosen point's, seconds (≥ 0: the search weighs it).
+    /// Its cost less the chosen point's, seconds: ≥ 0, as the search weighs the place,
+    /// unless it is steeper than `auto` stands on (decision 0029), where it is scored on any
+    /// ground and may be cheaper than the level place chosen.
     pub saving_s: f64,
     /// The saving as a share of its cost, percent.
     pub saving_percent: f64,

@@ -91,7 +91,7 @@ pub(in crate::track) fn validated(mut scenario: TrackScenario) -> Result<TrackSc
         format!("[{min_x}, {max_x}] × [{min_y}, {max_y}]")
     } else {
         format!(
-            "from {} to {}, the terrain model less margin_m",
+            "from {} to {} (the box round the start, goal and threats grown by margin_m, cut to the terrain model: a start or goal outside it lies off the terrain model)",
             input_place(min_x, min_y),
             input_place(max_x, max_y)
         )
