@@ -103,6 +103,13 @@ pub fn sample(
         } else {
             (pair[0], pair[1])
         };
+        // A lon/lat DEM across the antimeridian (179.99..180.01) holds −179.999° as 180.001°.
+        let x = match (lon_lat, model.epsg(), model.extent()) {
+            (true, Some(epsg), Some(extent)) if crate::terrain::frame::is_lon_lat(epsg) => {
+                crate::terrain::frame::wrap_into(x, extent)
+            }
+            _ => x,
+        };
         let height = model
             .height_m(x, y)
             .map_err(|error| InputError::new(argument, Fault::Terrain(error)))?;

@@ -100,6 +100,19 @@ pub fn from_lon_lat(epsg: u32, lon: f64, lat: f64) -> Option<(f64, f64)> {
     })
 }
 
+/// A longitude read a turn round (±360°) where that lands inside the columns of a lon/lat
+/// DEM's `extent` and it is outside them: a DEM may run past ±180° (179.99..180.01 across the
+/// antimeridian), and −179.999° is its 180.001°.
+pub fn wrap_into(lon: f64, extent: Extent) -> f64 {
+    if lon < extent.min_x && lon + 360.0 <= extent.max_x {
+        lon + 360.0
+    } else if lon > extent.max_x && lon - 360.0 >= extent.min_x {
+        lon - 360.0
+    } else {
+        lon
+    }
+}
+
 /// Whether EPSG `epsg`'s coordinates are degrees of longitude and latitude.
 pub fn is_lon_lat(epsg: u32) -> bool {
     dem_coordinates(epsg) == Some(DemCoordinates::LonLat)
@@ -116,11 +129,14 @@ struct Reprojected {
 const BEND_PIECE_M: f64 = 200.0;
 
 impl Reprojected {
-    /// A place of the plan's frame in the DEM's coordinates.
+    /// A place of the plan's frame in the DEM's coordinates. A lon/lat DEM may run past
+    /// ±180° (179.99..180.01 across the antimeridian): a longitude outside its columns is
+    /// read a turn round where that lands inside them (until 2026-12-07 a field at −179.998°
+    /// over such a DEM was refused as not covered: the fourth trial).
     fn to_dem(&self, x: f64, y: f64) -> (f64, f64) {
         let (lon, lat) = from_utm(x, y, self.plan_zone);
         match self.dem {
-            DemCoordinates::LonLat => (lon, lat),
+            DemCoordinates::LonLat => (wrap_into(lon, self.grid.outer_extent()), lat),
             DemCoordinates::Utm(zone) => to_utm(lon, lat, zone),
         }
     }
@@ -335,5 +351,47 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A lon/lat DEM across the antimeridian (columns 179.99..180.01): a place at −179.998°
+    /// is read at its column 180.002°, east of the one at 179.998°.
+    #[test]
+    fn a_lon_lat_dem_across_the_antimeridian_covers_both_sides() {
+        let (columns, rows) = (100, 100);
+        let grid = Grid {
+            columns,
+            rows,
+            first_center_x: 179.99 + 0.0001,
+            first_center_y: -16.79 - 0.0001,
+            cell_x: 0.0002,
+            cell_y: 0.0002,
+            heights: (0..rows * columns)
+                .map(|index| (index % columns) as f32)
+                .collect(),
+            epsg: Some(4326),
+            source: "across 180".into(),
+        };
+        let zone = UtmZone::containing(179.999, -16.8);
+        let terrain = place(grid, CoordinateSystem::Utm(zone)).unwrap();
+        let west = to_utm(179.998, -16.8, zone);
+        let east = to_utm(-179.998, -16.8, zone);
+        let (west, east) = (
+            terrain.height_m(west.0, west.1).unwrap(),
+            terrain.height_m(east.0, east.1).unwrap(),
+        );
+        // Columns are 0.0002° apart: 179.998° is column 39.5, 180.002° column 59.5.
+        assert!(
+            (west - 39.5).abs() < 0.01 && (east - 59.5).abs() < 0.01,
+            "{west} {east}"
+        );
+        let extent = Extent {
+            min_x: 179.99,
+            min_y: -16.81,
+            max_x: 180.01,
+            max_y: -16.79,
+        };
+        assert_eq!(wrap_into(-179.998, extent), -179.998 + 360.0);
+        assert_eq!(wrap_into(179.995, extent), 179.995);
+        assert_eq!(wrap_into(-170.0, extent), -170.0);
     }
 }

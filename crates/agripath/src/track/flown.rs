@@ -36,8 +36,14 @@ pub fn mission_cruise(scenario: &TrackScenario, track: &[[f64; 3]]) -> Vec<[f64;
             points.push(point);
         }
     }
-    let stride = points.len().div_ceil(MOST_CRUISE_WAYPOINTS).max(1);
+    // The first and the last always, and every stride-th between: at most
+    // MOST_CRUISE_WAYPOINTS in all.
     let last = points.len() - 1;
+    let stride = if points.len() <= MOST_CRUISE_WAYPOINTS {
+        1
+    } else {
+        last.div_ceil(MOST_CRUISE_WAYPOINTS - 2)
+    };
     points
         .iter()
         .enumerate()
@@ -136,7 +142,7 @@ mod tests {
                 (above_goal[0] - landing[0]).abs() < 1e-6
                     && (above_goal[1] - landing[1]).abs() < 1e-6
             );
-            assert!(cruise_flown.len() <= MOST_CRUISE_WAYPOINTS + 1);
+            assert!(cruise_flown.len() <= MOST_CRUISE_WAYPOINTS);
         }
     }
 }
