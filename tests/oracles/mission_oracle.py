@@ -88,6 +88,17 @@ def check_folder(folder, frames, with_plan=True):
                   f"{name}: item {index + 1} params {plan_item['params']} vs {params}")
 
 
+def write_grid(path, heights, x0, y0, cell):
+    """Writes `heights` (row 0 the southernmost) as an ESRI ASCII grid whose lower-left corner
+    is (x0, y0), and returns this script's own bilinear reading of it."""
+    with open(path, "w") as handle:
+        rows, columns = heights.shape
+        handle.write(f"ncols {columns}\nnrows {rows}\nxllcorner {x0}\nyllcorner {y0}\ncellsize {cell}\nNODATA_value -9999\n")
+        for row in heights[::-1]:
+            handle.write(" ".join(f"{value:.3f}" for value in row) + "\n")
+    return bilinear(heights, x0 + 0.5 * cell, y0 + 0.5 * cell, cell)
+
+
 def bilinear(heights, first_x, first_y, cell):
     """The bilinear surface through a grid's cell centres (row 0 the southernmost, the first
     centre at (first_x, first_y)), held flat beyond the outer centres: this script's own reading
@@ -122,10 +133,7 @@ def cliff_flown(scratch):
     heights = 100.0 + 0.05 * centres_x[None, :] + 12.0 * (centres_y[:, None] > 100.0)
     folder = os.path.join(scratch, "cliff")
     os.makedirs(folder)
-    with open(os.path.join(folder, "cliff.asc"), "w") as handle:
-        handle.write(f"ncols {columns}\nnrows {rows}\nxllcorner {x0}\nyllcorner {y0}\ncellsize {cell}\nNODATA_value -9999\n")
-        for row in heights[::-1]:
-            handle.write(" ".join(f"{value:.3f}" for value in row) + "\n")
+    ground = write_grid(os.path.join(folder, "cliff.asc"), heights, x0, y0, cell)
     field = {"type": "FeatureCollection", "crs": "local", "features": [{"type": "Feature", "properties": {"name": "slope"},
              "geometry": {"type": "Polygon", "coordinates": [[[20, 30], [180, 38], [172, 190], [28, 182], [20, 30]]]}}]}
     with open(os.path.join(folder, "field.geojson"), "w") as handle:
@@ -141,7 +149,6 @@ def cliff_flown(scratch):
                     "--heading", "85", "--out", out],
                    check=True, stdout=subprocess.DEVNULL)
 
-    ground = bilinear(heights, centres_x[0], centres_y[0], cell)
 
     to_utm = Transformer.from_crs("EPSG:4326", "EPSG:32652", always_xy=True)
     east0, north0 = to_utm.transform(126.63, 45.75)
@@ -192,14 +199,10 @@ def track_landing_flown(scratch):
 
     columns, rows, cell = 240, 160, 5.0
     centres_x = (numpy.arange(columns) + 0.5) * cell
-    centres_y = (numpy.arange(rows) + 0.5) * cell
-    heights = 20.0 + 60.0 * (centres_x[None, :] > 600.0) + 0.0 * centres_y[:, None]
+    heights = numpy.tile(20.0 + 60.0 * (centres_x > 600.0), (rows, 1))
     folder = os.path.join(scratch, "track-cliff")
     os.makedirs(folder)
-    with open(os.path.join(folder, "cliff.asc"), "w") as handle:
-        handle.write(f"ncols {columns}\nnrows {rows}\nxllcorner 0\nyllcorner 0\ncellsize {cell}\nNODATA_value -9999\n")
-        for row in heights[::-1]:
-            handle.write(" ".join(f"{value:.3f}" for value in row) + "\n")
+    ground = write_grid(os.path.join(folder, "cliff.asc"), heights, 0.0, 0.0, cell)
     with open(os.path.join(folder, "track.toml"), "w") as handle:
         handle.write('name = "to the cliff top"\ncrs = "local"\nterrain = { kind = "file", path = "cliff.asc" }\n'
                      'origin = [173.2, -41.3]\nstart = [250, 200, 20]\ngoal = [900, 600, 50]\n'
@@ -209,7 +212,6 @@ def track_landing_flown(scratch):
     subprocess.run([AGRIPATH, "track", os.path.join(folder, "track.toml"), "--algorithm", "pso,ga,lattice",
                     "--runs", "1", "--out", out], check=True, stdout=subprocess.DEVNULL)
 
-    ground = bilinear(heights, centres_x[0], centres_y[0], cell)
 
     zone = int((173.2 + 180) // 6) + 1
     to_utm = Transformer.from_crs("EPSG:4326", f"EPSG:{32700 + zone}", always_xy=True)

@@ -281,16 +281,11 @@ pub fn search(
     if 2 * screened.len() < candidates.len() {
         // The anchors' sorties fly from few candidates as they are (sorties at the battery's
         // limit, anchors inside the fields), so the screen is blind over most of the farm:
-        // anchor at places a vehicle can stand too, the settled references and candidates
-        // spread over the list, scored by C itself.
+        // anchor at places a vehicle can stand too (the settled references are scored
+        // already), candidates spread over the list, scored by C itself.
         let stride = candidates.len().div_ceil(FALLBACK_ANCHORS).max(1);
-        let places: Vec<Coord<f64>> = references
-            .iter()
-            .filter_map(|&reference| standing.settle(reference))
-            .chain(candidates.iter().step_by(stride).copied())
-            .collect();
-        for place in places {
-            scored.score(place);
+        for place in candidates.iter().step_by(stride) {
+            scored.score(*place);
         }
         screen = scored.screen();
         screened = screened_by(&screen);
@@ -304,10 +299,10 @@ pub fn search(
     for candidate in &screened {
         per_field[standing.nearest_field(candidate.point)].get_or_insert(*candidate);
     }
-    let seeds: Vec<ScoredPoint> = references
+    let seeds: Vec<ScoredPoint> = settled_references
         .iter()
-        .filter_map(|&reference| standing.settle(reference))
-        .map(at)
+        .flatten()
+        .map(|settled| at(settled.point))
         .chain(field_scored.iter().map(|anchor| at(anchor.point)))
         .chain(per_field.into_iter().flatten())
         .filter(|seed| seed.cost_s.is_finite())

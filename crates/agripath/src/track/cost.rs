@@ -393,9 +393,8 @@ fn seed002(scenario: &TrackScenario, points: &[[f64; 3]]) -> CostBreakdown {
     let (_, z_max) = scenario.altitude_bounds;
     let mut terrain = 0.0;
     let mut boundary = 0.0;
+    let (clearance, ground) = (scenario.cost_clearance(), scenario.cost_ground());
     for (leg, point) in points.windows(2).zip(&points[1..]) {
-        let clearance = scenario.cost_clearance();
-        let ground = scenario.cost_ground();
         let excess = ground.leg_excess(leg[0], leg[1], clearance, None);
         if excess.dips || point[2] < ground.height(point[0], point[1]) + clearance {
             terrain += PENALTY;

@@ -258,7 +258,7 @@ pub fn read(path: &Path, text: &str) -> Result<TrackScenario, InputError> {
         cruise_start: [0.0; 3],
         cruise_goal: [0.0; 3],
         paper_runs: None,
-        clearance_ground: None,
+        clearance_ground: std::sync::OnceLock::new(),
     })
     .map_err(fail)
 }

@@ -161,9 +161,11 @@ pub struct TrackScenario {
     pub paper_runs: Option<u64>,
     /// The ground the costs keep their clearance from where a slope or a bank is nearer
     /// sideways than the verdict's clearance allows (`terrain` raised,
-    /// [`HeightMap::raised_for_clearance`]; made by `validated` for the scenario's limits);
-    /// `None` where no slope is steep enough to matter, and the costs read `terrain`.
-    pub clearance_ground: Option<HeightMap>,
+    /// [`HeightMap::raised_for_clearance`]), made on the costs' first use for the limits the
+    /// scenario has then (`validated` empties it): 0.11 s on SPSO's island at 2 m, which a
+    /// scenario read and then given its `--min-clearance` made twice. `None` inside where no
+    /// slope is steep enough to matter, and the costs read `terrain`.
+    pub clearance_ground: std::sync::OnceLock<Option<HeightMap>>,
 }
 
 /// Metres the costs keep over the verdict's clearance: the raster's error (the orchard's
@@ -326,7 +328,21 @@ impl TrackScenario {
     /// The ground the costs keep [`TrackScenario::cost_clearance`] from: the terrain raised
     /// where a slope or a bank beside is nearer than the clearance (decision 0032).
     pub fn cost_ground(&self) -> &HeightMap {
-        self.clearance_ground.as_ref().unwrap_or(&self.terrain)
+        self.raised_ground().unwrap_or(&self.terrain)
+    }
+
+    /// The terrain raised for the clearance where a slope matters ([`Self::cost_ground`]),
+    /// `None` where none does.
+    pub fn raised_ground(&self) -> Option<&HeightMap> {
+        self.clearance_ground
+            .get_or_init(|| {
+                self.terrain.raised_for_clearance(
+                    self.unit_m,
+                    self.limits.min_clearance_m,
+                    COST_ALLOWANCE_M,
+                )
+            })
+            .as_ref()
     }
 
     /// The ground the flight is checked against, as a terrain (its bends sample a leg).
@@ -502,17 +518,17 @@ mod tests {
         // cliffs steeper than 40°, where the costs now keep off the face (decision 0032).
         assert!(TrackScenario::seed000("I")
             .unwrap()
-            .clearance_ground
+            .raised_ground()
             .is_none());
-        assert!(TrackScenario::seed002().unwrap().clearance_ground.is_none());
-        assert!(TrackScenario::spso().unwrap().clearance_ground.is_some());
+        assert!(TrackScenario::seed002().unwrap().raised_ground().is_none());
+        assert!(TrackScenario::spso().unwrap().raised_ground().is_some());
         let limits = |min_clearance_m| SafetyLimits {
             min_clearance_m,
             ..SafetyLimits::default()
         };
         let orchard = TrackScenario::seed000("I").unwrap();
         let high = orchard.with_limits(limits(30.0)).unwrap();
-        let raised = high.clearance_ground.as_ref().expect("raised at 30 m");
+        let raised = high.raised_ground().expect("raised at 30 m");
         // Never below the ground, and above it somewhere.
         let (min_x, min_y, max_x, max_y) = high.area;
         let mut most: f64 = 0.0;

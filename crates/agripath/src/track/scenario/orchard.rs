@@ -163,6 +163,6 @@ pub(super) fn read(value: &Value, task: &str) -> Result<TrackScenario, Fault> {
         cruise_start: [0.0; 3],
         cruise_goal: [0.0; 3],
         paper_runs: runs,
-        clearance_ground: None,
+        clearance_ground: std::sync::OnceLock::new(),
     })
 }

@@ -110,6 +110,6 @@ pub(super) fn read(value: &Value) -> Result<TrackScenario, Fault> {
         cruise_start: [0.0; 3],
         cruise_goal: [0.0; 3],
         paper_runs: None,
-        clearance_ground: None,
+        clearance_ground: std::sync::OnceLock::new(),
     })
 }

@@ -155,10 +155,7 @@ pub(in crate::track) fn validated(mut scenario: TrackScenario) -> Result<TrackSc
         }
     }
     [scenario.cruise_start, scenario.cruise_goal] = ends;
-    scenario.clearance_ground = scenario.terrain.raised_for_clearance(
-        scenario.unit_m,
-        scenario.limits.min_clearance_m,
-        super::COST_ALLOWANCE_M,
-    );
+    // Made again, for these limits, when the costs first ask for it.
+    scenario.clearance_ground = std::sync::OnceLock::new();
     Ok(scenario)
 }
