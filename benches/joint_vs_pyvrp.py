@@ -306,7 +306,8 @@ def run(folder, seconds, seed, objective, results_path, iterations=None, peer_pa
         else:
             sorties, result = solve(instance, seconds, seed, objective, iterations)
             peer = {**cost_sorties(instance, sorties), "iterations": result.num_iterations,
-                    "runtime_s": result.runtime, "feasible_by_pyvrp": result.best.is_feasible()}
+                    "runtime_s": result.runtime, "feasible_by_pyvrp": result.best.is_feasible(),
+                    "routes": [[[p, bool(r)] for p, r in sortie] for sortie in sorties]}
             feasible = result.best.is_feasible()
         ratio = ours["non_spray_m"] / peer["non_spray_m"]
         rows.append({"name": instance["name"], "passes": len(instance["passes"]), "ratio": ratio,

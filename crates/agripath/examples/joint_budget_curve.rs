@@ -17,8 +17,10 @@
 //! supply point (`Start::Fixed`), B it flown backwards, R its cheapest rotation, S that
 //! backwards, C the sequencer's closed tour (`Start::Closed`, a second sequencer run, timed
 //! and printed) cut at the supply point, D that backwards, O the sequencer's open path
-//! (`Start::Open`, another sequencer run, timed and printed), Q that backwards; a P anywhere in
-//! the word turns the petal moves on (`sortie::joint::petals`).
+//! (`Start::Open`, another sequencer run, timed and printed), Q that backwards, V a peer's
+//! sorties (PyVRP's, from the `--results` file of `benches/joint_vs_pyvrp.py` given as
+//! `--peer FILE`) flown one after the other; a P anywhere in the word turns the petal moves on
+//! (`sortie::joint::petals`).
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -43,12 +45,13 @@ struct Options {
     starts: Vec<String>,
     race_share: f64,
     out: PathBuf,
+    peer: Option<serde_json::Value>,
 }
 
 fn usage() -> ! {
     eprintln!(
         "usage: joint_budget_curve [--farms N] [--per-pass LIST] [--starts LIST] \
-         [--race-share X] [--out DIR]"
+         [--race-share X] [--out DIR] [--peer FILE]"
     );
     std::process::exit(2)
 }
@@ -67,6 +70,7 @@ fn options() -> Options {
         starts: ["F", "FB", "FBRS", "FC", "FBCD"].map(String::from).to_vec(),
         race_share: JointSettings::default().race_share,
         out: PathBuf::from("."),
+        peer: None,
     };
     let mut args = std::env::args().skip(1);
     while let Some(flag) = args.next() {
@@ -77,6 +81,10 @@ fn options() -> Options {
             "--starts" => options.starts = value.split(',').map(String::from).collect(),
             "--race-share" => options.race_share = value.parse().unwrap_or_else(|_| usage()),
             "--out" => options.out = PathBuf::from(value),
+            "--peer" => {
+                let text = std::fs::read_to_string(&value).unwrap_or_else(|_| usage());
+                options.peer = Some(serde_json::from_str(&text).unwrap_or_else(|_| usage()));
+            }
             _ => usage(),
         }
     }
@@ -100,6 +108,40 @@ fn farms(count: usize) -> Vec<(String, Scenario, [f64; 2])> {
         farms.push((format!("random_s{seed}_{target}"), scenario, supply));
     }
     farms
+}
+
+/// The peer's sorties for farm `name`, flown one after the other, as a giant tour.
+fn peer_tour(peer: Option<&serde_json::Value>, name: &str) -> Vec<Step> {
+    let farms = peer.and_then(|peer| peer["farms"].as_array());
+    let row = farms
+        .and_then(|farms| {
+            // `bench_joint` names a random farm by the swaths it got, this example by the
+            // swaths it asked for: match on the seed.
+            let seed = |name: &str| {
+                name.rsplit_once('_')
+                    .map_or(name, |(seed, _)| seed)
+                    .to_string()
+            };
+            farms
+                .iter()
+                .find(|row| row["name"].as_str().map(seed) == Some(seed(name)))
+        })
+        .unwrap_or_else(|| {
+            eprintln!("start V needs --peer FILE with the routes of {name}");
+            std::process::exit(2)
+        });
+    let routes = row["pyvrp"]["routes"].as_array().unwrap_or_else(|| {
+        eprintln!("the peer file has no routes for {name} (re-run joint_vs_pyvrp.py)");
+        std::process::exit(2)
+    });
+    routes
+        .iter()
+        .flat_map(|route| route.as_array().into_iter().flatten())
+        .map(|step| Step {
+            pass: step[0].as_u64().expect("a pass number") as usize,
+            reversed: step[1].as_bool().expect("a direction"),
+        })
+        .collect()
 }
 
 /// One run of the search: farm, starts, evaluations per pass, cost, seconds.
@@ -164,6 +206,8 @@ fn main() {
             );
             path
         });
+        let model = sortie_model(vehicle, supply.into());
+        let joint = JointProblem::of_coverage(&problem, &coverage, &model, Speeds::of(vehicle));
         let start = |letter: char| -> Vec<Step> {
             let turned = || {
                 cheapest_rotation(&problem, &order)
@@ -178,11 +222,11 @@ fn main() {
                 'D' => backwards(closed.as_ref().expect("the closed tour")),
                 'O' => open.clone().expect("the open path"),
                 'Q' => backwards(open.as_ref().expect("the open path")),
+                'V' => peer_tour(options.peer.as_ref(), &name),
+
                 _ => usage(),
             }
         };
-        let model = sortie_model(vehicle, supply.into());
-        let joint = JointProblem::of_coverage(&problem, &coverage, &model, Speeds::of(vehicle));
         // What a split from the first position costs: the order and the order backwards
         // (which differ at the first position, so nothing is resumed) in turn, the rate the
         // search would score at without resuming.
@@ -201,12 +245,56 @@ fn main() {
             joint.points()
         );
         for word in &options.starts {
-            let tours: Vec<Vec<Step>> = word.chars().filter(|&c| c != 'P').map(start).collect();
+            let mut tours: Vec<Vec<Step>> = word
+                .chars()
+                .filter(|&c| !matches!(c, 'P' | 'X' | 'Y'))
+                .map(|letter| {
+                    if !letter.is_ascii_lowercase() {
+                        return start(letter);
+                    }
+                    // A lower-case letter: that start's sorties improved in route space.
+                    let tour = start(letter.to_ascii_uppercase());
+                    let space = agripath::sortie::joint::routes::RouteSpace::new(&joint);
+                    match space.whole_pass_sorties(&tour) {
+                        Some(sorties) => agripath::sortie::joint::routes::RouteSpace::giant_tour(
+                            &space.improve(sorties),
+                            &tour,
+                        ),
+                        None => tour,
+                    }
+                })
+                .collect();
+            if word.contains('Y') {
+                let space = agripath::sortie::joint::routes::RouteSpace::new(&joint);
+                let timed = Instant::now();
+                tours = tours
+                    .into_iter()
+                    .map(|tour| match space.whole_pass_sorties(&tour) {
+                        Some(sorties) => agripath::sortie::joint::routes::RouteSpace::giant_tour(
+                            &space.improve(sorties),
+                            &tour,
+                        ),
+                        None => tour,
+                    })
+                    .collect();
+                println!(
+                    "{name}: route-space starts in {:.3} s",
+                    timed.elapsed().as_secs_f64()
+                );
+            }
+            let costs: Vec<String> = word
+                .chars()
+                .filter(|&c| !matches!(c, 'P' | 'X' | 'Y'))
+                .zip(&tours)
+                .map(|(letter, tour)| format!("{letter} {:.1} s", joint.full_split_cost(tour)))
+                .collect();
+            println!("{name}: the starts' splits: {}", costs.join(", "));
             for &per_pass in &options.per_pass {
                 let settings = JointSettings {
                     evaluations_per_pass: per_pass,
                     race_share: options.race_share,
                     petals: word.contains('P'),
+                    routes: word.contains('X'),
                     ..JointSettings::default()
                 };
                 let labelled_before = joint.points_labelled();
