@@ -206,8 +206,6 @@ fn main() {
             );
             path
         });
-        let model = sortie_model(vehicle, supply.into());
-        let joint = JointProblem::of_coverage(&problem, &coverage, &model, Speeds::of(vehicle));
         let start = |letter: char| -> Vec<Step> {
             let turned = || {
                 cheapest_rotation(&problem, &order)
@@ -222,11 +220,21 @@ fn main() {
                 'D' => backwards(closed.as_ref().expect("the closed tour")),
                 'O' => open.clone().expect("the open path"),
                 'Q' => backwards(open.as_ref().expect("the open path")),
-                'V' => peer_tour(options.peer.as_ref(), &name),
-
+                'V' => {
+                    let tour = peer_tour(options.peer.as_ref(), &name);
+                    if let Err(fault) = agripath::sequence::tour::check_order(&tour, order.len()) {
+                        eprintln!(
+                            "{name}: the peer's sorties are not a tour of these passes: {fault}"
+                        );
+                        std::process::exit(2)
+                    }
+                    tour
+                }
                 _ => usage(),
             }
         };
+        let model = sortie_model(vehicle, supply.into());
+        let joint = JointProblem::of_coverage(&problem, &coverage, &model, Speeds::of(vehicle));
         // What a split from the first position costs: the order and the order backwards
         // (which differ at the first position, so nothing is resumed) in turn, the rate the
         // search would score at without resuming.
@@ -245,46 +253,10 @@ fn main() {
             joint.points()
         );
         for word in &options.starts {
-            let mut tours: Vec<Vec<Step>> = word
-                .chars()
-                .filter(|&c| !matches!(c, 'P' | 'X' | 'Y'))
-                .map(|letter| {
-                    if !letter.is_ascii_lowercase() {
-                        return start(letter);
-                    }
-                    // A lower-case letter: that start's sorties improved in route space.
-                    let tour = start(letter.to_ascii_uppercase());
-                    let space = agripath::sortie::joint::routes::RouteSpace::new(&joint);
-                    match space.whole_pass_sorties(&tour) {
-                        Some(sorties) => agripath::sortie::joint::routes::RouteSpace::giant_tour(
-                            &space.improve(sorties),
-                            &tour,
-                        ),
-                        None => tour,
-                    }
-                })
-                .collect();
-            if word.contains('Y') {
-                let space = agripath::sortie::joint::routes::RouteSpace::new(&joint);
-                let timed = Instant::now();
-                tours = tours
-                    .into_iter()
-                    .map(|tour| match space.whole_pass_sorties(&tour) {
-                        Some(sorties) => agripath::sortie::joint::routes::RouteSpace::giant_tour(
-                            &space.improve(sorties),
-                            &tour,
-                        ),
-                        None => tour,
-                    })
-                    .collect();
-                println!(
-                    "{name}: route-space starts in {:.3} s",
-                    timed.elapsed().as_secs_f64()
-                );
-            }
+            let tours: Vec<Vec<Step>> = word.chars().filter(|&c| c != 'P').map(start).collect();
             let costs: Vec<String> = word
                 .chars()
-                .filter(|&c| !matches!(c, 'P' | 'X' | 'Y'))
+                .filter(|&c| c != 'P')
                 .zip(&tours)
                 .map(|(letter, tour)| format!("{letter} {:.1} s", joint.full_split_cost(tour)))
                 .collect();
@@ -294,7 +266,6 @@ fn main() {
                     evaluations_per_pass: per_pass,
                     race_share: options.race_share,
                     petals: word.contains('P'),
-                    routes: word.contains('X'),
                     ..JointSettings::default()
                 };
                 let labelled_before = joint.points_labelled();

@@ -14,7 +14,6 @@
 //! ([`super::exact`]), which finds the same returns (tested).
 
 pub mod petals;
-pub mod routes;
 pub mod search;
 pub mod split;
 pub mod starts;
@@ -237,8 +236,6 @@ pub struct JointSettings {
     pub race_share: f64,
     /// Whether the petal moves ([`petals`]) re-fly the incumbent's sorties out and back.
     pub petals: bool,
-    /// Whether the moves between sorties in route space ([`routes`]) are tried.
-    pub routes: bool,
     /// Most split steps (start positions considered, [`JointProblem::split_steps`]) the
     /// splits of a run may take in all: bounds the run's time on big farms, where a split
     /// costs thousands of times a small farm's, deterministically (a count, not a clock).
@@ -254,7 +251,6 @@ impl Default for JointSettings {
             starts: 2,
             race_share: 0.5,
             petals: true,
-            routes: false,
             // Binds only on big farms: the 11 farms of `bench_joint` (up to 250 swaths) plan the
             // same with it as without; the 4,556-swath tiled farm plans in 9.4 s
             // (docs/benchmarks.md, "5,000 swaths on a flyable farm").
@@ -341,9 +337,6 @@ pub fn search_from(
     let mut search = search::JointSearch::racing(starts, race);
     if settings.petals {
         search = search.with_petals();
-    }
-    if settings.routes {
-        search = search.with_routes();
     }
     let outcome = runner.run_problem(&mut search, problem, 0, &mut ());
     JointOutcome {

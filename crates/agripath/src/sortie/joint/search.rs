@@ -22,7 +22,6 @@
 
 use swarm::{below, Optimizer, Search};
 
-use super::routes::RouteSpace;
 use super::{petals, JointProblem};
 use crate::sequence::local_search::nearest_ends;
 use crate::sequence::tour::{End, Step};
@@ -59,10 +58,6 @@ pub struct JointSearch {
     /// The incumbent cost at which a round of petal moves last found nothing (not tried
     /// again until the incumbent changes).
     petals_failed_at: f64,
-    /// Whether the moves between sorties in route space ([`super::routes`]) are tried.
-    routes: bool,
-    /// The incumbent cost at which a round of them last found nothing.
-    routes_failed_at: f64,
 }
 
 impl JointSearch {
@@ -83,8 +78,6 @@ impl JointSearch {
             neighbours: Vec::new(),
             petals: false,
             petals_failed_at: f64::NAN,
-            routes: false,
-            routes_failed_at: f64::NAN,
         }
     }
 
@@ -93,41 +86,6 @@ impl JointSearch {
     pub fn with_petals(mut self) -> Self {
         self.petals = true;
         self
-    }
-
-    /// The same search, trying the moves between sorties in route space ([`super::routes`])
-    /// on the incumbent before each kick while they pay.
-    pub fn with_routes(mut self) -> Self {
-        self.routes = true;
-        self
-    }
-
-    /// One round of route-space moves on the incumbent: its sorties at pass ends improved as
-    /// routes, flown one after the other, scored through the split, and descended around when
-    /// cheaper. Whether it paid.
-    fn route_round(&self, run: &mut Search<JointProblem<'_>>) -> bool {
-        let incumbent = run.best_solution().to_vec();
-        let cost = run.best_cost();
-        let space = RouteSpace::new(run.problem());
-        let Some(sorties) = space.whole_pass_sorties(&incumbent) else {
-            return false;
-        };
-        let tour = RouteSpace::giant_tour(&space.improve(sorties), &incumbent);
-        if tour == incumbent || run.progress() >= 1.0 {
-            return false;
-        }
-        let candidate_cost = run.evaluate(&tour);
-        if candidate_cost < cost - 1e-9 {
-            let touched: Vec<usize> = tour
-                .iter()
-                .zip(&incumbent)
-                .filter(|(a, b)| a != b)
-                .map(|(step, _)| step.pass)
-                .collect();
-            Descent::new(tour, candidate_cost, touched).run(run, &self.neighbours, u64::MAX);
-            return true;
-        }
-        false
     }
 
     /// One round of petal moves on the incumbent: every sortie's candidates scored through
@@ -474,12 +432,6 @@ impl<'a> Optimizer<JointProblem<'a>> for JointSearch {
     }
 
     fn step(&mut self, run: &mut Search<JointProblem<'a>>) {
-        if self.routes && run.best_cost() != self.routes_failed_at {
-            if self.route_round(run) {
-                return;
-            }
-            self.routes_failed_at = run.best_cost();
-        }
         if self.petals && run.best_cost() != self.petals_failed_at {
             if self.petal_round(run) {
                 return;

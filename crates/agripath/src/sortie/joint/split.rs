@@ -49,11 +49,11 @@ pub struct PassProfile {
 }
 
 impl PassProfile {
-    pub(super) fn length(&self) -> f64 {
+    fn length(&self) -> f64 {
         *self.spray_m.last().expect("a pass has points")
     }
 
-    pub(super) fn seconds(&self) -> f64 {
+    fn seconds(&self) -> f64 {
         *self.spray_s.last().expect("a pass has points")
     }
 }
@@ -83,7 +83,7 @@ impl SplitLimits {
         }
     }
 
-    pub(super) fn service_s(&self, spray_m: f64) -> f64 {
+    fn service_s(&self, spray_m: f64) -> f64 {
         let spray_m = spray_m.min(self.tank_m);
         self.battery_swap_s
             .max(self.refill_base_s + self.refill_slope() * spray_m)
