@@ -87,25 +87,30 @@ fn row(name: &str, scenario: &Scenario, runs: usize) -> Row {
         Some([lon, lat]) => format!("{lon:.6}, {lat:.6}"),
         None => format!("{:.1}, {:.1}", supply.at.point_m[0], supply.at.point_m[1]),
     };
+    // A cost of `null` in the report: the plan cannot be flown from that point.
+    let seconds = |cost: Option<f64>| cost.unwrap_or(f64::INFINITY);
+    let saved = |saving: Option<f64>, percent: Option<f64>| match saving.zip(percent) {
+        Some((saving, percent)) => format!("{saving:.0} ({percent:.1} %)"),
+        None => "out of reach".to_string(),
+    };
     // Where no vehicle can stand at the first point: the nearest place one can.
     let (moved, moved_saving) = match &auto.first_point_moved {
         Some(moved) => (
-            format!("{:.0}", moved.scored.cost_s),
-            format!("{:.0} ({:.1} %)", moved.saving_s, moved.saving_percent),
+            format!("{:.0}", seconds(moved.scored.cost_s)),
+            saved(moved.saving_s, moved.saving_percent),
         ),
         None => ("stands".to_string(), "-".to_string()),
     };
+    let old = seconds(auto.first_point.cost_s);
     let old_as_followed = auto
         .first_point_moved
         .as_ref()
-        .map_or(auto.first_point.cost_s, |moved| moved.scored.cost_s);
+        .map_or(old, |moved| seconds(moved.scored.cost_s));
     println!(
-        "| {name} | {} | {} | {place} | {cost:.0} | {:.0} | {:.0} ({:.1} %) | {moved} | {moved_saving} | {:.0} | {} | {auto_ms:.0} | {given_ms:.0} | {:.0} | {route_ms:.0} | {:.0} |",
+        "| {name} | {} | {} | {place} | {cost:.0} | {old:.0} | {} | {moved} | {moved_saving} | {:.0} | {} | {auto_ms:.0} | {given_ms:.0} | {:.0} | {route_ms:.0} | {:.0} |",
         mission.report.sorties,
         mission.report.fields.iter().map(|field| field.swaths).sum::<usize>(),
-        auto.first_point.cost_s,
-        auto.saving_s,
-        auto.saving_percent,
+        saved(auto.saving_s, auto.saving_percent),
         supply.planned_cost_s,
         auto.evaluations,
         auto_ms - given_ms,
@@ -113,7 +118,7 @@ fn row(name: &str, scenario: &Scenario, runs: usize) -> Row {
     );
     Row {
         cost,
-        old: auto.first_point.cost_s,
+        old,
         old_as_followed,
         added_ms: auto_ms - given_ms,
     }

@@ -38,15 +38,16 @@ pub struct CandidateReport {
     /// Where it stands.
     #[serde(flatten)]
     pub at: ReportedPoint,
-    /// Non-spray seconds by the evaluator.
-    pub cost_s: f64,
+    /// Non-spray seconds by the evaluator; `null` where the plan cannot be flown from it (a
+    /// sortie out of the battery's reach).
+    pub cost_s: Option<f64>,
 }
 
 impl CandidateReport {
     fn new(scored: &ScoredPoint, frame: CoordinateSystem) -> Self {
         Self {
             at: ReportedPoint::new(scored.point.x, scored.point.y, frame),
-            cost_s: round(scored.cost_s, 1e-3),
+            cost_s: scored.cost_s.is_finite().then(|| round(scored.cost_s, 1e-3)),
         }
     }
 }
@@ -60,21 +61,20 @@ pub struct MovedReport {
     pub scored: CandidateReport,
     /// Its cost less the chosen point's, seconds: ≥ 0, as the search weighs the place,
     /// unless it is steeper than `auto` stands on (decision 0029), where it is scored on any
-    /// ground and may be cheaper than the level place chosen.
-    pub saving_s: f64,
-    /// The saving as a share of its cost, percent.
-    pub saving_percent: f64,
+    /// ground and may be cheaper than the level place chosen; `null` where the plan cannot be
+    /// flown from it.
+    pub saving_s: Option<f64>,
+    /// The saving as a share of its cost, percent (`null` with `saving_s`).
+    pub saving_percent: Option<f64>,
 }
 
-/// `old - best` in seconds and as a share of `old`, percent, rounded for the report.
-fn saving(old: f64, best: f64) -> (f64, f64) {
-    let saving = old - best;
-    let percent = if old.is_finite() && old > 0.0 {
-        100.0 * saving / old
-    } else {
-        0.0
-    };
-    (round(saving, 1e-3), round(percent, 1e-3))
+/// `old - best` in seconds and as a share of `old`, percent, rounded for the report; `None`
+/// where `old` is not a cost (the plan cannot be flown from that point).
+fn saving(old: f64, best: f64) -> Option<(f64, f64)> {
+    (old.is_finite() && best.is_finite() && old > 0.0).then(|| {
+        let saving = old - best;
+        (round(saving, 1e-3), round(100.0 * saving / old, 1e-3))
+    })
 }
 
 /// The `auto` rule's figures.
@@ -86,13 +86,15 @@ pub struct AutoReport {
     pub first_point: CandidateReport,
     /// Whether a vehicle could stand there (a pass end lies on or in a field, as a rule).
     pub first_point_stands: bool,
-    /// The old rule's cost less the chosen point's, seconds (≥ 0 when auto wins).
-    pub saving_s: f64,
-    /// The saving as a share of the old rule's cost, percent.
-    pub saving_percent: f64,
+    /// The old rule's cost less the chosen point's, seconds (≥ 0 when auto wins); `null`
+    /// where the plan cannot be flown from the old rule's point.
+    pub saving_s: Option<f64>,
+    /// The saving as a share of the old rule's cost, percent (`null` with `saving_s`).
+    pub saving_percent: Option<f64>,
     /// Where no vehicle can stand at the old rule's point: the nearest place one can, its
     /// cost and the saving against it (the old rule as an operator could follow it;
-    /// docs/decisions/0031); `null` when the point stands.
+    /// docs/decisions/0031); `null` when the point stands, or when no place a vehicle can
+    /// stand was found near it.
     pub first_point_moved: Option<MovedReport>,
     /// Whether the candidates stood on the file's access features.
     pub on_access: bool,
@@ -134,19 +136,19 @@ impl SupplyReport {
     pub fn new(choice: &SupplyChoice, frame: CoordinateSystem, planned_cost_s: f64) -> Self {
         let auto = choice.auto.as_ref().map(|auto| {
             let best = auto.best().cost_s;
-            let (saving_s, saving_percent) = saving(auto.first_point.cost_s, best);
+            let first_saving = saving(auto.first_point.cost_s, best);
             AutoReport {
                 evaluator: auto.evaluator.to_string(),
                 first_point: CandidateReport::new(&auto.first_point, frame),
                 first_point_stands: auto.first_point_stands,
-                saving_s,
-                saving_percent,
+                saving_s: first_saving.map(|(seconds, _)| seconds),
+                saving_percent: first_saving.map(|(_, percent)| percent),
                 first_point_moved: auto.first_point_moved.map(|moved| {
-                    let (saving_s, saving_percent) = saving(moved.cost_s, best);
+                    let moved_saving = saving(moved.cost_s, best);
                     MovedReport {
                         scored: CandidateReport::new(&moved, frame),
-                        saving_s,
-                        saving_percent,
+                        saving_s: moved_saving.map(|(seconds, _)| seconds),
+                        saving_percent: moved_saving.map(|(_, percent)| percent),
                     }
                 }),
                 on_access: auto.on_access,
@@ -196,33 +198,65 @@ impl SupplyReport {
             .unwrap_or_default();
         match &self.auto {
             Some(auto) => format!(
-                "supply point (auto{}): {place}, where the least time is spent not {working}: estimated {:.0} s, against {:.0} s from the route's first point (the old rule{}), {}{}{}\n{}",
+                "supply point (auto{}): {place}, where the least time is spent not {working}: estimated {:.0} s, against {}{}{}\n{}",
                 if auto.on_access { ", on access features" } else { "" },
                 self.cost_s.unwrap_or(f64::NAN),
-                auto.first_point.cost_s,
-                if auto.first_point_stands {
-                    ""
-                } else {
-                    ", where no vehicle can stand"
-                },
-                saved_or_more(auto.saving_s, auto.saving_percent),
+                against(
+                    "the route's first point",
+                    &format!(
+                        "the old rule{}",
+                        if auto.first_point_stands {
+                            ""
+                        } else {
+                            ", where no vehicle can stand"
+                        }
+                    ),
+                    &auto.first_point,
+                    auto.saving_s.zip(auto.saving_percent)
+                ),
                 auto.first_point_moved
                     .as_ref()
                     .map(|moved| format!(
-                        "; {:.0} s from the nearest place one can, {}",
-                        moved.scored.cost_s,
-                        saved_or_more(moved.saving_s, moved.saving_percent)
+                        "; {}",
+                        against(
+                            "the nearest place one can",
+                            "",
+                            &moved.scored,
+                            moved.saving_s.zip(moved.saving_percent)
+                        )
                     ))
                     .unwrap_or_default(),
-                if !auto.candidates.is_empty() {
-                    format!("; {} candidates in report.json", auto.candidates.len())
-                } else {
-                    String::new()
+                match auto.candidates.len() {
+                    0 => String::new(),
+                    1 => "; 1 candidate in report.json".to_string(),
+                    count => format!("; {count} candidates in report.json"),
                 },
                 warning
             ),
             None => format!("supply point ({}): {place}\n{warning}", self.rule),
         }
+    }
+}
+
+/// "N s from `what` (`why`), S s (P%) saved", or, where the plan cannot be flown from
+/// that point, "`what` (`why`), from which a sortie is out of the battery's reach".
+fn against(
+    what: &str,
+    why: &str,
+    reference: &CandidateReport,
+    saving: Option<(f64, f64)>,
+) -> String {
+    let why = if why.is_empty() {
+        String::new()
+    } else {
+        format!(" ({why})")
+    };
+    match (reference.cost_s, saving) {
+        (Some(cost_s), Some((saving_s, saving_percent))) => format!(
+            "{cost_s:.0} s from {what}{why}, {}",
+            saved_or_more(saving_s, saving_percent)
+        ),
+        _ => format!("{what}{why}, from which a sortie is out of the battery's reach"),
     }
 }
 
@@ -237,5 +271,41 @@ fn saved_or_more(saving_s: f64, saving_percent: f64) -> String {
         )
     } else {
         format!("{:.0} s ({:.1}%) more", -saving_s, -saving_percent)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A reference point from which the plan cannot be flown (a sortie out of the battery's
+    /// reach, cost +inf) reads as such, with no saving: not "inf s" and "0.0 % saved".
+    #[test]
+    fn a_point_out_of_reach_has_no_cost_and_no_saving() {
+        assert_eq!(saving(f64::INFINITY, 1_000.0), None);
+        assert_eq!(saving(1_200.0, 1_000.0), Some((200.0, 16.667)));
+        let scored = ScoredPoint {
+            point: geo::Coord { x: 1.0, y: 2.0 },
+            cost_s: f64::INFINITY,
+        };
+        let reference = CandidateReport::new(&scored, CoordinateSystem::Local);
+        assert_eq!(reference.cost_s, None);
+        let text = against("the route's first point", "the old rule", &reference, None);
+        assert_eq!(
+            text,
+            "the route's first point (the old rule), from which a sortie is out of the battery's reach"
+        );
+        assert!(!text.contains("inf"));
+        let reachable = CandidateReport::new(
+            &ScoredPoint {
+                cost_s: 1_200.0,
+                ..scored
+            },
+            CoordinateSystem::Local,
+        );
+        assert_eq!(
+            against("the nearest place one can", "", &reachable, saving(1_200.0, 1_000.0)),
+            "1200 s from the nearest place one can, 200 s (16.7%) saved"
+        );
     }
 }
