@@ -35,6 +35,10 @@ pub const REACH_M: f64 = 200.0;
 /// Distance from an access line within which a point is on it, metres.
 pub const ON_LINE_M: f64 = 0.5;
 
+/// Distance from a field's or obstacle's outline within which a point is on it, not inside,
+/// metres.
+const OUTLINE_M: f64 = 0.01;
+
 /// Settling moves a point at most this many times before giving up on it (a point pushed out
 /// of one field into another, and back).
 const SETTLE_STEPS: usize = 6;
@@ -184,8 +188,13 @@ impl StandingRule {
     }
 
     /// Whether `p` lies in a field's outer boundary or an obstacle.
+    /// Whether `p` lies inside a field or an obstacle. On an outline (within [`OUTLINE_M`],
+    /// the digitising noise of a road snapped onto a field's edge) is not inside: there the
+    /// truck parks beside the crop (decision 0016), and `why_not` reads it the same way.
     fn inside_blocked(&self, p: Coord<f64>) -> bool {
-        self.blocked.iter().any(|ring| ring.index.contains(p))
+        self.blocked.iter().any(|ring| {
+            ring.index.contains(p) && nearest_on_polyline(p, &ring.points).1 > OUTLINE_M
+        })
     }
 
     fn in_yard(&self, p: Coord<f64>) -> bool {
@@ -452,5 +461,23 @@ mod tests {
         assert!((settled.x + 2.0).abs() < 1e-9 && (settled.y - 80.0).abs() < 1e-9);
         let yard = rule.settle(Coord { x: 260.0, y: 215.0 }).unwrap();
         assert!((yard.x - 230.0).abs() < 1e-9, "{yard:?}");
+    }
+
+    /// A road snapped onto a field's edge (as GIS tools draw one along a field) is where the
+    /// truck parks: on it is allowed, inside the field beside it is not (fifth trial).
+    #[test]
+    fn a_road_along_a_field_edge_holds_the_supply_point() {
+        let mut farm = farm();
+        farm.access = vec![Access {
+            name: "edge road".into(),
+            shape: AccessShape::Line(LineString::from(vec![(0.0, -20.0), (0.0, 100.0)])),
+        }];
+        let rule = StandingRule::new(&farm);
+        assert!(rule.allows(Coord { x: 0.0, y: 50.0 }), "on the edge");
+        assert!(rule.allows(Coord { x: 0.0, y: 100.0 }), "on the corner");
+        assert!(!rule.allows(Coord { x: 0.3, y: 50.0 }), "on the crop beside it");
+        let settled = rule.settle(Coord { x: 30.0, y: 60.0 }).unwrap();
+        assert!(rule.allows(settled), "{settled:?}");
+        assert!(settled.x.abs() < ON_LINE_M, "{settled:?}");
     }
 }
