@@ -898,7 +898,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             // The automatic supply point finds no place; the fault is the battery's.
             plan_farm(&["--vehicle", &bad("vehicle_tiny_battery.toml")]),
             bad("vehicle_tiny_battery.toml"),
-            "battery_endurance_s = 30 is invalid",
+            "battery_endurance_s = 30, too little for this farm",
         ),
         (
             vehicle("vehicle_two_tanks.toml"),

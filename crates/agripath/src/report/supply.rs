@@ -47,7 +47,10 @@ impl CandidateReport {
     fn new(scored: &ScoredPoint, frame: CoordinateSystem) -> Self {
         Self {
             at: ReportedPoint::new(scored.point.x, scored.point.y, frame),
-            cost_s: scored.cost_s.is_finite().then(|| round(scored.cost_s, 1e-3)),
+            cost_s: scored
+                .cost_s
+                .is_finite()
+                .then(|| round(scored.cost_s, 1e-3)),
         }
     }
 }
@@ -304,7 +307,12 @@ mod tests {
             CoordinateSystem::Local,
         );
         assert_eq!(
-            against("the nearest place one can", "", &reachable, saving(1_200.0, 1_000.0)),
+            against(
+                "the nearest place one can",
+                "",
+                &reachable,
+                saving(1_200.0, 1_000.0)
+            ),
             "1200 s from the nearest place one can, 200 s (16.7%) saved"
         );
     }

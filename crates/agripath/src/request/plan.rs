@@ -427,8 +427,9 @@ pub fn outcome(
     files: FolderChoice,
     source: &std::path::Path,
 ) -> Result<Outcome, InputError> {
-    let mut rendered = crate::pipeline::render_flyable(scenario, mission)
-        .map_err(|fault| super::plan_faults::rendering_error(scenario, source, fault))?;
+    let mut rendered = crate::pipeline::render_flyable(scenario, mission).map_err(|fault| {
+        super::plan_faults::rendering_error(scenario, source, mission.settings.start, fault)
+    })?;
     rendered.keep_files_to_write(files.allow_unsafe);
     let pdf_warning = if files.pdf {
         print_sheet(&mut rendered.files)

@@ -124,34 +124,26 @@ pub fn planning_error(scenario: &Scenario, settings: &PlanSettings, fault: Fault
                 );
             }
             let share = scenario.vehicle.battery_reserve_percent;
-            // With a share to land with, the battery left may be what is short: name both.
-            let (what, value, usable) = if share > 0.0 {
-                (
-                    "battery_reserve_percent",
+            // Neither figure is wrong on its own (a 20 % reserve is what operators keep): say
+            // what the two leave, and that this farm needs more.
+            let battery = if share > 0.0 {
+                format!(
+                    "battery_endurance_s = {} less battery_reserve_percent = {} leaves {:.0} s",
+                    crate::error::figure(endurance_s),
                     crate::error::figure(share),
-                    format!(
-                        " (battery_endurance_s = {} less {}% leaves {:.0} s)",
-                        crate::error::figure(endurance_s),
-                        crate::error::figure(share),
-                        scenario.vehicle.usable_battery_s()
-                    ),
+                    scenario.vehicle.usable_battery_s()
                 )
             } else {
-                (
-                    "battery_endurance_s",
-                    crate::error::figure(endurance_s),
-                    String::new(),
+                format!(
+                    "battery_endurance_s = {}",
+                    crate::error::figure(endurance_s)
                 )
             };
             InputError::new(
                 file,
-                Fault::InvalidValue {
-                    what: what.into(),
-                    value,
-                    why: format!(
-                        "the route near {near} cannot be reached and flown back on one battery and one tank{usable}: the farm is too spread out for one supply point for this vehicle (plan the far fields as a farm of their own, or give a nearer --supply)"
-                    ),
-                },
+                Fault::Structure(format!(
+                    "{battery}, too little for this farm: the route near {near} cannot be reached and flown back on one battery and one tank; the farm is too spread out for one supply point for this vehicle (plan the far fields as a farm of their own, or give a nearer --supply)"
+                )),
             )
         }
         Fault::Terrain(
@@ -169,7 +161,7 @@ pub fn planning_error(scenario: &Scenario, settings: &PlanSettings, fault: Fault
                 ),
             )
         }
-        other => rendering_error(scenario, &scenario.farm.source, other),
+        other => rendering_error(scenario, &scenario.farm.source, settings.start, other),
     }
 }
 
@@ -185,11 +177,31 @@ fn terrain_extent(scenario: &Scenario) -> String {
     }
 }
 
-/// A fault of writing the mission files as planned, blamed on `source`, with places in the
+/// A fault of writing the mission files as planned, blamed on `source` (or on `--supply`
+/// where the supply point `given` on the command line is at fault), with places in the
 /// input's coordinates.
-pub fn rendering_error(scenario: &Scenario, source: &std::path::Path, fault: Fault) -> InputError {
+pub fn rendering_error(
+    scenario: &Scenario,
+    source: &std::path::Path,
+    given: Option<[f64; 2]>,
+    fault: Fault,
+) -> InputError {
     let in_input = |place: (f64, f64)| input_place(scenario, place);
+    let is_given = |(x, y): (f64, f64)| given.is_some_and(|[gx, gy]| (gx - x).hypot(gy - y) < 1e-6);
     match fault {
+        // No transit leaves the supply point given on the command line: blame the flag, not
+        // the field file.
+        Fault::NoTransit { from, to } if is_given(from) || is_given(to) => {
+            let (at, other) = if is_given(from) { (from, to) } else { (to, from) };
+            InputError::new(
+                "--supply/--start",
+                Fault::Structure(format!(
+                    "no transit between {} and {} keeps out of the obstacles: the supply point lies inside an obstacle, or is walled in by them",
+                    in_input(at),
+                    in_input(other)
+                )),
+            )
+        }
         Fault::NoTransit { from, to } => InputError::new(
             source,
             Fault::Structure(format!(

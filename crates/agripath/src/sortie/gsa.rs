@@ -173,7 +173,7 @@ pub fn search(
     }
     let (_, breaks, thresholds) = best.ok_or_else(|| {
         Fault::Structure(
-            "the gravitational search found no split that one tank and one battery fly; the exact planner (--sorties exact) always finds one when it exists".into(),
+            "--sorties gsa: the gravitational search (seed 003's planner, which tries a fixed range of return counts) found no split that one tank and one battery fly on this farm; the default planner (--sorties joint) and --sorties exact always find one when it exists".into(),
         )
     })?;
     Ok(GsaOutcome {

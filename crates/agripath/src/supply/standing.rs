@@ -475,7 +475,10 @@ mod tests {
         let rule = StandingRule::new(&farm);
         assert!(rule.allows(Coord { x: 0.0, y: 50.0 }), "on the edge");
         assert!(rule.allows(Coord { x: 0.0, y: 100.0 }), "on the corner");
-        assert!(!rule.allows(Coord { x: 0.3, y: 50.0 }), "on the crop beside it");
+        assert!(
+            !rule.allows(Coord { x: 0.3, y: 50.0 }),
+            "on the crop beside it"
+        );
         let settled = rule.settle(Coord { x: 30.0, y: 60.0 }).unwrap();
         assert!(rule.allows(settled), "{settled:?}");
         assert!(settled.x.abs() < ON_LINE_M, "{settled:?}");

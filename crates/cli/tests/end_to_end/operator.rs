@@ -381,7 +381,8 @@ fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
     assert!(report["battery_reserve_s"].as_f64().unwrap() >= 0.35 * 600.0);
     // Held back by the split itself, not by a re-plan after the preflight found overruns.
     assert_eq!(report["battery_replan_s"].as_f64(), Some(0.0));
-    // A share that leaves too little to reach the far end is blamed on the share.
+    // A share that leaves too little to reach the far end: the error names what the
+    // endurance and the share leave.
     let greedy = t16_with(&folder, "greedy.toml", &[("battery_reserve_percent", "90")]);
     let output = plan_island_fields(
         &greedy,
@@ -391,8 +392,9 @@ fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
     assert_eq!(output.status.code(), Some(2));
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(
-        message.contains("greedy.toml: battery_reserve_percent = 90 is invalid")
-            && message.contains("600 less 90% leaves 60 s"),
+        message.contains(
+            "greedy.toml: battery_endurance_s = 600 less battery_reserve_percent = 90 leaves 60 s, too little for this farm"
+        ),
         "{message}"
     );
     // And with the supply point to choose, the error says what the share leaves.
@@ -425,7 +427,7 @@ fn a_vehicle_too_weak_for_the_farm_is_blamed_on_its_file_with_a_lon_lat_place() 
     assert_eq!(output.status.code(), Some(2));
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(
-        message.contains("weak.toml: battery_endurance_s = 30 is invalid"),
+        message.contains("weak.toml: battery_endurance_s = 30, too little for this farm"),
         "{message}"
     );
     assert!(message.contains("near lon 105.6"), "{message}");

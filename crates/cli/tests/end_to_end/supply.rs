@@ -344,3 +344,31 @@ fn auto_keeps_to_level_ground_and_warns_on_a_hillside() {
     );
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+/// A supply point given inside an obstacle: exit 2, one line blaming `--supply`, not the field
+/// file (fifth trial), and nothing written.
+#[test]
+fn a_point_given_inside_an_obstacle_is_blamed_on_the_flag() {
+    let folder = scratch("in_obstacle");
+    let obstacle = format!(
+        r#",{{"type":"Feature","properties":{{"name":"shed","kind":"obstacle"}},"geometry":{{"type":"Polygon","coordinates":{}}}}}"#,
+        rectangle(250.0, 50.0, 60.0, 50.0)
+    );
+    let fields = farm_file(&folder, "farm.geojson", &obstacle);
+    let output = agripath(
+        &[
+            "plan", "--fields", &fields, "--out", "out", "--supply", "275,75",
+        ],
+        &folder,
+    );
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("--supply/--start: no transit between (275.0, 75.0)")
+            && stderr.contains("inside an obstacle"),
+        "{stderr}"
+    );
+    assert!(!folder.join("out").exists(), "nothing written");
+    std::fs::remove_dir_all(&folder).unwrap();
+}
