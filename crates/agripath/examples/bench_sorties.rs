@@ -41,6 +41,7 @@ fn long_route() -> WorkRoute {
         turn_mps: 3.0,
         transit_mps: 6.0,
         climb_mps: 3.0,
+        descent_mps: 3.0,
         transfer_climb_s: 0.0,
     };
     WorkRoute::new(points, segments, None, speeds)

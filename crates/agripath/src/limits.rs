@@ -78,7 +78,7 @@ pub fn terrain_tolerance_fault(tolerance_m: f64, spray_height_m: f64) -> Option<
 /// Plausible ranges of a vehicle's figures (`Vehicle::validate`): beyond them a value is a
 /// typo or an attack (`1e308`), not an aircraft, and planning with it would overflow or run
 /// without end.
-pub const VEHICLE_RANGES: [(&str, f64, f64); 14] = [
+pub const VEHICLE_RANGES: [(&str, f64, f64); 16] = [
     (
         "swath_width_m",
         SWATH_WIDTH_RANGE_M.0,
@@ -91,6 +91,8 @@ pub const VEHICLE_RANGES: [(&str, f64, f64); 14] = [
     ("turn_speed_mps", 0.1, 100.0),
     ("transit_speed_mps", 0.1, 100.0),
     ("climb_speed_mps", 0.1, 50.0),
+    ("descent_speed_mps", 0.1, 50.0),
+    ("land_speed_mps", 0.1, 50.0),
     ("battery_endurance_s", 1.0, 86_400.0),
     // Above 90 % held back a battery flies almost nothing: a typo for 9 or 0.9.
     ("battery_reserve_percent", 0.0, 90.0),

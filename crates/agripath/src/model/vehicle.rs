@@ -14,6 +14,10 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Fault, InputError};
 use crate::files::read_text;
 
+/// Height above the ground below which ArduCopter lands at `LAND_SPEED` (its `LAND_ALT_LOW`,
+/// 10 m by default), metres.
+pub const LAND_SLOW_BELOW_M: f64 = 10.0;
+
 /// A spraying or survey drone. `Default` is the seed 001 sprayer (5 m swath, h = 18 m) with
 /// seed 003's speeds, tank and battery.
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -33,8 +37,14 @@ pub struct Vehicle {
     pub turn_speed_mps: f64,
     /// Speed of transfers and return flights, m/s.
     pub transit_speed_mps: f64,
-    /// Vertical speed for climbs and descents, m/s.
+    /// Vertical speed for climbs (and descents, unless `descent_speed_mps` is given), m/s.
     pub climb_speed_mps: f64,
+    /// Vertical speed for descents, m/s; `None`: `climb_speed_mps` (the seeds' reading).
+    /// ArduCopter descends at `WPNAV_SPEED_DN`, 1.5 m/s by default.
+    pub descent_speed_mps: Option<f64>,
+    /// Descent speed of the landing's last [`LAND_SLOW_BELOW_M`], m/s (ArduCopter's
+    /// `LAND_SPEED`, 0.5 m/s by default); `None`: the whole landing at the descent speed.
+    pub land_speed_mps: Option<f64>,
     /// Tank volume, litres (with `application_rate_l_per_ha` it limits the area per sortie).
     pub tank_l: Option<f64>,
     /// Litres applied per hectare.
@@ -162,6 +172,8 @@ impl Default for Vehicle {
             turn_speed_mps: 3.0,
             transit_speed_mps: 6.0,
             climb_speed_mps: 2.0,
+            descent_speed_mps: None,
+            land_speed_mps: None,
             tank_l: None,
             application_rate_l_per_ha: None,
             tank_spray_time_s: Some(15.0 * 60.0),
@@ -185,6 +197,35 @@ impl Vehicle {
     /// The height of a transit above the highest ground under it: spray height + max(h, 5 m).
     pub fn cruise_height_m(&self) -> f64 {
         self.spray_height_m + self.transit_rise_m()
+    }
+
+    /// Descent speed, m/s: `descent_speed_mps`, else the climb speed.
+    pub fn descent_mps(&self) -> f64 {
+        self.descent_speed_mps.unwrap_or(self.climb_speed_mps)
+    }
+
+    /// Seconds a change of altitude of `rise_m` metres takes at the vehicle's vertical speeds
+    /// (up at the climb speed, down at the descent speed).
+    pub fn vertical_s(&self, rise_m: f64) -> f64 {
+        if rise_m >= 0.0 {
+            rise_m / self.climb_speed_mps
+        } else {
+            -rise_m / self.descent_mps()
+        }
+    }
+
+    /// Seconds a landing from `height_m` above the ground takes, as ArduCopter flies
+    /// `NAV_LAND`: at the descent speed down to [`LAND_SLOW_BELOW_M`] (`LAND_ALT_LOW`), then at
+    /// `land_speed_mps` (`LAND_SPEED`) when given.
+    pub fn landing_s(&self, height_m: f64) -> f64 {
+        let height_m = height_m.max(0.0);
+        match self.land_speed_mps {
+            Some(land_mps) => {
+                let slow_m = height_m.min(LAND_SLOW_BELOW_M);
+                (height_m - slow_m) / self.descent_mps() + slow_m / land_mps
+            }
+            None => height_m / self.descent_mps(),
+        }
     }
 
     /// The flight time a sortie may use: the endurance less the share to land with.
@@ -328,6 +369,8 @@ impl Vehicle {
             }
         }
         let optional_positive = [
+            ("descent_speed_mps", self.descent_speed_mps),
+            ("land_speed_mps", self.land_speed_mps),
             ("tank_l", self.tank_l),
             ("application_rate_l_per_ha", self.application_rate_l_per_ha),
             ("tank_spray_time_s", self.tank_spray_time_s),
@@ -348,6 +391,8 @@ impl Vehicle {
                 "turn_speed_mps" => Some(self.turn_speed_mps),
                 "transit_speed_mps" => Some(self.transit_speed_mps),
                 "climb_speed_mps" => Some(self.climb_speed_mps),
+                "descent_speed_mps" => self.descent_speed_mps,
+                "land_speed_mps" => self.land_speed_mps,
                 "battery_endurance_s" => Some(self.battery_endurance_s),
                 "battery_reserve_percent" => Some(self.battery_reserve_percent),
                 "battery_swap_s" => Some(self.battery_swap_s),

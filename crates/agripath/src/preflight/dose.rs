@@ -42,7 +42,7 @@ pub(super) fn tally() -> Tally {
     )
 }
 
-/// Records spray leg `leg` of sortie `sortie` (`horizontal` and `vertical` metres) flown by
+/// Records spray leg `leg` of sortie `sortie` (`horizontal` metres, `rise` metres up) flown by
 /// `vehicle` with its pump switched by `sprayer`. Returns
 /// whether ArduPilot's pump is off on this leg (`pump`: its state through the run): its strip
 /// is then not sprayed, which the coverage as flown counts (a bank a few metres high leaves a
@@ -51,7 +51,7 @@ pub(super) fn tally() -> Tally {
 pub(super) fn record(
     tally: &mut Tally,
     leg: &Leg,
-    (horizontal, vertical): (f64, f64),
+    (horizontal, rise): (f64, f64),
     vehicle: &Vehicle,
     sprayer: SprayerCommand,
     sortie: usize,
@@ -65,8 +65,12 @@ pub(super) fn record(
     // But below SPRAY_SPEED_MIN for longer than its shut-off delay ArduPilot's pump stops:
     // over ground that steep (a third trial's swaths up a 78° face, crossed at 0.61 m/s) the
     // strip goes unsprayed.
-    let held_back_mps =
-        horizontal / (horizontal / leg.speed_mps).max(vertical / vehicle.climb_speed_mps);
+    let held_back_mps = horizontal / (horizontal / leg.speed_mps).max(vehicle.vertical_s(rise));
+    let (vertical, vertical_mps) = if rise >= 0.0 {
+        (rise, vehicle.climb_speed_mps)
+    } else {
+        (-rise, vehicle.descent_mps())
+    };
     let constant_flow = matches!(sprayer, SprayerCommand::Servo { .. }) && vehicle.camera.is_none();
     let do_sprayer = matches!(sprayer, SprayerCommand::DoSprayer) && vehicle.camera.is_none();
     let pump_stops = if !do_sprayer {
@@ -95,11 +99,13 @@ pub(super) fn record(
     tally.record_at(middle, off, off > MAX_SPRAY_SPEED_SHARE, || {
         if over_ground_mps < leg.speed_mps * (1.0 - 1e-9) {
             format!(
-                "sortie {sortie}, item {}: the ground climbs or falls {:.1} m over {:.1} m, more than the vehicle's climb speed ({} m/s) lets it follow at {:.1} m/s: it crosses at {:.1} m/s and the dose would be {:.0}% of the rate (terrain too steep to spray along; spray across the slope, or a vehicle that climbs faster)",
+                "sortie {sortie}, item {}: the ground {} {:.1} m over {:.1} m, more than the vehicle's {} speed ({} m/s) lets it follow at {:.1} m/s: it crosses at {:.1} m/s and the dose would be {:.0}% of the rate (terrain too steep to spray along; spray across the slope, or a vehicle that climbs faster)",
                 leg.item,
+                if rise >= 0.0 { "climbs" } else { "falls" },
                 vertical,
                 horizontal,
-                vehicle.climb_speed_mps,
+                if rise >= 0.0 { "climb" } else { "descent" },
+                vertical_mps,
                 leg.speed_mps,
                 over_ground_mps,
                 100.0 * vehicle.spray_speed_mps / over_ground_mps

@@ -169,11 +169,23 @@ impl Leg {
         )
     }
 
-    /// Altitude change, metres (for timing climbs).
-    pub fn vertical_m(&self, terrain: &dyn Terrain) -> Result<f64, crate::TerrainError> {
+    /// Altitude change, metres: up positive, down negative (for timing climbs and descents).
+    pub fn rise_m(&self, terrain: &dyn Terrain) -> Result<f64, crate::TerrainError> {
         let (_, _, a) = self.at(0.0, terrain)?;
         let (_, _, b) = self.at(1.0, terrain)?;
-        Ok((b - a).abs())
+        Ok(b - a)
+    }
+
+    /// Seconds `vehicle` takes over the leg: the horizontal at the commanded speed, or the
+    /// change of altitude at its climb or descent speed where that is longer (the autopilot
+    /// holds its vertical speed limit); a landing as ArduCopter flies `NAV_LAND`
+    /// ([`crate::model::Vehicle::landing_s`]). `rise_m` is [`Leg::rise_m`].
+    pub fn flight_s(&self, vehicle: &crate::model::Vehicle, rise_m: f64) -> f64 {
+        let vertical_s = match self.motion {
+            Motion::Landing => vehicle.landing_s(-rise_m),
+            _ => vehicle.vertical_s(rise_m),
+        };
+        (self.horizontal_m() / self.speed_mps).max(vertical_s)
     }
 }
 

@@ -251,9 +251,8 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 pump = dose::Pump::default();
             }
             let horizontal = leg.horizontal_m();
-            let vertical = leg.vertical_m(terrain).unwrap_or(0.0);
-            figures.flight_time_s +=
-                (horizontal / leg.speed_mps).max(vertical / vehicle.climb_speed_mps);
+            let rise = leg.rise_m(terrain).unwrap_or(0.0);
+            figures.flight_time_s += leg.flight_s(vehicle, rise);
             // Where the terrain has no answer (a waypoint off the DEM), the leg cannot be
             // checked: that is a failure, and the leg's other checks are skipped.
             let sampled: Result<Vec<(f64, f64, f64, f64)>, crate::TerrainError> = leg
@@ -313,7 +312,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 let pump_stops = dose::record(
                     &mut spray_speed,
                     leg,
-                    (horizontal, vertical),
+                    (horizontal, rise),
                     vehicle,
                     settings.sprayer,
                     sortie,

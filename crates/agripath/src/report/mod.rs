@@ -221,14 +221,15 @@ fn terrain_warning(scenario: &Scenario) -> Option<String> {
 }
 
 /// Flight time of the transfers: legs inside a field at turn speed; climbing legs at transit
-/// speed plus the 2h climb and descent at climb speed.
+/// speed plus the 2h climb and descent at climb and descent speed.
 pub fn transfer_time_s(route: &Route, sorties: Option<&PlannedSorties>, vehicle: &Vehicle) -> f64 {
     flown_legs(route, sorties)
         .into_iter()
         .map(|transfer| {
             if transfer.climbs {
                 (transfer.cost_m - 2.0 * vehicle.safe_height_m) / vehicle.transit_speed_mps
-                    + 2.0 * vehicle.safe_height_m / vehicle.climb_speed_mps
+                    + vehicle.vertical_s(vehicle.safe_height_m)
+                    + vehicle.vertical_s(-vehicle.safe_height_m)
             } else {
                 transfer.cost_m / vehicle.turn_speed_mps
             }

@@ -258,6 +258,7 @@ mod tests {
         turn_mps: 3.0,
         transit_mps: 6.0,
         climb_mps: 3.0,
+        descent_mps: 3.0,
         transfer_climb_s: 0.0,
     };
 

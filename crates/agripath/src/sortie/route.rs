@@ -65,9 +65,12 @@ pub struct Speeds {
     pub turn_mps: f64,
     /// Speed of transfers.
     pub transit_mps: f64,
-    /// Vertical speed: where the ground under a pass is steep, the drone following it at
-    /// spray height climbs or sinks at most this fast ([`Speeds::spray_s`]).
+    /// Vertical speeds: where the ground under a pass is steep, the drone following it at
+    /// spray height climbs at most `climb_mps` and sinks at most `descent_mps`
+    /// ([`Speeds::spray_s`]).
     pub climb_mps: f64,
+    /// See `climb_mps`.
+    pub descent_mps: f64,
     /// Seconds a transfer that climbs out of the field flies beyond its eq. 8 metres at
     /// transit speed: the mission climbs to the cruise height and descends again at climb
     /// speed (decision 0012), where eq. 8 charges the 2h at transit speed.
@@ -82,6 +85,7 @@ impl Speeds {
             turn_mps: vehicle.turn_speed_mps,
             transit_mps: vehicle.transit_speed_mps,
             climb_mps: vehicle.climb_speed_mps,
+            descent_mps: vehicle.descent_mps(),
             transfer_climb_s: transfer_climb_s(vehicle),
         }
     }
@@ -93,19 +97,24 @@ impl Speeds {
     /// speed alone, a survey over the steep ground of Christmas Island flew 8 s longer per
     /// sortie than the split planned, and one sortie came to 101.4 % of its battery.
     pub fn spray_s(&self, length_m: f64, rise_m: f64) -> f64 {
-        (length_m / self.spray_mps).max(rise_m.abs() / self.climb_mps)
+        let vertical_s = if rise_m >= 0.0 {
+            rise_m / self.climb_mps
+        } else {
+            -rise_m / self.descent_mps
+        };
+        (length_m / self.spray_mps).max(vertical_s)
     }
 }
 
 /// What the climb and descent of a transfer between fields add to its eq. 8 time: the
-/// mission files rise from the spray height to the cruise height, max(h, 5 m) higher, and
-/// come down again at climb speed (the mission writer's transfers), eq. 8 adds 2h at transit
-/// speed. Without it the split planned sorties the files fly longer than the battery lasts
+/// mission files rise from the spray height to the cruise height, max(h, 5 m) higher, at
+/// climb speed, and come down again at descent speed (the mission writer's transfers), eq. 8
+/// adds 2h at transit speed. Without it the split planned sorties the files fly longer than the battery lasts
 /// (the demo's sorties flew 12 s longer for every such transfer; the preflight refused a
 /// survey's sortie at 101.9 % of its battery).
 fn transfer_climb_s(vehicle: &crate::model::Vehicle) -> f64 {
     let rise_m = vehicle.transit_rise_m();
-    (2.0 * rise_m / vehicle.climb_speed_mps
+    (vehicle.vertical_s(rise_m) + vehicle.vertical_s(-rise_m)
         - 2.0 * vehicle.safe_height_m / vehicle.transit_speed_mps)
         .max(0.0)
 }

@@ -1,6 +1,7 @@
 //! The sortie model the split plans with, charged for what the mission files fly beyond
-//! seed 003's eq. 2: the climbs and descents of the out- and home-legs at climb speed, over
-//! the terrain between the supply point and the route (decision 0012).
+//! seed 003's eq. 2: the climbs and descents of the out- and home-legs at climb and descent
+//! speed, and the landing as ArduCopter flies it, over the terrain between the supply point
+//! and the route (decisions 0012, 0034).
 //!
 //! Eq. 2 times each leg between a route point P and the supply point S as
 //! (‖P, S‖ + |H_P − H_S| + 2h) / v_off. A mission flies it as this module's writer does: up
@@ -15,6 +16,13 @@
 //!   V₀ / w − 2 · 2h / v_off   (V₀ = 4c − 2·spray height, the flat ground's; the 2h of both legs
 //!                              eq. 2 already charges at transit speed)
 //!   + 2 · max_P (e(P) / w − |H_P − H_S| / v_off)   (the terrain's, over the route's points).
+//!
+//! With a descent speed w↓ other than the climb speed w↑ (the vehicle's `descent_speed_mps`),
+//! V₀ / w is the climbs (2c − spray height) / w↑, the descent to the first point
+//! (c − spray height) / w↓ and the landing from c as ArduCopter flies it
+//! ([`Vehicle::landing_s`]: the last 10 m at `land_speed_mps` when given); the terrain's e(P)
+//! is the out-leg's climb G − H_S and descent G − H_P, or the home leg's climb G − H_P and
+//! descent G − H_S, each at its speed, the dearer of the two legs taken for both.
 //!
 //! plus the share of the endurance the vehicle file says to land with
 //! (`battery_reserve_percent`). The second term is the worst leg's, taken for both legs of every sortie: a bound, not the
@@ -37,9 +45,14 @@ use super::highest_ground;
 pub fn sortie_model(vehicle: &Vehicle, supply: RoutePoint) -> SortieModel {
     // Returns fly at the safe height, as transfers that leave the field do (decision 0008).
     let mut model = SortieModel::new(vehicle, supply, 2.0 * vehicle.safe_height_m);
-    let vertical_m = 4.0 * vehicle.cruise_height_m() - 2.0 * vehicle.spray_height_m;
+    let (cruise_m, spray_m) = (vehicle.cruise_height_m(), vehicle.spray_height_m);
+    // Up from the supply point and from the last point, down to the first point, and the
+    // landing (4c − 2·spray height in all).
+    let vertical_s = vehicle.vertical_s(2.0 * cruise_m - spray_m)
+        + vehicle.vertical_s(spray_m - cruise_m)
+        + vehicle.landing_s(cruise_m);
     let charged_m = 2.0 * model.return_climb_m;
-    let reserve_s = vertical_m / vehicle.climb_speed_mps - charged_m / vehicle.transit_speed_mps;
+    let reserve_s = vertical_s - charged_m / vehicle.transit_speed_mps;
     // No cap: a reserve the battery cannot hold leaves no usable time, and the split says
     // which route point cannot be reached (an input error), rather than plan sorties that
     // fly over the battery as written.
@@ -65,9 +78,12 @@ pub fn sortie_model_over(
         let highest = highest_ground(terrain, (supply.x, supply.y), (point.x, point.y))?
             .max(supply.ground_m)
             .max(point.ground_m);
-        let extra_m = 2.0 * highest - supply.ground_m - point.ground_m;
+        // Out: up G − H_S, down G − H_P; home: up G − H_P, down G − H_S (e(P) in all).
+        let (from_supply_m, from_point_m) = (highest - supply.ground_m, highest - point.ground_m);
+        let out_s = vehicle.vertical_s(from_supply_m) + vehicle.vertical_s(-from_point_m);
+        let home_s = vehicle.vertical_s(from_point_m) + vehicle.vertical_s(-from_supply_m);
         let charged_m = (point.ground_m - supply.ground_m).abs();
-        Ok::<f64, Fault>(extra_m / vehicle.climb_speed_mps - charged_m / vehicle.transit_speed_mps)
+        Ok::<f64, Fault>(out_s.max(home_s) - charged_m / vehicle.transit_speed_mps)
     })?;
     let worst_s = extras.into_iter().fold(0.0, f64::max);
     model.battery_reserve_s += (2.0 * worst_s).max(0.0);
@@ -129,6 +145,44 @@ mod tests {
             ..survey.clone()
         };
         assert!((sortie_model(&careful, supply).battery_reserve_s - 162.0).abs() < 1e-9);
+    }
+
+    /// ArduCopter's defaults (climb 2.5 m/s, `WPNAV_SPEED_DN` 1.5 m/s, `LAND_SPEED` 0.5 m/s
+    /// below `LAND_ALT_LOW` 10 m): the descents and the landing are charged at them (fifth
+    /// trial: a landing charged at the climb speed ate into the battery reserve).
+    #[test]
+    fn descents_and_the_landing_are_charged_at_their_own_speeds() {
+        let arducopter = Vehicle {
+            climb_speed_mps: 2.5,
+            descent_speed_mps: Some(1.5),
+            land_speed_mps: Some(0.5),
+            ..Vehicle::default()
+        };
+        // Cruise c = 2 + 18 = 20 m: 10 m at 1.5 m/s, then 10 m at 0.5 m/s.
+        assert!((arducopter.landing_s(20.0) - (10.0 / 1.5 + 20.0)).abs() < 1e-12);
+        assert!((arducopter.landing_s(6.0) - 12.0).abs() < 1e-12);
+        assert!((arducopter.vertical_s(-3.0) - 2.0).abs() < 1e-12);
+        assert!((arducopter.vertical_s(5.0) - 2.0).abs() < 1e-12);
+        let supply = RoutePoint {
+            x: 0.0,
+            y: 0.0,
+            ground_m: 0.0,
+        };
+        let reserve = sortie_model(&arducopter, supply).battery_reserve_s;
+        let expected = (2.0 * 20.0 - 2.0) / 2.5 + (20.0 - 2.0) / 1.5 + (10.0 / 1.5 + 20.0)
+            - 4.0 * 18.0 / arducopter.transit_speed_mps;
+        assert!((reserve - expected).abs() < 1e-9, "{reserve} {expected}");
+        // 23.5 s more per sortie than with every metre at the climb speed.
+        let symmetric = Vehicle {
+            descent_speed_mps: None,
+            land_speed_mps: None,
+            ..arducopter.clone()
+        };
+        let more = reserve - sortie_model(&symmetric, supply).battery_reserve_s;
+        assert!(
+            (more - (12.0 + 26.0 + 2.0 / 3.0 - 38.0 / 2.5)).abs() < 1e-9,
+            "{more}"
+        );
     }
 
     #[test]

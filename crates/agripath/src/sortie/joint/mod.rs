@@ -517,6 +517,7 @@ mod tests {
             turn_mps: 2.0,
             transit_mps: 6.0,
             climb_mps: 3.0,
+            descent_mps: 3.0,
             transfer_climb_s: 12.0,
         };
         let (mut split, mut refused, mut conformed) = (0, 0, false);
