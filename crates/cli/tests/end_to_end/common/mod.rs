@@ -11,10 +11,10 @@ pub fn data(relative: &str) -> PathBuf {
         .join(relative)
 }
 
-/// An empty scratch folder for test `name` of `suite`, this process's own.
+/// An empty scratch folder for test `name` of `suite`, under cargo's `target/tmp`: the next
+/// run empties it again, so runs leave one set of folders behind, where `cargo clean` goes.
 pub fn scratch(suite: &str, name: &str) -> PathBuf {
-    let folder =
-        std::env::temp_dir().join(format!("agripath-{suite}-{name}-{}", std::process::id()));
+    let folder = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("agripath-{suite}-{name}"));
     let _ = std::fs::remove_dir_all(&folder);
     std::fs::create_dir_all(&folder).unwrap();
     folder
