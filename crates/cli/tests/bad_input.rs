@@ -826,6 +826,11 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "is this lon/lat?",
         ),
         (
+            local_fields("degrees_as_local.geojson"),
+            bad("degrees_as_local.geojson"),
+            "look like longitude and latitude",
+        ),
+        (
             terrain_info("truncated.asc"),
             bad("truncated.asc"),
             "truncated",

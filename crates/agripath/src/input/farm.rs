@@ -247,7 +247,29 @@ pub fn build(
             )),
         ));
     }
+    if coordinate_system == CoordinateSystem::Local && looks_like_degrees(&bounds) {
+        return Err(InputError::new(
+            path,
+            Fault::Structure(format!(
+                "the fields lie within x {:.4} … {:.4}, y {:.4} … {:.4}, under 1 m across if these are metres as \"crs\": \"local\" (or --crs local) says: they look like longitude and latitude, so drop the local frame",
+                bounds.min().x,
+                bounds.max().x,
+                bounds.min().y,
+                bounds.max().y
+            )),
+        ));
+    }
     Ok(farm)
+}
+
+/// Whether a farm read in local metres is one in degrees read wrongly: under 1 m across (no
+/// field so small can be sprayed) and where a longitude and a latitude can be.
+fn looks_like_degrees(bounds: &geo::Rect<f64>) -> bool {
+    bounds.width().max(bounds.height()) < 1.0
+        && bounds.min().x >= -180.0
+        && bounds.max().x <= 180.0
+        && bounds.min().y >= -90.0
+        && bounds.max().y <= 90.0
 }
 
 /// Gives fields that share a name (two polygons both called "Untitled Polygon" in a KML, say) names

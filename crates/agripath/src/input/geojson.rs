@@ -278,6 +278,27 @@ mod tests {
     }
 
     #[test]
+    fn degrees_read_as_local_metres_are_refused_with_the_reason() {
+        let square = |x: f64, y: f64, size: f64| {
+            format!(
+                r#"{{"type":"FeatureCollection","crs":"local","features":[{{"type":"Feature","properties":{{}},"geometry":{{"type":"Polygon","coordinates":[[[{x},{y}],[{},{y}],[{},{}],[{x},{}],[{x},{y}]]]}}}}]}}"#,
+                x + size,
+                x + size,
+                y + size,
+                y + size
+            )
+        };
+        let message = farm(&square(126.64, 45.75, 0.002)).unwrap_err().to_string();
+        assert!(
+            message.contains("look like longitude and latitude"),
+            "{message}"
+        );
+        // Metres: a field 1 m across or more, or outside where degrees can be, is read.
+        assert!(farm(&square(126.0, 45.0, 50.0)).is_ok());
+        assert!(farm(&square(500.0, 45.0, 0.5)).is_ok());
+    }
+
+    #[test]
     fn fields_that_share_a_name_get_names_of_their_own() {
         let square = |x: i32, name: &str| {
             format!(

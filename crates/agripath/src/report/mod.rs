@@ -223,6 +223,36 @@ fn far_fields_note(sorties: &[SortieReport], usable_percent: f64) -> Option<Stri
     })
 }
 
+/// Least ground one tank of a sprayer covers before the summary asks whether the tank's
+/// figures are right, m² (0.1 ha: a 10 L tank at 100 L/ha; the smallest spraying drones
+/// carry 8-10 L and spray 10-20 L/ha).
+const SMALL_TANK_M2: f64 = 1_000.0;
+
+/// A note where one tank sprays less than [`SMALL_TANK_M2`] and the plan flies several
+/// sorties for it: most likely a figure typed wrong (a fifth trial's 0.5 L tank sprayed 51 m
+/// of swath per sortie). The plan stands; the note names the keys to check.
+fn small_tank_note(vehicle: &Vehicle, sorties: usize) -> Option<String> {
+    let metres = vehicle.spray_length_per_tank_m()?;
+    let area_m2 = metres * vehicle.swath_width_m;
+    if sorties < 2 || area_m2 >= SMALL_TANK_M2 {
+        return None;
+    }
+    // The figure that limits the tank is the one to check.
+    let by_time_m = vehicle
+        .tank_spray_time_s
+        .map(|time| time * vehicle.spray_speed_mps);
+    let keys = if by_time_m.is_some_and(|by_time| by_time <= metres) {
+        "tank_spray_time_s"
+    } else {
+        "tank_l and application_rate_l_per_ha"
+    };
+    Some(format!(
+        "note: one tank sprays {metres:.0} m of swath ({:.2} ha, {:.0} s of spraying), so the plan flies {sorties} sorties: are the vehicle's {keys} right?\n",
+        area_m2 / 10_000.0,
+        metres / vehicle.spray_speed_mps
+    ))
+}
+
 /// The warning for a farm on the globe planned over flat ground: the preflight flew the
 /// missions over that flat ground, not over the hills the fields may lie on.
 fn terrain_warning(scenario: &Scenario) -> Option<String> {
@@ -591,6 +621,9 @@ impl Report {
             if let Some(note) = self.far_fields_note() {
                 text.push_str(&note);
             }
+            if let Some(note) = small_tank_note(&self.vehicle_settings, self.sortie_details.len()) {
+                text.push_str(&note);
+            }
         }
         text.push_str(&format!(
             "total: {work} {:.1} m + edges {:.1} m, transfers {:.1} m ({} climbing), {} turns ({} U-turns), covered {:.2}% as planned, {:.1} min ({:.1} min not {working}), planned in {:.3} s\n",
@@ -653,6 +686,31 @@ mod tests {
             battery_percent,
             return_point: None,
         }
+    }
+
+    #[test]
+    fn small_tank_note_asks_about_a_tank_under_a_tenth_of_a_hectare() {
+        let mut vehicle = Vehicle {
+            tank_l: Some(0.5),
+            application_rate_l_per_ha: Some(15.0),
+            swath_width_m: 6.5,
+            ..Vehicle::default()
+        };
+        let note = small_tank_note(&vehicle, 40).expect("333 m² is a small tank");
+        assert!(note.contains("51 m of swath"), "{note}");
+        assert!(
+            note.contains("tank_l and application_rate_l_per_ha"),
+            "{note}"
+        );
+        assert!(
+            small_tank_note(&vehicle, 1).is_none(),
+            "one sortie: nothing to ask"
+        );
+        vehicle.tank_l = Some(16.0);
+        assert!(small_tank_note(&vehicle, 40).is_none(), "1.07 ha is a tank");
+        vehicle.tank_spray_time_s = Some(10.0);
+        let note = small_tank_note(&vehicle, 40).expect("10 s of spraying is a small tank");
+        assert!(note.contains("tank_spray_time_s right?"), "{note}");
     }
 
     #[test]
