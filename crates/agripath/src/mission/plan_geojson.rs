@@ -4,7 +4,8 @@
 //! a swath, with `field` and `area_m2`), `missed` (reachable ground the flight left
 //! unsprayed, as the preflight measured it; the same properties), `obstacle`, `access`, `edge`, `swath`,
 //! `transfer`, `return` (a return point, `role: point`, and its leg to the supply point and
-//! back, `role: leg`), `supply`. Passes and legs carry `seq` (their place in the flight, from 0)
+//! back, `role: leg`), `supply`, `supply_option` (with `--supply auto:N`, the other places
+//! listed, `rank` from 2 and `cost_s`). Passes and legs carry `seq` (their place in the flight, from 0)
 //! and `sortie` (from 0); a pass's coordinates
 //! run in the direction flown; positions are `[x, y, z]` in the input's coordinate system
 //! (lon/lat or local metres) with z the altitude above sea level (terrain + spray height).
@@ -299,4 +300,27 @@ pub fn plan_geojson(
     }
     collection.insert("features".into(), Value::Array(features));
     Value::Object(collection)
+}
+
+/// Adds the other places `--supply auto:N` listed to `geojson` (a [`plan_geojson`]): a Point
+/// of kind `supply_option` each, with its `rank` (from 2: the supply point is the first) and
+/// its `cost_s` (`null` where the plan cannot be flown from it), at ground level.
+pub fn add_supply_options(
+    geojson: &mut Value,
+    system: CoordinateSystem,
+    options: &[(geo::Coord<f64>, Option<f64>)],
+) {
+    let Some(features) = geojson.get_mut("features").and_then(Value::as_array_mut) else {
+        return;
+    };
+    for (index, (point, cost_s)) in options.iter().enumerate() {
+        let mut properties = Map::new();
+        properties.insert("kind".into(), json!("supply_option"));
+        properties.insert("rank".into(), json!(index + 2));
+        properties.insert("cost_s".into(), json!(cost_s));
+        features.push(feature(
+            properties,
+            json!({"type": "Point", "coordinates": position(system, point.x, point.y, None)}),
+        ));
+    }
 }

@@ -5,10 +5,10 @@ use crate::error::Fault;
 use crate::mission::csv::waypoints_csv;
 use crate::mission::flight::build_missions;
 use crate::mission::kml::mission_kml;
-use crate::mission::plan_geojson::plan_geojson;
+use crate::mission::plan_geojson::{add_supply_options, plan_geojson};
 use crate::mission::{qgc_plan, wpl};
 use crate::model::CoordinateSystem;
-use crate::plot::map_svg::{plan_svg, Underlay};
+use crate::plot::map_svg::{plan_svg, PlanMap, Underlay};
 use crate::plot::plan_html::{plan_html, Overlay};
 #[cfg(feature = "png")]
 use crate::plot::raster::svg_to_png;
@@ -113,6 +113,26 @@ pub fn preflight_settings(mission: &PlannedMission) -> crate::preflight::Preflig
 /// Re-plans at most this many times when sorties fly over the battery as written.
 const MOST_BATTERY_REPLANS: usize = 3;
 
+/// The places `--supply auto:N` listed after the one chosen, in planning metres, with their
+/// costs (none without `auto:N`).
+fn supply_options(report: &crate::report::Report) -> Vec<(geo::Coord<f64>, Option<f64>)> {
+    report
+        .supply
+        .as_ref()
+        .and_then(|supply| supply.auto.as_ref())
+        .map(|auto| {
+            auto.candidates
+                .iter()
+                .skip(1)
+                .map(|candidate| {
+                    let [x, y] = candidate.at.point_m;
+                    (geo::Coord { x, y }, candidate.cost_s)
+                })
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
 /// [`render`], and when the preflight finds sorties that fly over the battery as written,
 /// the render of the plan made again with the largest overrun (and a second) held back from
 /// every sortie's battery ([`crate::sortie::SortieSettings::battery_margin_s`]), at most
@@ -198,8 +218,9 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
     let verdict = crate::preflight::check(&world, &preflight_settings(mission), &mission_files);
     let mut report = mission.report.clone();
     report.preflight = Some(verdict.clone());
+    let supply_options = supply_options(&report);
     let geojson_of = |farm: &crate::model::Farm| {
-        plan_geojson(
+        let mut geojson = plan_geojson(
             farm,
             &mission.coverage,
             &mission.route,
@@ -207,7 +228,9 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
             vehicle.spray_height_m,
             vehicle.safe_height_m,
             &verdict.ground,
-        )
+        );
+        add_supply_options(&mut geojson, farm.coordinate_system, &supply_options);
+        geojson
     };
     let geojson = geojson_of(&scenario.farm);
     let title = format!(
@@ -269,15 +292,18 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         max_x: extent.max_x,
         max_y: extent.max_y,
     };
-    let map = plan_svg(
-        &scenario.farm,
-        &mission.coverage,
-        &mission.route,
-        mission.sorties.as_ref(),
-        Some(&underlay),
-        &title,
-        &verdict.ground,
-    );
+    let other_supply_points: Vec<geo::Coord<f64>> =
+        supply_options.iter().map(|(point, _)| *point).collect();
+    let map = plan_svg(&PlanMap {
+        farm: &scenario.farm,
+        plan: &mission.coverage,
+        route: &mission.route,
+        sorties: mission.sorties.as_ref(),
+        underlay: Some(&underlay),
+        title: &title,
+        ground: &verdict.ground,
+        other_supply_points: &other_supply_points,
+    });
     let rows = crate::sheet::sortie_rows(
         &scenario.farm,
         &mission.route,

@@ -119,28 +119,54 @@ pub(super) fn scale_bar_m(width_m: f64) -> f64 {
         .unwrap_or(magnitude)
 }
 
-/// Draws the plan. `title` heads the map; `sorties` colours passes by sortie and adds the
-/// returns; `underlay` (the hillshade) goes beneath everything.
-pub fn plan_svg(
-    farm: &Farm,
-    plan: &CoveragePlan,
-    route: &Route,
-    sorties: Option<&PlannedSorties>,
-    underlay: Option<&Underlay>,
-    title: &str,
-    ground: &crate::coverage::region::GroundPatches,
-) -> String {
-    // The farm, and the supply point where it stands off the fields (it may be 200 m out).
+/// What the plan's map draws.
+pub struct PlanMap<'a> {
+    /// The fields, holes, obstacles and access features.
+    pub farm: &'a Farm,
+    /// The swaths and edge passes.
+    pub plan: &'a CoveragePlan,
+    /// The order flown, with its transfers.
+    pub route: &'a Route,
+    /// The sorties: passes coloured by sortie, the returns and the supply point.
+    pub sorties: Option<&'a PlannedSorties>,
+    /// The hillshade, beneath everything.
+    pub underlay: Option<&'a Underlay<'a>>,
+    /// The map's heading.
+    pub title: &'a str,
+    /// Ground no swath reaches, and ground the preflight found missed.
+    pub ground: &'a crate::coverage::region::GroundPatches,
+    /// With `--supply auto:N`: the other places listed, in their order (the 2nd best first).
+    pub other_supply_points: &'a [geo::Coord<f64>],
+}
+
+/// Draws the plan.
+pub fn plan_svg(map: &PlanMap) -> String {
+    let PlanMap {
+        farm,
+        plan,
+        route,
+        sorties,
+        underlay,
+        title,
+        ground,
+        other_supply_points,
+    } = *map;
+    // The farm, the supply point where it stands off the fields (it may be 200 m out) and
+    // the other places listed.
     let mut bounds = farm.bounds();
-    if let Some(supply) = route.launch.map(|leg| leg.from) {
+    let supply = route.launch.map(|leg| geo::Coord {
+        x: leg.from.x,
+        y: leg.from.y,
+    });
+    for point in supply.iter().chain(other_supply_points) {
         bounds = geo::Rect::new(
             geo::Coord {
-                x: bounds.min().x.min(supply.x),
-                y: bounds.min().y.min(supply.y),
+                x: bounds.min().x.min(point.x),
+                y: bounds.min().y.min(point.y),
             },
             geo::Coord {
-                x: bounds.max().x.max(supply.x),
-                y: bounds.max().y.max(supply.y),
+                x: bounds.max().x.max(point.x),
+                y: bounds.max().y.max(point.y),
             },
         );
     }
@@ -315,6 +341,24 @@ pub fn plan_svg(
             y = canvas.y(supply.y)
         );
     }
+    // The other places `auto:N` listed: hollow, named by rank as `report.json` lists them
+    // (the supply point is the first), in words, so they do not read as sortie numbers.
+    if !other_supply_points.is_empty() {
+        let _ = writeln!(
+            svg,
+            r##"<g id="other-supply-points" font-size="11" text-anchor="middle">"##
+        );
+        for (index, point) in other_supply_points.iter().enumerate() {
+            let (x, y) = (canvas.x(point.x), canvas.y(point.y));
+            let _ = writeln!(
+                svg,
+                r##"<circle cx="{x:.2}" cy="{y:.2}" r="5" fill="#ffeb3b" fill-opacity="0.35" stroke="#222" stroke-width="1.5" stroke-dasharray="3 2"/><text x="{x:.2}" y="{:.2}" fill="#222" stroke="#fbfbf8" stroke-width="3" paint-order="stroke">option {}</text>"##,
+                y - 9.0,
+                index + 2
+            );
+        }
+        let _ = writeln!(svg, "</g>");
+    }
     // The sortie numbers, at the first pass each sortie begins, over every line and return.
     if sortie_count > 1 {
         let _ = writeln!(
@@ -456,6 +500,12 @@ pub fn plan_svg(
                 r##"fill="{UNREACHABLE_COLOUR}" fill-opacity="0.8""##
             )),
             "no swath reaches",
+        ));
+    }
+    if !other_supply_points.is_empty() {
+        swatches.push((
+            r##"<circle cx="14" cy="0" r="5" fill="#ffeb3b" fill-opacity="0.35" stroke="#222" stroke-width="1.5" stroke-dasharray="3 2"/>"##.to_string(),
+            "other supply places (option N of report.json)",
         ));
     }
     if any_missed {

@@ -75,6 +75,7 @@ html, body, #map {{ height: 100%; margin: 0; background: #f4f4f0; font-family: s
 .agripath-title {{ background: rgba(255,255,255,0.9); padding: 6px 10px; border-radius: 4px; font-size: 14px; }}
 .agripath-popup td {{ padding: 1px 6px; font-size: 12px; }}
 .agripath-popup td:first-child {{ color: #555; }}
+.agripath-rank {{ background: none; border: none; box-shadow: none; font: bold 11px Helvetica, Arial, sans-serif; padding: 0; }}
 </style>
 <script>
 {LEAFLET_JS}
@@ -116,10 +117,15 @@ for (const feature of PLAN.features) {{
   const p = feature.properties;
   const name = (p.kind === "field" || p.kind === "obstacle") ? "fields"
     : p.kind === "supply" ? "supply point"
+    : p.kind === "supply_option" ? "other supply places"
     : "sortie " + ((p.sortie || 0) + 1);
   L.geoJSON(feature, {{
     style: style,
-    pointToLayer: (f, latlng) => L.circleMarker(latlng, {{
+    pointToLayer: (f, latlng) => f.properties.kind === "supply_option"
+      ? L.circleMarker(latlng, {{ radius: 6, color: "#222", weight: 1.5, dashArray: "3 2",
+          fillColor: "#ffeb3b", fillOpacity: 0.35 }})
+          .bindTooltip("option " + f.properties.rank, {{ permanent: true, direction: "top", className: "agripath-rank" }})
+      : L.circleMarker(latlng, {{
       radius: f.properties.kind === "supply" ? 8 : 5,
       color: f.properties.kind === "supply" ? "#000" : "#ff6f00",
       fillColor: f.properties.kind === "supply" ? "#ffeb3b" : "#ff6f00",

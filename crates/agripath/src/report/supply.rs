@@ -232,7 +232,9 @@ impl SupplyReport {
                 match auto.candidates.len() {
                     0 => String::new(),
                     1 => "; 1 candidate in report.json".to_string(),
-                    count => format!("; {count} candidates in report.json"),
+                    count => format!(
+                        "; {count} candidates in report.json, the others on the map as options 2-{count}"
+                    ),
                 },
                 warning
             ),

@@ -122,6 +122,34 @@ fn a_point_given_is_used_and_auto_n_lists_candidates_best_first() {
         .collect();
     assert!(costs.windows(2).all(|pair| pair[0] <= pair[1]), "{costs:?}");
     assert_eq!(candidates[0]["point_m"], listed["supply"]["point_m"]);
+    // The others are on the map and in plan.geojson as options 2, 3, … with their costs.
+    let plan: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(folder.join("listed/plan.geojson")).unwrap())
+            .unwrap();
+    let options: Vec<&serde_json::Value> = plan["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|feature| feature["properties"]["kind"] == "supply_option")
+        .collect();
+    assert_eq!(options.len(), candidates.len() - 1);
+    for (option, candidate) in options.iter().zip(&candidates[1..]) {
+        assert_eq!(option["properties"]["cost_s"], candidate["cost_s"]);
+        let at = &option["geometry"]["coordinates"];
+        for axis in 0..2 {
+            let given = candidate["point_m"][axis].as_f64().unwrap();
+            assert!(
+                (at[axis].as_f64().unwrap() - given).abs() < 1e-3,
+                "{at} {candidate}"
+            );
+        }
+    }
+    assert_eq!(options[0]["properties"]["rank"], 2);
+    let map = std::fs::read_to_string(folder.join("listed/plan.svg")).unwrap();
+    assert!(
+        map.contains(">option 2</text>"),
+        "the map names the second place"
+    );
     std::fs::remove_dir_all(&folder).unwrap();
 }
 
