@@ -365,6 +365,8 @@ pub fn files(
             colour: result.planner.colour(),
             points: result.best().final_points(),
             safe: result.verdict().is_safe(),
+            lowest_clearance_m: Some(result.verdict().lowest_clearance_m)
+                .filter(|metres| metres.is_finite()),
         })
         .collect();
     let top = track_svg::top_view(scenario, &scenario.name, &drawn);

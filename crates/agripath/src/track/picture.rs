@@ -25,6 +25,10 @@ pub struct DrawnTrack<'a> {
     pub points: &'a [[f64; 3]],
     /// Whether the track passed the safety check (drawn dashed when not).
     pub safe: bool,
+    /// The safety check's lowest clearance in any direction (`report.json`'s
+    /// `lowest_clearance_m`), metres: the profile's label gives it where it is less than the
+    /// height above the ground the section shows.
+    pub lowest_clearance_m: Option<f64>,
 }
 
 fn rgb_png(width: usize, height: usize, pixels: &[u8]) -> Vec<u8> {
@@ -296,6 +300,18 @@ pub fn top_view(scenario: &TrackScenario, title: &str, tracks: &[DrawnTrack]) ->
     svg
 }
 
+/// The profile's label at its lowest point: the height above the ground the section shows,
+/// and, where the check found the terrain nearer in another direction (a slope beside the
+/// track), that distance too, as `report.json` gives it.
+fn lowest_words(height_m: f64, any_direction_m: Option<f64>) -> String {
+    match any_direction_m {
+        Some(distance) if distance < height_m - 0.05 => format!(
+            "lowest {height_m:.1} m above the ground; clearance {distance:.1} m in any direction"
+        ),
+        _ => format!("lowest clearance {height_m:.1} m"),
+    }
+}
+
 /// The altitude profile of a whole track (altitudes above sea level) against the terrain as
 /// given, with the band, the minimum clearance and where the track breaks it.
 pub fn profile(scenario: &TrackScenario, title: &str, track: &DrawnTrack) -> String {
@@ -434,13 +450,13 @@ pub fn profile(scenario: &TrackScenario, title: &str, track: &DrawnTrack) -> Str
         let x = px(d);
         let _ = write!(
             svg,
-            r##"<line x1="{x:.1}" x2="{x:.1}" y1="{:.1}" y2="{:.1}" stroke="#222" stroke-width="1.2"/><circle cx="{x:.1}" cy="{:.1}" r="3.5" fill="none" stroke="#222"/><text x="{:.1}" y="{:.1}" font-size="11">lowest clearance {:.1} m</text>"##,
+            r##"<line x1="{x:.1}" x2="{x:.1}" y1="{:.1}" y2="{:.1}" stroke="#222" stroke-width="1.2"/><circle cx="{x:.1}" cy="{:.1}" r="3.5" fill="none" stroke="#222"/><text x="{:.1}" y="{:.1}" font-size="11">{}</text>"##,
             py(z),
             py(g),
             py(z),
             x + 6.0,
             py(z) - 8.0,
-            z - g,
+            lowest_words(z - g, track.lowest_clearance_m),
         );
     }
     for value in ticks(low, high, 6) {
@@ -535,10 +551,16 @@ mod tests {
             colour: "#0072B2",
             points: &points,
             safe: false,
+            lowest_clearance_m: None,
         };
         let profile = profile(&scenario, "profile", &track);
         assert!(profile.contains(">unsafe</text>"));
         assert!(profile.contains("lowest clearance 1.0 m"));
+        assert_eq!(lowest_words(3.4, Some(3.38)), "lowest clearance 3.4 m");
+        assert_eq!(
+            lowest_words(3.4, Some(2.7)),
+            "lowest 3.4 m above the ground; clearance 2.7 m in any direction"
+        );
         assert!(profile.contains("minimum clearance 2 m"));
         let top = top_view(&scenario, "top", &[track]);
         assert!(top.contains("terrain height (m)") && top.contains("test (unsafe)"));

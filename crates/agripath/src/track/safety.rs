@@ -28,11 +28,16 @@ use crate::terrain::nearness::GroundNearness;
 /// Horizontal spacing of the verdict's samples, metres: the mission preflight's.
 pub const SAMPLE_SPACING_M: f64 = crate::preflight::SAMPLE_M;
 
+/// Farthest the reported lowest clearance looks sideways, metres: a track that keeps more
+/// than this above the ground everywhere reports its height above it (the cost of the search
+/// grows with the reach, and no operator reads the difference up there).
+pub const REPORTED_REACH_M: f64 = 50.0;
+
 /// What the check found.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Verdict {
-    /// Least height above the terrain along the cruise, or the least distance to it sideways
-    /// where that is nearer and within `--min-clearance` (metres).
+    /// Least distance from the cruise to the terrain in any direction (a lower bound, within
+    /// [`REPORTED_REACH_M`]; beyond it, the least height above the terrain), metres.
     pub lowest_clearance_m: f64,
     /// Where the lowest clearance is, scenario (x, y).
     pub lowest_clearance_at: [f64; 2],
@@ -168,8 +173,8 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
             if near.distance_m < clearance {
                 if !vertical_fails && near.distance_m < limits.min_clearance_m {
                     violations.push(format!(
-                        "leg {leg} passes {:.2} m from the terrain beside it at {} ({:.2} m above the ground beneath; minimum {} m in any direction)",
-                        near.distance_m,
+                        "leg {leg} passes {} m from the terrain beside it at {} ({:.2} m above the ground beneath; minimum {} m in any direction)",
+                        short_of(near.distance_m, limits.min_clearance_m),
                         place(scenario, near.at[0], near.at[1]),
                         clearance,
                         limits.min_clearance_m
@@ -191,11 +196,32 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
                 )
             } else {
                 format!(
-                    "leg {leg} passes {clearance:.2} m above the terrain at {} (minimum {} m)",
+                    "leg {leg} passes {} m above the terrain at {} (minimum {} m)",
+                    short_of(clearance, limits.min_clearance_m),
                     place(scenario, x, y),
                     limits.min_clearance_m
                 )
             });
+        }
+    }
+    // The figure reported is the least distance in any direction, as `--min-clearance` is
+    // defined: the pass above looked sideways only within the minimum (enough for the
+    // verdict), so where the track keeps more, look again within what it keeps.
+    if lowest_clearance_m.is_finite() && lowest_clearance_m > limits.min_clearance_m {
+        let reach_m = lowest_clearance_m.min(REPORTED_REACH_M);
+        let mut nearness = GroundNearness::new(
+            scenario.true_terrain(),
+            |x, y| scenario.true_ground(x, y),
+            scenario.unit_m,
+            reach_m,
+        );
+        let cruise = &points[first_cruise_leg..first_cruise_leg + cruise_legs + 1];
+        for pair in cruise.windows(2) {
+            if let Some(near) = nearness.leg(pair[0], pair[1]) {
+                if near.distance_m < lowest_clearance_m {
+                    (lowest_clearance_m, lowest_clearance_at) = (near.distance_m, near.at);
+                }
+            }
         }
     }
     let (min_x, min_y, max_x, max_y) = scenario.area;
@@ -222,6 +248,15 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
     }
 }
 
+/// A distance short of `minimum`, with the decimals that show it short: 1.9985 m reads
+/// "1.998", not "2.00", beside a minimum of 2 m.
+fn short_of(distance_m: f64, minimum_m: f64) -> String {
+    (2..=6)
+        .map(|decimals| format!("{distance_m:.decimals$}"))
+        .find(|text| text.parse::<f64>().is_ok_and(|shown| shown < minimum_m))
+        .unwrap_or_else(|| format!("{distance_m}"))
+}
+
 /// The point of the segment a → b nearest (x, y), horizontally.
 fn closest_point(x: f64, y: f64, a: [f64; 3], b: [f64; 3]) -> [f64; 2] {
     let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
@@ -236,6 +271,13 @@ fn closest_point(x: f64, y: f64, a: [f64; 3], b: [f64; 3]) -> [f64; 2] {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn a_shortfall_reads_short() {
+        assert_eq!(short_of(1.9985, 2.0), "1.998");
+        assert_eq!(short_of(1.5, 2.0), "1.50");
+        assert_eq!(short_of(9.99, 10.0), "9.99");
+    }
+
     use super::*;
 
     /// Task `task` with the start and goal moved to the cruise's ends: no vertical legs, so
