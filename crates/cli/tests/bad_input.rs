@@ -679,6 +679,16 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "arguments".into(),
             "seed000-table9",
         ),
+        (
+            vec![
+                "repro".into(),
+                "seed001-table7".into(),
+                "--runs".into(),
+                "5".into(),
+            ],
+            "--runs".into(),
+            "no runs to count",
+        ),
     ];
     cases.extend(vec![
         (fields("empty.geojson"), bad("empty.geojson"), "empty"),

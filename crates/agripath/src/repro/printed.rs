@@ -27,9 +27,9 @@ pub fn seed001_table7() -> Result<String, InputError> {
 }
 
 /// Seed 001's Table 8: transfer lengths from the paper's start points, `seed` ant colony runs.
-pub fn seed001_table8(seed: u64) -> Result<String, InputError> {
+pub fn seed001_table8(runs: u64, seed: u64) -> Result<String, InputError> {
     let scenario = crate::demo::scenario()?;
-    let table = super::seed001_table8::table8(&scenario, seed as usize)
+    let table = super::seed001_table8::table8(&scenario, runs as usize, seed)
         .map_err(|fault| InputError::new(crate::demo::FARM_LABEL, fault))?;
     Ok(format!(
         "Seed 001, Table 8: transfer path length (m), paper beside agripath\n{}",

@@ -6,6 +6,9 @@ use crate::bench::functions::FunctionBench;
 use crate::repro::{printed, seed000_table2, tracks};
 use crate::InputError;
 
+/// Most ant-colony runs per start `repro seed001-table8 --runs` takes (each is about 0.1 s).
+const MOST_TABLE8_RUNS: u64 = 1_000;
+
 /// How the scenarios of the track tables are named in errors.
 const TRACK_LABEL: &str = "embedded track scenario";
 
@@ -23,6 +26,8 @@ enum Table {
     Ablation(FunctionBench, Vec<String>),
     /// A track table (its key) with its runs per planner.
     Tracks(&'static str, u64),
+    /// Seed 001 Table 8: the ant colony's runs per start (seeds `seed`, `seed + 1`, …).
+    Table8(u64),
     /// A table computed without runs to count (its key).
     Other(&'static str),
 }
@@ -60,7 +65,17 @@ impl ReproJob {
             "seed000-table4" | "seed000-table5" | "seed002" | "spso" => {
                 Table::Tracks(key, super::track::check_runs(runs.unwrap_or(10))?)
             }
-            other => Table::Other(other),
+            "seed001-table8" => Table::Table8(runs.unwrap_or(1).clamp(1, MOST_TABLE8_RUNS)),
+            other => {
+                if let Some(runs) = runs {
+                    return Err(super::bad_value(
+                        "--runs",
+                        runs.to_string(),
+                        format!("{other} is computed once: it has no runs to count"),
+                    ));
+                }
+                Table::Other(other)
+            }
         };
         Ok(Self { table, seed })
     }
@@ -119,7 +134,7 @@ impl ReproJob {
                 "runs",
             )),
             Table::Tracks(key, runs) => Some((tracks::total_runs(key, *runs), "runs")),
-            Table::Other(_) => None,
+            Table::Table8(_) | Table::Other(_) => None,
         }
     }
 
@@ -175,9 +190,10 @@ impl ReproJob {
                     "seed004.txt and a map per field",
                 ))
             }
-            Table::Other(key @ "seed001-table8") => {
-                Ok(printed_table(key, printed::seed001_table8(seed)?))
-            }
+            Table::Table8(runs) => Ok(printed_table(
+                "seed001-table8",
+                printed::seed001_table8(*runs, seed)?,
+            )),
             Table::Other(key) => Ok(printed_table(key, printed::seed001_table7()?)),
         }
     }
@@ -231,4 +247,25 @@ fn track_table(
     }
     let contents = "table.md, track, report, top views, profiles, convergence";
     Ok(Outcome::with_folder(text, files, contents))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `--runs` counts Table 8's colony runs and `--seed` seeds the first (the sixth trial
+    /// found `--seed` taken as the count and `--runs` ignored); a table computed once
+    /// refuses `--runs`.
+    #[test]
+    fn table8_takes_runs_and_seed_apart_and_a_table_computed_once_refuses_runs() {
+        let job = ReproJob::new("seed001-table8", Some(3), 7).unwrap();
+        assert!(matches!(job.table, Table::Table8(3)) && job.seed == 7);
+        let default = ReproJob::new("seed001-table8", None, 7).unwrap();
+        assert!(matches!(default.table, Table::Table8(1)));
+        for key in ["seed001-table7", "seed003-table4", "seed004"] {
+            let error = ReproJob::new(key, Some(5), 1).err().expect("refused");
+            assert!(error.to_string().contains("no runs to count"), "{error}");
+            assert!(ReproJob::new(key, None, 1).is_ok());
+        }
+    }
 }
