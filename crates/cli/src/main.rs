@@ -9,7 +9,7 @@ mod commands;
 
 use std::process::ExitCode;
 
-use clap::Parser;
+use clap::{CommandFactory, FromArgMatches};
 
 use agripath::request::Failure;
 
@@ -37,8 +37,20 @@ fn usage_error_line(text: &str) -> String {
     line
 }
 
+/// `--iters -5` reads -5 as the option's value, so the option's own check names it ("invalid
+/// value '-5' for '--iters'"), not as an unknown flag '-5'.
+fn negative_numbers_as_values(command: clap::Command) -> clap::Command {
+    command
+        .allow_negative_numbers(true)
+        .mut_subcommands(negative_numbers_as_values)
+}
+
 fn main() -> ExitCode {
-    let arguments = match args::Arguments::try_parse() {
+    let command = negative_numbers_as_values(args::Arguments::command());
+    let parsed = command
+        .try_get_matches()
+        .and_then(|matches| args::Arguments::from_arg_matches(&matches));
+    let arguments = match parsed {
         Ok(arguments) => arguments,
         Err(error) => {
             // Help and version go to stdout with status 0; usage errors are bad input, one

@@ -235,7 +235,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
                 "-1".into(),
             ],
             "arguments".into(),
-            "'-1'",
+            "--cell = -1 is invalid",
         ),
         (
             plan_farm(&["--terrain", &bad("huge_height.tif")]),
@@ -1066,6 +1066,60 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "1..=1000",
         ),
         (
+            bench_with(&["--runs", "1", "--dim", "5", "--functions", "f1,"]),
+            "--functions".into(),
+            "an empty name in the list",
+        ),
+        (
+            bench_with(&["--runs", "1", "--dim", "5", "--algorithms", "pso,PSO"]),
+            "--algorithms".into(),
+            "named twice",
+        ),
+        (
+            vec![
+                "bench".into(),
+                "functions".into(),
+                "--runs".into(),
+                "1".into(),
+                "--pop".into(),
+                "1000000000".into(),
+                "--iters".into(),
+                "2".into(),
+            ],
+            "--pop × --dim".into(),
+            "numbers in a population",
+        ),
+        (
+            vec![
+                "bench".into(),
+                "functions".into(),
+                "--iters".into(),
+                "-5".into(),
+            ],
+            "--iters".into(),
+            "invalid value '-5'",
+        ),
+        (
+            track_with(&data("seed000_orchard.json"), &["--algorithm", "lattice,ours"]),
+            "--algorithm".into(),
+            "the same as 'lattice' before it",
+        ),
+        (
+            track_with(&data("seed000_orchard.json"), &["--min-clearance", "0.2"]),
+            "--min-clearance".into(),
+            "0.5..=1000",
+        ),
+        (
+            track_with(&data("seed000_orchard.json"), &["--encoding", "spherical"]),
+            "--encoding".into(),
+            "takes an encoding",
+        ),
+        (
+            track_with(&data("tracks/christmas_island_track.toml"), &["--task", "II"]),
+            "--task".into(),
+            "no tasks",
+        ),
+        (
             track_with(&data("seed001_farm.geojson"), &[]),
             data("seed001_farm.geojson"),
             "not a track scenario",
@@ -1097,8 +1151,8 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         ),
         (
             track_with(&data("seed000_orchard.json"), &["--min-clearance", "5000"]),
-            data("seed000_orchard.json"),
-            "--min-clearance",
+            "--min-clearance".into(),
+            "0.5..=1000",
         ),
         (
             track_with(&bad("track_spso_missing_dem.json"), &[]),

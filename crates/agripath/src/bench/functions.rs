@@ -47,6 +47,9 @@ pub struct FunctionBench {
     pub with_times: bool,
 }
 
+/// Most numbers (population × dimension) a bench's population may hold: 160 MB a copy.
+pub const MOST_POPULATION_NUMBERS: usize = 20_000_000;
+
 impl FunctionBench {
     /// Seed 000 §2.5: D = 50, population 500, 300 iterations, 50 runs, its five algorithms
     /// on its nine functions.
@@ -133,6 +136,17 @@ impl FunctionBench {
                 "--pop × --iters",
                 self.evaluation_budget().to_string(),
                 "more than 1e10 evaluations per run",
+            ));
+        }
+        // Each optimizer keeps a few copies of its population (positions, velocities or
+        // offspring, bests), on each of the two cores' runs.
+        if self.population.saturating_mul(self.dimension) > MOST_POPULATION_NUMBERS {
+            return Err(invalid(
+                "--pop × --dim",
+                format!("{} × {}", self.population, self.dimension),
+                &format!(
+                    "more than {MOST_POPULATION_NUMBERS} numbers in a population (160 MB a copy; the optimizers keep several)"
+                ),
             ));
         }
         for function in &self.functions {

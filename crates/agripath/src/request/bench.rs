@@ -1,7 +1,7 @@
 //! A function bench as asked for: seed 000's Table 2 settings with the dimension, population,
 //! iterations, runs and seed given, and the algorithms and functions named.
 
-use super::{bad_value, Outcome};
+use super::{named_list, Outcome};
 use crate::bench::functions::{FunctionBench, FunctionTable};
 use crate::InputError;
 
@@ -31,8 +31,8 @@ pub struct FunctionBenchOptions {
     /// Independent runs per algorithm and function.
     #[cfg_attr(feature = "cli", arg(long, default_value_t = 50))]
     pub runs: u64,
-    /// Algorithms, comma-separated: pso, ga, ba, ilssiwba, iba-fcs, gsa, aco-r, lshade
-    /// (default: the five of seed 000).
+    /// Algorithms, comma-separated: pso, ga, ba, ilssiwba, iba-fcs, gsa, aco-r, lshade, random
+    /// (uniform random search, a baseline; default: the five of seed 000).
     #[cfg_attr(feature = "cli", arg(long, value_delimiter = ','))]
     pub algorithms: Vec<String>,
     /// Functions, comma-separated: f1 … f9 (default: all nine).
@@ -66,29 +66,30 @@ impl FunctionBenchOptions {
             self.seed,
         );
         if !self.algorithms.is_empty() {
-            settings.algorithms = self
-                .algorithms
-                .iter()
-                .map(|name| {
-                    name.parse::<swarm::Algorithm>()
-                        .map_err(|why| bad_value("--algorithms", name, why))
-                })
-                .collect::<Result<_, _>>()?;
+            let names: Vec<&str> = self.algorithms.iter().map(String::as_str).collect();
+            settings.algorithms =
+                named_list("--algorithms", &names, str::parse::<swarm::Algorithm>)?;
         }
         if !self.functions.is_empty() {
-            settings.functions = self
-                .functions
-                .iter()
-                .map(|key| {
-                    swarm::functions::by_key(key)
-                        .map_err(|why| bad_value("--functions", key, why.to_string()))
-                })
-                .collect::<Result<_, _>>()?;
+            let names: Vec<&str> = self.functions.iter().map(String::as_str).collect();
+            let keyed = named_list("--functions", &names, |key| {
+                swarm::functions::by_key(key).map(ByKey)
+            })?;
+            settings.functions = keyed.into_iter().map(|ByKey(function)| function).collect();
         }
         settings
             .validate()
             .map_err(|fault| InputError::new("arguments", fault))?;
         Ok(settings)
+    }
+}
+
+/// A test function told apart from others by its key (`F1` and `f1` are one).
+struct ByKey(&'static swarm::functions::TestFunction);
+
+impl PartialEq for ByKey {
+    fn eq(&self, other: &Self) -> bool {
+        self.0.key == other.0.key
     }
 }
 

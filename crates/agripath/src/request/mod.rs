@@ -249,7 +249,37 @@ pub fn validate(inputs: &ScenarioInputs, json: bool) -> Result<String, InputErro
     })
 }
 
-/// An option's value that is not one it may take: the error names the option.
+/// The names of a comma-separated list given to `option`, each parsed by `parse`: an empty
+/// name (a comma too many) and a thing named twice (by one name or by two aliases) are
+/// refused, naming the option, not passed on as an unknown name or a repeated column.
+pub(crate) fn named_list<T: PartialEq, E: std::fmt::Display>(
+    option: &str,
+    names: &[&str],
+    parse: impl Fn(&str) -> Result<T, E>,
+) -> Result<Vec<T>, InputError> {
+    let mut parsed: Vec<(T, &str)> = Vec::with_capacity(names.len());
+    for name in names.iter().map(|name| name.trim()) {
+        if name.is_empty() {
+            return Err(bad_value(
+                option,
+                names.join(","),
+                "an empty name in the list (a comma too many?)",
+            ));
+        }
+        let thing = parse(name).map_err(|why| bad_value(option, name, why.to_string()))?;
+        if let Some((_, before)) = parsed.iter().find(|(other, _)| *other == thing) {
+            let why = if before.eq_ignore_ascii_case(name) {
+                "named twice".to_string()
+            } else {
+                format!("the same as '{before}' before it: named twice")
+            };
+            return Err(bad_value(option, name, why));
+        }
+        parsed.push((thing, name));
+    }
+    Ok(parsed.into_iter().map(|(thing, _)| thing).collect())
+}
+
 pub(crate) fn bad_value(
     option: &str,
     value: impl Into<String>,

@@ -11,6 +11,14 @@ use crate::{Fault, InputError};
 /// The terrain an argument names (a DEM file, flat, flat:HEIGHT, seed000, seed002), an XYZ
 /// point cloud gridded at `cell` metres when given.
 pub fn load_terrain(argument: &str, cell: Option<f64>) -> Result<Box<dyn Terrain>, InputError> {
+    // The flag before the file: a bad value is the command line's fault whatever the file.
+    if let Some(cell) = cell.filter(|cell| !(cell.is_finite() && *cell > 0.0)) {
+        return Err(super::bad_value(
+            "--cell",
+            cell.to_string(),
+            "must be a positive number of metres",
+        ));
+    }
     let mut spec = TerrainSpec::from_argument(argument)?;
     if let TerrainSpec::File { cell_m, .. } = &mut spec {
         *cell_m = cell;

@@ -80,11 +80,8 @@ pub fn check_runs(runs: u64) -> Result<u64, InputError> {
 impl TrackRequest {
     /// Checks the options (planners, encoding, budget) and reads the scenario.
     pub fn prepare(&self) -> Result<TrackJob, InputError> {
-        let planners = self
-            .algorithms
-            .split(',')
-            .map(|name| Planner::parse(name).map_err(|why| bad_value("--algorithm", name, why)))
-            .collect::<Result<Vec<_>, _>>()?;
+        let names: Vec<&str> = self.algorithms.split(',').collect();
+        let planners = super::named_list("--algorithm", &names, Planner::parse)?;
         let encoding = match self.encoding.as_deref() {
             None => None,
             Some(text) => Some(Encoding::parse(text).ok_or_else(|| {
@@ -95,9 +92,28 @@ impl TrackRequest {
                 )
             })?),
         };
+        // The encoding is the swarm algorithms' choice; the others fly their own.
+        if let Some(text) = &self.encoding {
+            if !planners
+                .iter()
+                .any(|planner| matches!(planner, Planner::Swarm(_)))
+            {
+                return Err(bad_value(
+                    "--encoding",
+                    text.as_str(),
+                    format!(
+                        "none of the planners asked ({}) takes an encoding: lattice and improved-ga fly Cartesian waypoints, spso spherical",
+                        self.algorithms
+                    ),
+                ));
+            }
+        }
         if self.evaluations == Some(0) {
             return Err(bad_value("--evaluations", "0", "must be at least 1"));
         }
+        self.limits
+            .check()
+            .map_err(|fault| InputError::new("arguments", fault))?;
         let path = &self.scenario_path;
         let scenario = TrackScenario::read(path, self.task.as_deref())?
             .with_limits(self.limits)

@@ -150,16 +150,17 @@ pub(super) fn expect_setting(value: &Value, path: &str, expected: f64) -> Result
     }
 }
 
-/// A whole number of at least 0 (and at most `most`).
-pub(super) fn count(value: &Value, path: &str, most: f64) -> Result<usize, Fault> {
+/// A whole number in `least..=most`, the bounds the scenario's checks will hold it to (a
+/// message that says 0..=N and then refuses 0 sends the reader round twice).
+pub(super) fn count(value: &Value, path: &str, least: f64, most: f64) -> Result<usize, Fault> {
     let given = number(value, path)?;
-    if given.fract() == 0.0 && (0.0..=most).contains(&given) {
+    if given.fract() == 0.0 && (least..=most).contains(&given) {
         Ok(given as usize)
     } else {
         Err(Fault::InvalidValue {
             what: path.into(),
             value: given.to_string(),
-            why: format!("must be a whole number in 0..={most}"),
+            why: format!("must be a whole number in {least}..={most}"),
         })
     }
 }

@@ -220,6 +220,28 @@ pub struct SafetyLimits {
     pub vehicle_radius_m: f64,
 }
 
+impl SafetyLimits {
+    /// Refuses limits no track should be flown to, naming the flag that gives each.
+    pub fn check(&self) -> Result<(), Fault> {
+        // The clearance has `plan`'s floor under it: a track 0.29 m above the ground read
+        // safe at `--min-clearance 0` (decision 0030).
+        let floor = crate::limits::MIN_GROUND_CLEARANCE_M;
+        for (what, value, least) in [
+            ("--min-clearance", self.min_clearance_m, floor),
+            ("--vehicle-radius", self.vehicle_radius_m, 0.0),
+        ] {
+            if !(least..=1000.0).contains(&value) {
+                return Err(Fault::InvalidValue {
+                    what: what.into(),
+                    value: value.to_string(),
+                    why: format!("must be {least}..=1000 metres"),
+                });
+            }
+        }
+        Ok(())
+    }
+}
+
 impl Default for SafetyLimits {
     fn default() -> Self {
         Self {
@@ -411,29 +433,44 @@ impl TrackScenario {
 
     /// The same scenario checked with other safety limits (start and goal checked again).
     pub fn with_limits(mut self, limits: SafetyLimits) -> Result<Self, Fault> {
-        // The clearance has `plan`'s floor under it: a track 0.29 m above the ground read
-        // safe at `--min-clearance 0` (decision 0030).
-        let floor = crate::limits::MIN_GROUND_CLEARANCE_M;
-        for (what, value, least) in [
-            ("--min-clearance", limits.min_clearance_m, floor),
-            ("--vehicle-radius", limits.vehicle_radius_m, 0.0),
-        ] {
-            if !(least..=1000.0).contains(&value) {
-                return Err(Fault::InvalidValue {
-                    what: what.into(),
-                    value: value.to_string(),
-                    why: format!("must be {least}..=1000 metres"),
-                });
-            }
-        }
+        limits.check()?;
         self.limits = limits;
         validated(self)
     }
 
     /// Reads a scenario file; `task` picks one of seed 000's tasks ("I", "II", "III").
     pub fn read(path: &Path, task: Option<&str>) -> Result<Self, InputError> {
+        let extension = crate::files::extension_of(path);
+        if ["asc", "tif", "tiff", "xyz", "csv", "geojson", "kml", "kmz"]
+            .contains(&extension.as_str())
+        {
+            return Err(InputError::new(
+                path,
+                Fault::Structure(format!(
+                    "a .{extension} file is not a track scenario: give a scenario (.toml or .json) that names it{}",
+                    if ["geojson", "kml", "kmz"].contains(&extension.as_str()) {
+                        " (fields are planned with `agripath plan`)"
+                    } else {
+                        " as its terrain"
+                    }
+                )),
+            ));
+        }
         let text = crate::files::read_text(path)?;
-        if crate::files::extension_of(path) == "toml" {
+        if extension == "toml" {
+            if let Some(task) = task {
+                return Err(InputError::new(
+                    "arguments",
+                    Fault::InvalidValue {
+                        what: "--task".into(),
+                        value: task.into(),
+                        why: format!(
+                            "{} is an operator's scenario, one track with no tasks (tasks are those of seed 000's scenarios)",
+                            path.display()
+                        ),
+                    },
+                ));
+            }
             return super::operator::read(path, &text);
         }
         let value: Value = serde_json::from_str(&text)

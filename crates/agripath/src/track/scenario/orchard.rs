@@ -128,7 +128,7 @@ pub(super) fn read(value: &Value, task: &str) -> Result<TrackScenario, Fault> {
     }
     let (terrain, map) = composite_over(value, Composite::seed000(), &extent)?;
     let runs = match lookup(value, "algorithms.runs") {
-        Ok(_) => Some(count(value, "algorithms.runs", 1000.0)?.max(1) as u64),
+        Ok(_) => Some(count(value, "algorithms.runs", 0.0, 1000.0)?.max(1) as u64),
         Err(_) => None,
     };
     validated(TrackScenario {
@@ -148,10 +148,10 @@ pub(super) fn read(value: &Value, task: &str) -> Result<TrackScenario, Fault> {
             3,
         )?,
         height_band: Some((band[0], band[1])),
-        free_waypoints: count(value, "free_waypoints", 100.0)?,
+        free_waypoints: count(value, "free_waypoints", 1.0, 100.0)?,
         cost: CostModel::Seed000(Seed000Cost::default()),
-        population: count(value, "algorithms.population", 1.0e5)?,
-        iterations: count(value, "algorithms.iterations", 1.0e6)?,
+        population: count(value, "algorithms.population", 2.0, 1.0e5)?,
+        iterations: count(value, "algorithms.iterations", 1.0, 1.0e6)?,
         // Guangzhou, the mango orchard of seed 000 §5.3.
         georeference: Georeference::Local {
             lon: 113.36,

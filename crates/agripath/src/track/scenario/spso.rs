@@ -133,10 +133,10 @@ pub(super) fn read(value: &Value, dem: &[u8]) -> Result<TrackScenario, Fault> {
             4,
         )?,
         height_band: Some((band[0], band[1])),
-        free_waypoints: count(value, "free_nodes", 100.0)?,
+        free_waypoints: count(value, "free_nodes", 1.0, 100.0)?,
         cost: CostModel::Spso(model),
-        population: count(settings, "population", 1.0e5)?,
-        iterations: count(settings, "iterations", 1.0e6)?,
+        population: count(settings, "population", 2.0, 1.0e5)?,
+        iterations: count(settings, "iterations", 1.0, 1.0e6)?,
         georeference: Georeference::Pixels {
             zone,
             easting: grid.first_center_x - 0.5 * grid.cell_x,

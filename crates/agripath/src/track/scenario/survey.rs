@@ -95,10 +95,10 @@ pub(super) fn read(value: &Value) -> Result<TrackScenario, Fault> {
         goal: point(value, "goal")?,
         threats: Vec::new(),
         height_band: None,
-        free_waypoints: count(value, "ga.chromosome_length", 100.0)?,
+        free_waypoints: count(value, "ga.chromosome_length", 1.0, 100.0)?,
         cost: CostModel::Seed002(Seed002Cost),
-        population: count(value, "ga.population", 1.0e5)?,
-        iterations: count(value, "ga.generations", 1.0e6)?,
+        population: count(value, "ga.population", 2.0, 1.0e5)?,
+        iterations: count(value, "ga.generations", 1.0, 1.0e6)?,
         // Xi'an, Shaanxi: seed 002's university.
         georeference: Georeference::Local {
             lon: 108.95,

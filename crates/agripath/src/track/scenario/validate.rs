@@ -89,7 +89,7 @@ pub(in crate::track) fn validated(mut scenario: TrackScenario) -> Result<TrackSc
         }
     };
     let area = if scenario.is_local() {
-        format!("[{min_x}, {max_x}] × [{min_y}, {max_y}]")
+        format!("[{min_x}, {max_x}] × [{min_y}, {max_y}] (the box round the start, goal and threats grown by the margin, cut to the terrain model: a start or goal outside it lies off the terrain model)")
     } else {
         format!(
             "from {} to {} (the box round the start, goal and threats grown by margin_m, cut to the terrain model: a start or goal outside it lies off the terrain model)",
