@@ -71,5 +71,8 @@ pub fn seed004(
     text += "'1-direction': the best single-direction boustrophedon, 2 × (runs − 1); 'lower bd': no route of\n";
     text += "axis-parallel legs can turn fewer times (König cover of the points by row and column runs, − 1).\n";
     text += "'!' marks a route that misses a point or crosses an obstacle.\n";
+    text += "'HPSO (ours)' is the seed's HPSO as its text survives: steps 3-5 are missing and no iteration\n";
+    text += "count is given, so from random permutations it stays far above the paper's 27-46 turns; the\n";
+    text += "paper's column cannot be reproduced from the text (decision 0010). 'ours' is our method.\n";
     Ok((rows, table, text))
 }

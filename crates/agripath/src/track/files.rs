@@ -324,6 +324,21 @@ pub fn table(scenario: &TrackScenario, results: &[PlannerRuns]) -> String {
             s.cells(2)
         );
     }
+    // A safe track whose cost holds a penalty: the cost model's ground is the planners'
+    // conservative raster (grown by the clearance sideways, decision 0032), the verdict the
+    // exact check; such runs lift the mean and the spread.
+    let penalised = results
+        .iter()
+        .flat_map(|result| &result.runs)
+        .filter(|run| run.verdict.is_safe() && run.cost.total >= super::cost::PENALTY)
+        .count();
+    if penalised > 0 {
+        let _ = writeln!(
+            text,
+            "\n{penalised} safe run(s) cost {:.0} or more: the cost model's penalty per leg that its conservative ground (the terrain raised by the clearance sideways, decision 0032) finds too low, where the exact check finds the track safe; they lift the mean and std.",
+            super::cost::PENALTY
+        );
+    }
     text
 }
 
