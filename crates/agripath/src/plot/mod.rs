@@ -3,6 +3,7 @@
 //! (`raster`, with the `png` feature).
 
 pub mod line_chart;
+mod map_labels;
 pub mod map_svg;
 pub mod pixel_font;
 pub mod plan_html;
