@@ -21,7 +21,7 @@ mod render;
 pub mod rings;
 pub mod runs;
 
-pub use render::{render, routes_svg};
+pub use render::{render, route_title, routes_svg};
 
 /// A way to cover a grid of path points: the one signature every grid method has. The route
 /// visits every valid point once ([`GridRoute::visits_every_point_once`]).

@@ -73,10 +73,7 @@ pub fn render(
         "axis_lower_bound_turns": axis_lower_bound(grid),
         "runtime_s": crate::numbers::round(runtime_s, 1e-4),
     });
-    let title = format!(
-        "{name} {method}: {} turns, {} U-turns, {:.0} m non-spray",
-        measure.turns, measure.u_turns, measure.non_spray_m
-    );
+    let title = route_title(&name, method, &measure);
     let files = vec![
         (
             "plan.geojson",
@@ -94,6 +91,17 @@ pub fn render(
     (files, title)
 }
 
+/// A route's panel title: "NAME METHOD: T turns, U U-turns, M m non-spray".
+pub fn route_title(name: &str, method: &str, measure: &super::RouteMeasure) -> String {
+    format!(
+        "{name} {method}: {} turns, {} U-turn{}, {:.0} m non-spray",
+        measure.turns,
+        measure.u_turns,
+        if measure.u_turns == 1 { "" } else { "s" },
+        measure.non_spray_m
+    )
+}
+
 /// Routes over a grid side by side, one titled panel each (SVG): the field's box, the points
 /// no route may visit (red), the flown polyline, its start (orange).
 pub fn routes_svg(grid: &PointGrid, routes: &[(String, &GridRoute)]) -> String {
@@ -105,15 +113,20 @@ pub fn routes_svg(grid: &PointGrid, routes: &[(String, &GridRoute)]) -> String {
         svg,
         r##"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" font-family="sans-serif" font-size="11"><rect width="100%" height="100%" fill="white"/>"##,
         routes.len() as f64 * panel,
-        grid.rows as f64 * grid.cell_m * scale + 60.0
+        grid.rows as f64 * grid.cell_m * scale + 64.0
     );
     for (k, (title, route)) in routes.iter().enumerate() {
         let left = k as f64 * panel + 20.0;
-        let top = 40.0;
+        let top = 44.0;
         let x = |v: f64| left + (v - grid.origin.x) * scale;
         let y = |v: f64| top + (grid.rows as f64 * grid.cell_m - (v - grid.origin.y)) * scale;
         let escaped = title.replace('&', "&amp;").replace('<', "&lt;");
-        let _ = writeln!(svg, r##"<text x="{left}" y="22">{escaped}</text>"##);
+        // "NAME: figures" on two lines, so neighbouring panels' titles do not run together.
+        let (head, figures) = escaped.split_once(": ").unwrap_or((escaped.as_str(), ""));
+        let _ = writeln!(
+            svg,
+            r##"<text x="{left}" y="16" font-weight="bold">{head}</text><text x="{left}" y="31">{figures}</text>"##
+        );
         let _ = writeln!(
             svg,
             r##"<rect x="{left}" y="{top}" width="{:.1}" height="{:.1}" fill="#eef5e6" stroke="#4a7a2a"/>"##,

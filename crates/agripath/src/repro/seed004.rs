@@ -196,12 +196,9 @@ pub fn map_svg(row: &FieldRow) -> String {
     let labelled: Vec<(String, &GridRoute)> = panels
         .iter()
         .map(|(label, route)| {
-            let m = route.measure(&row.grid);
+            let measure = route.measure(&row.grid);
             (
-                format!(
-                    "{} {label}: {} turns, {} U-turns, {:.0} m non-spray",
-                    row.name, m.turns, m.u_turns, m.non_spray_m
-                ),
+                crate::grid_cover::route_title(&row.name, label, &measure),
                 *route,
             )
         })

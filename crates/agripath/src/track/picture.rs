@@ -124,7 +124,7 @@ pub fn top_view(scenario: &TrackScenario, title: &str, tracks: &[DrawnTrack]) ->
             top + map_h,
             top + map_h + 5.0,
             top + map_h + 18.0,
-            tick_label(value)
+            coordinate_label(value)
         );
     }
     for value in ticks(min_y, max_y, 6) {
@@ -135,7 +135,7 @@ pub fn top_view(scenario: &TrackScenario, title: &str, tracks: &[DrawnTrack]) ->
             left - 5.0,
             left - 8.0,
             y + 4.0,
-            tick_label(value)
+            coordinate_label(value)
         );
     }
     let _ = write!(
@@ -309,6 +309,16 @@ fn lowest_words(height_m: f64, any_direction_m: Option<f64>) -> String {
             "lowest {height_m:.1} m above the ground; clearance {distance:.1} m in any direction"
         ),
         _ => format!("lowest clearance {height_m:.1} m"),
+    }
+}
+
+/// A map coordinate as people read one: UTM eastings and northings in whole metres
+/// (8842000, not 8.842e6), small ones as the chart's ticks.
+fn coordinate_label(value: f64) -> String {
+    if value.abs() >= 1e5 {
+        format!("{value:.0}")
+    } else {
+        tick_label(value)
     }
 }
 
