@@ -73,7 +73,7 @@ pub fn render(
         "axis_lower_bound_turns": axis_lower_bound(grid),
         "runtime_s": crate::numbers::round(runtime_s, 1e-4),
     });
-    let title = route_title(&name, method, &measure);
+    let title = route_title(name, method, &measure);
     let files = vec![
         (
             "plan.geojson",
