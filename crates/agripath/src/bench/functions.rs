@@ -139,7 +139,7 @@ impl FunctionBench {
             ));
         }
         // Each optimizer keeps a few copies of its population (positions, velocities or
-        // offspring, bests), on each of the two cores' runs.
+        // offspring, bests), and runs go in parallel, one per core.
         if self.population.saturating_mul(self.dimension) > MOST_POPULATION_NUMBERS {
             return Err(invalid(
                 "--pop × --dim",

@@ -304,7 +304,8 @@ pub fn plan_geojson(
 
 /// Adds the other places `--supply auto:N` listed to `geojson` (a [`plan_geojson`]): a Point
 /// of kind `supply_option` each, with its `rank` (from 2: the supply point is the first) and
-/// its `cost_s` (`null` where the plan cannot be flown from it), at ground level.
+/// its `cost_s` (`null` where the plan cannot be flown from it), as `[x, y]`: a place to
+/// stand, whose height the report does not carry.
 pub fn add_supply_options(
     geojson: &mut Value,
     system: CoordinateSystem,

@@ -232,6 +232,8 @@ impl SupplyReport {
                 match auto.candidates.len() {
                     0 => String::new(),
                     1 => "; 1 candidate in report.json".to_string(),
+                    2 => "; 2 candidates in report.json, the other on the map as option 2"
+                        .to_string(),
                     count => format!(
                         "; {count} candidates in report.json, the others on the map as options 2-{count}"
                     ),

@@ -6,9 +6,6 @@ use crate::bench::functions::FunctionBench;
 use crate::repro::{printed, seed000_table2, tracks};
 use crate::InputError;
 
-/// Most ant-colony runs per start `repro seed001-table8 --runs` takes (each is about 0.1 s).
-const MOST_TABLE8_RUNS: u64 = 1_000;
-
 /// How the scenarios of the track tables are named in errors.
 const TRACK_LABEL: &str = "embedded track scenario";
 
@@ -65,7 +62,20 @@ impl ReproJob {
             "seed000-table4" | "seed000-table5" | "seed002" | "spso" => {
                 Table::Tracks(key, super::track::check_runs(runs.unwrap_or(10))?)
             }
-            "seed001-table8" => Table::Table8(runs.unwrap_or(1).clamp(1, MOST_TABLE8_RUNS)),
+            "seed001-table8" => {
+                let runs = super::track::check_runs(runs.unwrap_or(1))?;
+                if seed.checked_add(runs - 1).is_none() {
+                    return Err(super::bad_value(
+                        "--seed",
+                        seed.to_string(),
+                        format!(
+                            "{runs} runs from it go past the largest seed ({})",
+                            u64::MAX
+                        ),
+                    ));
+                }
+                Table::Table8(runs)
+            }
             other => {
                 if let Some(runs) = runs {
                     return Err(super::bad_value(
@@ -262,6 +272,10 @@ mod tests {
         assert!(matches!(job.table, Table::Table8(3)) && job.seed == 7);
         let default = ReproJob::new("seed001-table8", None, 7).unwrap();
         assert!(matches!(default.table, Table::Table8(1)));
+        for (runs, seed) in [(0, 1), (1001, 1), (2, u64::MAX)] {
+            assert!(ReproJob::new("seed001-table8", Some(runs), seed).is_err());
+        }
+        assert!(ReproJob::new("seed001-table8", Some(1), u64::MAX).is_ok());
         for key in ["seed001-table7", "seed003-table4", "seed004"] {
             let error = ReproJob::new(key, Some(5), 1).err().expect("refused");
             assert!(error.to_string().contains("no runs to count"), "{error}");

@@ -71,6 +71,14 @@ impl AlongLegs {
     }
 }
 
+/// Legs of a whole track's cruise that the cost models' conservative ground (the terrain
+/// raised by the clearance sideways, decision 0032) finds too low: each costs [`PENALTY`],
+/// whatever the exact safety check says of the track.
+pub fn legs_too_low(scenario: &TrackScenario, points: &[[f64; 3]]) -> usize {
+    let (cruise, _) = scenario.cruise_of(points);
+    AlongLegs::of(scenario, cruise).legs_under_ground
+}
+
 /// A cost and its terms (named by the model).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CostBreakdown {

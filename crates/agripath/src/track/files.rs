@@ -330,12 +330,12 @@ pub fn table(scenario: &TrackScenario, results: &[PlannerRuns]) -> String {
     let penalised = results
         .iter()
         .flat_map(|result| &result.runs)
-        .filter(|run| run.verdict.is_safe() && run.cost.total >= super::cost::PENALTY)
+        .filter(|run| run.verdict.is_safe() && super::cost::legs_too_low(scenario, &run.points) > 0)
         .count();
     if penalised > 0 {
         let _ = writeln!(
             text,
-            "\n{penalised} safe run(s) cost {:.0} or more: the cost model's penalty per leg that its conservative ground (the terrain raised by the clearance sideways, decision 0032) finds too low, where the exact check finds the track safe; they lift the mean and std.",
+            "\n{penalised} safe run(s) carry the cost model's penalty of {:.0} per leg that its conservative ground (the terrain raised by the clearance sideways, decision 0032) finds too low, where the exact check finds the track safe; they lift the mean and std.",
             super::cost::PENALTY
         );
     }

@@ -28,6 +28,10 @@ use crate::terrain::nearness::GroundNearness;
 /// Horizontal spacing of the verdict's samples, metres: the mission preflight's.
 pub const SAMPLE_SPACING_M: f64 = crate::preflight::SAMPLE_M;
 
+/// Distances this far below the minimum are arithmetic, not a shortfall: a level leg at
+/// exactly the minimum over flat ground read 1.9999999999999716 m and failed.
+const ROUNDING_M: f64 = 1e-9;
+
 /// Farthest the reported lowest clearance looks sideways, metres: a track that keeps more
 /// than this above the ground everywhere reports its height above it (the cost of the search
 /// grows with the reach, and no operator reads the difference up there).
@@ -91,6 +95,9 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
         scenario.unit_m,
         limits.min_clearance_m,
     );
+    // Each cruise leg's lower bound of the distance to the ground, from the search within
+    // the minimum (the minimum itself where nothing is nearer).
+    let mut sideways_at_least = Vec::with_capacity(cruise_legs);
     for (index, pair) in points.windows(2).enumerate() {
         let (a, b) = (pair[0], pair[1]);
         let leg = index + 1;
@@ -167,11 +174,15 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
         }
         let (clearance, [x, y]) = leg_lowest;
         // Sideways too: beside a cliff the ground beneath may be far and the face near.
-        let vertical_fails = clearance < limits.min_clearance_m;
+        let short = limits.min_clearance_m - ROUNDING_M;
+        let vertical_fails = clearance < short;
         let (mut lowest, mut lowest_at) = (clearance, [x, y]);
-        if let Some(near) = nearness.leg(a, b) {
+        let sideways = nearness.leg(a, b);
+        // Nothing within the minimum: the minimum is a lower bound of the distance.
+        sideways_at_least.push(sideways.map_or(limits.min_clearance_m, |near| near.distance_m));
+        if let Some(near) = sideways {
             if near.distance_m < clearance {
-                if !vertical_fails && near.distance_m < limits.min_clearance_m {
+                if !vertical_fails && near.distance_m < short {
                     violations.push(format!(
                         "leg {leg} passes {} m from the terrain beside it at {} ({:.2} m above the ground beneath; minimum {} m in any direction)",
                         short_of(near.distance_m, limits.min_clearance_m),
@@ -206,21 +217,37 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
     }
     // The figure reported is the least distance in any direction, as `--min-clearance` is
     // defined: the pass above looked sideways only within the minimum (enough for the
-    // verdict), so where the track keeps more, look again within what it keeps.
+    // verdict), so where the track keeps more, look again within what it keeps. A search
+    // that far bounds coarsely (its smallest squares are a 32nd of its reach): where it
+    // finds ground nearer than the track's least height, that leg is bounded again within
+    // twice what it found, and the figure is the best of the lower bounds (a safe track
+    // beside a cliff read 1.5 m from a 50 m search against a 2 m minimum).
     if lowest_clearance_m.is_finite() && lowest_clearance_m > limits.min_clearance_m {
-        let reach_m = lowest_clearance_m.min(REPORTED_REACH_M);
-        let mut nearness = GroundNearness::new(
-            scenario.true_terrain(),
-            |x, y| scenario.true_ground(x, y),
-            scenario.unit_m,
-            reach_m,
-        );
+        let near_within = |reach_m: f64| {
+            GroundNearness::new(
+                scenario.true_terrain(),
+                |x, y| scenario.true_ground(x, y),
+                scenario.unit_m,
+                reach_m,
+            )
+        };
+        let mut wide = near_within(lowest_clearance_m.min(REPORTED_REACH_M));
         let cruise = &points[first_cruise_leg..first_cruise_leg + cruise_legs + 1];
-        for pair in cruise.windows(2) {
-            if let Some(near) = nearness.leg(pair[0], pair[1]) {
-                if near.distance_m < lowest_clearance_m {
-                    (lowest_clearance_m, lowest_clearance_at) = (near.distance_m, near.at);
-                }
+        for (pair, &at_least) in cruise.windows(2).zip(&sideways_at_least) {
+            let Some(coarse) = wide.leg(pair[0], pair[1]) else {
+                continue;
+            };
+            if coarse.distance_m >= lowest_clearance_m {
+                continue;
+            }
+            let close_reach_m = (2.0 * coarse.distance_m).max(limits.min_clearance_m);
+            let close = near_within(close_reach_m).leg(pair[0], pair[1]);
+            let (bound, at) = close.map_or((close_reach_m, coarse.at), |near| {
+                (near.distance_m, near.at)
+            });
+            let distance = bound.max(coarse.distance_m).max(at_least);
+            if distance < lowest_clearance_m {
+                (lowest_clearance_m, lowest_clearance_at) = (distance, at);
             }
         }
     }
@@ -251,7 +278,7 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
 /// A distance short of `minimum`, with the decimals that show it short: 1.9985 m reads
 /// "1.998", not "2.00", beside a minimum of 2 m.
 fn short_of(distance_m: f64, minimum_m: f64) -> String {
-    (2..=6)
+    (2..=9)
         .map(|decimals| format!("{distance_m:.decimals$}"))
         .find(|text| text.parse::<f64>().is_ok_and(|shown| shown < minimum_m))
         .unwrap_or_else(|| format!("{distance_m}"))
@@ -271,6 +298,8 @@ fn closest_point(x: f64, y: f64, a: [f64; 3], b: [f64; 3]) -> [f64; 2] {
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
     #[test]
     fn a_shortfall_reads_short() {
         assert_eq!(short_of(1.9985, 2.0), "1.998");
@@ -278,7 +307,70 @@ mod tests {
         assert_eq!(short_of(9.99, 10.0), "9.99");
     }
 
-    use super::*;
+    /// A scenario over a cliff: 5 m cells, 200 m west of x = 195, 400 m from x = 200 (a
+    /// 200 m face 5 m across), from `start` to `goal` (local metres, height above ground).
+    fn over_a_cliff(start: [f64; 3], goal: [f64; 3]) -> Result<TrackScenario, crate::InputError> {
+        let folder = std::env::temp_dir().join(format!(
+            "agripath-cliff-{}-{}",
+            std::process::id(),
+            start[0]
+        ));
+        std::fs::create_dir_all(&folder).unwrap();
+        let mut grid = String::from(
+            "ncols 81\nnrows 41\nxllcorner -2.5\nyllcorner -2.5\ncellsize 5\nNODATA_value -9999\n",
+        );
+        for _ in 0..41 {
+            let row: Vec<&str> = (0..81)
+                .map(|column| if column < 40 { "200" } else { "400" })
+                .collect();
+            grid.push_str(&row.join(" "));
+            grid.push('\n');
+        }
+        std::fs::write(folder.join("cliff.asc"), grid).unwrap();
+        let toml = format!(
+            "name = \"cliff\"\ncrs = \"local\"\nterrain = {{ kind = \"file\", path = \"cliff.asc\" }}\nstart = {start:?}\ngoal = {goal:?}\nheight_band_m = [2, 300]\nfree_waypoints = 4\nmargin_m = 5\n"
+        );
+        let path = folder.join("cliff.toml");
+        std::fs::write(&path, toml).unwrap();
+        let scenario = TrackScenario::read(&path, None);
+        std::fs::remove_dir_all(&folder).unwrap();
+        scenario
+    }
+
+    /// A leg 92 m above the ground beneath and 2.3 m from a cliff's face: safe at a 2 m
+    /// minimum, and the figure reported must say so (a 50 m search alone bounded it at 1.25 m).
+    #[test]
+    fn a_safe_leg_beside_a_cliff_reports_its_clearance_in_any_direction_no_less_than_the_minimum() {
+        let mut scenario = over_a_cliff([20.0, 100.0, 95.0], [190.0, 60.0, 95.0]).unwrap();
+        scenario.start = scenario.cruise_start;
+        scenario.goal = scenario.cruise_goal;
+        let leg = [[100.0, 100.0, 292.0], [195.0, 100.0, 292.0]];
+        let verdict = check(&scenario, &leg);
+        assert!(verdict.is_safe(), "{:?}", verdict.violations);
+        assert!(
+            (2.0..2.4).contains(&verdict.lowest_clearance_m),
+            "reported {} m",
+            verdict.lowest_clearance_m
+        );
+        // Level at exactly the minimum over the flat ground: arithmetic, not a shortfall.
+        let level = [[30.0, 80.0, 202.0], [150.0, 80.0, 202.0]];
+        let verdict = check(&scenario, &level);
+        assert!(verdict.is_safe(), "{:?}", verdict.violations);
+    }
+
+    /// A start on the ground 1 m from the foot of the face: lifting hardly moves it away from
+    /// the face, so it is refused with the distance left, not flown from short of the minimum.
+    #[test]
+    fn a_start_at_the_foot_of_a_cliff_is_refused_not_flown_short_of_the_minimum() {
+        let message = over_a_cliff([194.0, 100.0, 0.0], [20.0, 60.0, 0.0])
+            .map(|_| ())
+            .expect_err("refused")
+            .to_string();
+        assert!(message.contains("start"), "{message}");
+        assert!(message.contains("too steep to climb clear of"), "{message}");
+        // Ten metres out, one lift clears it.
+        assert!(over_a_cliff([185.0, 100.0, 0.0], [20.0, 60.0, 0.0]).is_ok());
+    }
 
     /// Task `task` with the start and goal moved to the cruise's ends: no vertical legs, so
     /// a hand-made track is all cruise.

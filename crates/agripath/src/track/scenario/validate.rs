@@ -142,7 +142,16 @@ pub(in crate::track) fn validated(mut scenario: TrackScenario) -> Result<TrackSc
                 AltitudeReference::AboveGround => floor,
                 AltitudeReference::SeaLevel => point[2] + (floor - above),
             };
-            point[2] += slope_lift_m(&scenario, *point);
+            point[2] += slope_lift_m(&scenario, *point).map_err(|distance_m| {
+                Fault::InvalidValue {
+                    what: what.into(),
+                    value: place.clone(),
+                    why: format!(
+                        "it lies at the foot of a slope or face too steep to climb clear of: {LIFT_STEPS} lifts leave the ground {distance_m:.2} m away (minimum {} m in any direction); move it away from the face",
+                        scenario.limits.min_clearance_m
+                    ),
+                }
+            })?;
         }
         let (_, high) = scenario.altitude_bounds;
         if scenario.altitude_reference == AltitudeReference::SeaLevel && point[2] > high {
@@ -150,7 +159,7 @@ pub(in crate::track) fn validated(mut scenario: TrackScenario) -> Result<TrackSc
                 what: what.into(),
                 value: place,
                 why: format!(
-                    "the band's floor above it ({:.1} m) is above the space's ceiling ({high} m)",
+                    "the cruise's start above it ({:.1} m: the band's floor, or higher beside a slope) is above the space's ceiling ({high} m)",
                     point[2]
                 ),
             });
@@ -162,15 +171,23 @@ pub(in crate::track) fn validated(mut scenario: TrackScenario) -> Result<TrackSc
     Ok(scenario)
 }
 
+/// Lifts [`slope_lift_m`] tries before it gives up.
+const LIFT_STEPS: usize = 16;
+
 /// How much higher than `point` (the top of a takeoff climb or of a landing's descent) the
 /// cruise must begin for the ground to be `--min-clearance` away in any direction, as the
 /// safety check measures it ([`GroundNearness`]'s bound). On a slope the ground beside is
 /// nearer than the ground beneath: a sixth trial's climb to 2 m above a 2 % slope ended
-/// 1.9985 m from it, and every planner's track then failed the check at its first leg.
-fn slope_lift_m(scenario: &TrackScenario, point: [f64; 3]) -> f64 {
+/// 1.998 m from it, and every planner's track then failed the check at its first leg.
+///
+/// Each lift adds the shortfall. On a slope at angle θ the next shortfall is about the last
+/// one times (1 − cos θ): gentle slopes are clear after one lift. At the foot of a steep face
+/// a lift hardly moves the point away from it; after [`LIFT_STEPS`] lifts the point is
+/// refused with the distance still left (`Err`), not flown from short of the minimum.
+fn slope_lift_m(scenario: &TrackScenario, point: [f64; 3]) -> Result<f64, f64> {
     let minimum = scenario.limits.min_clearance_m;
     if minimum <= 0.0 {
-        return 0.0;
+        return Ok(0.0);
     }
     let mut nearness = GroundNearness::new(
         scenario.true_terrain(),
@@ -178,16 +195,18 @@ fn slope_lift_m(scenario: &TrackScenario, point: [f64; 3]) -> f64 {
         scenario.unit_m,
         minimum,
     );
+    let [x, y, z] = scenario.sea_level(point);
     let mut lift = 0.0;
-    // The bound is a distance to a surface: a few steps of its shortfall converge (each
-    // step's shortfall is at most the last one's, times the slope's cosine).
-    for _ in 0..16 {
-        let [x, y, z] = scenario.sea_level(point);
+    for _ in 0..LIFT_STEPS {
         let top = [x, y, z + lift];
         match nearness.leg(top, top) {
             Some(near) if near.distance_m < minimum => lift += minimum - near.distance_m + 1e-3,
-            _ => break,
+            _ => return Ok(lift),
         }
     }
-    lift
+    let top = [x, y, z + lift];
+    match nearness.leg(top, top) {
+        Some(near) if near.distance_m < minimum => Err(near.distance_m),
+        _ => Ok(lift),
+    }
 }
