@@ -224,6 +224,7 @@ pub fn build(
         return Err(InputError::new(path, Fault::NoFields));
     }
     notes.extend(name_fields_apart(&mut fields));
+    notes.extend(access_inside_fields(&access, &fields));
     let farm = Farm {
         source: path.to_path_buf(),
         coordinate_system,
@@ -270,6 +271,38 @@ fn looks_like_degrees(bounds: &geo::Rect<f64>) -> bool {
         && bounds.max().x <= 180.0
         && bounds.min().y >= -90.0
         && bounds.max().y <= 90.0
+}
+
+/// A note for each access feature (a road, a track, a yard) that runs into a field: the
+/// supply point stands only on its parts outside fields, holes and obstacles, so a road
+/// across a field is two roads, and a yard over one is smaller than drawn (a fifth trial's
+/// road across a field gave no word of it).
+fn access_inside_fields(access: &[Access], fields: &[Field]) -> Vec<String> {
+    use geo::algorithm::relate::Relate;
+    use geo::coordinate_position::CoordPos;
+    use geo::dimensions::Dimensions;
+    let mut notes = Vec::new();
+    for road in access {
+        for field in fields {
+            let matrix = match &road.shape {
+                AccessShape::Line(line) => field.polygon.relate(line),
+                AccessShape::Area(area) => field.polygon.relate(area),
+            };
+            if matrix.get(CoordPos::Inside, CoordPos::Inside) != Dimensions::Empty {
+                let (kind, what) = match road.shape {
+                    AccessShape::Line(_) => {
+                        ("crosses", "only its stretches outside fields hold it")
+                    }
+                    AccessShape::Area(_) => ("overlaps", "only its part outside fields holds it"),
+                };
+                notes.push(format!(
+                    "access '{}' {kind} field '{}': it is sprayed there, and the supply point stands off the crop: {what}",
+                    road.name, field.name
+                ));
+            }
+        }
+    }
+    notes
 }
 
 /// Gives fields that share a name (two polygons both called "Untitled Polygon" in a KML, say) names

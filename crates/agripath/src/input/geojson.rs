@@ -278,6 +278,29 @@ mod tests {
     }
 
     #[test]
+    fn an_access_road_across_a_field_gets_a_note_and_one_along_its_edge_none() {
+        let with_road = |coordinates: &str| {
+            let text = format!(
+                r#"{{"type":"FeatureCollection","crs":"local","features":[
+                  {{"type":"Feature","properties":{{"name":"A"}},"geometry":{{"type":"Polygon","coordinates":[[[0,0],[100,0],[100,100],[0,100],[0,0]]]}}}},
+                  {{"type":"Feature","properties":{{"kind":"access","name":"road"}},"geometry":{{"type":"LineString","coordinates":{coordinates}}}}}]}}"#
+            );
+            farm(&text).unwrap().notes
+        };
+        let across = with_road("[[-20,50],[120,50]]");
+        assert!(
+            across
+                .iter()
+                .any(|note| note.contains("access 'road' crosses field 'A'")),
+            "{across:?}"
+        );
+        assert!(with_road("[[-20,0],[120,0]]")
+            .iter()
+            .all(|note| !note.contains("road")));
+        assert!(with_road("[[-20,-10],[120,-10]]").is_empty());
+    }
+
+    #[test]
     fn degrees_read_as_local_metres_are_refused_with_the_reason() {
         let square = |x: f64, y: f64, size: f64| {
             format!(
