@@ -539,7 +539,7 @@ impl Report {
             if let Some(note) = far_fields_note(&self.sortie_details, usable_percent) {
                 text.push_str(&note);
             }
-            if let Some(note) = small_tank_note(&self.vehicle_settings, self.sortie_details.len()) {
+            if let Some(note) = small_tank_note(vehicle, self.sortie_details.len()) {
                 text.push_str(&note);
             }
         }

@@ -221,7 +221,7 @@ pub fn check(scenario: &TrackScenario, points: &[[f64; 3]]) -> Verdict {
     // that far bounds coarsely (its smallest squares are a 32nd of its reach): where it
     // finds ground nearer than the track's least height, that leg is bounded again within
     // twice what it found, and the figure is the best of the lower bounds (a safe track
-    // beside a cliff read 1.5 m from a 50 m search against a 2 m minimum).
+    // beside a cliff read 1.25 m from a 50 m search against a 2 m minimum).
     if lowest_clearance_m.is_finite() && lowest_clearance_m > limits.min_clearance_m {
         let near_within = |reach_m: f64| {
             GroundNearness::new(

@@ -1913,5 +1913,38 @@ fn a_takeoff_on_a_slope_climbs_until_the_ground_is_the_minimum_away_in_any_direc
     let lattice = &report["planners"][0];
     assert_eq!(lattice["safe_runs"], 1, "{lattice}");
     assert!(lattice["best_run"]["lowest_clearance_m"].as_f64().unwrap() >= 2.0);
+    // Flown as written: the track's cruise (its first and last legs are the vertical climb
+    // and descent, on the ground by design), every 0.25 m, against the plane the grid
+    // samples, z = 20 + 0.06 x: its distance in any direction is (z − 20 − 0.06 x) / √(1 + 0.06²).
+    let geojson: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("planned/track.geojson")).unwrap())
+            .unwrap();
+    let track = geojson["features"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|feature| feature["properties"]["kind"] == "track")
+        .unwrap();
+    let points: Vec<[f64; 3]> = track["geometry"]["coordinates"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| [0, 1, 2].map(|axis| p[axis].as_f64().unwrap()))
+        .collect();
+    let to_plane = |[x, _, z]: [f64; 3]| (z - 20.0 - 0.06 * x) / (1.0f64 + 0.06 * 0.06).sqrt();
+    let mut least = f64::INFINITY;
+    for pair in points[1..points.len() - 1].windows(2) {
+        let length = (pair[1][0] - pair[0][0]).hypot(pair[1][1] - pair[0][1]);
+        let steps = (length / 0.25).ceil().max(1.0) as usize;
+        for step in 0..=steps {
+            let t = step as f64 / steps as f64;
+            let at = [0, 1, 2].map(|axis| pair[0][axis] + t * (pair[1][axis] - pair[0][axis]));
+            least = least.min(to_plane(at));
+        }
+    }
+    assert!(
+        least >= 2.0 - 1e-6,
+        "the cruise comes {least} m from the slope"
+    );
     std::fs::remove_dir_all(out).unwrap();
 }
