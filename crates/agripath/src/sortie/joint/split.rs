@@ -49,11 +49,11 @@ pub struct PassProfile {
 }
 
 impl PassProfile {
-    fn length(&self) -> f64 {
+    pub(super) fn length(&self) -> f64 {
         *self.spray_m.last().expect("a pass has points")
     }
 
-    fn seconds(&self) -> f64 {
+    pub(super) fn seconds(&self) -> f64 {
         *self.spray_s.last().expect("a pass has points")
     }
 }
