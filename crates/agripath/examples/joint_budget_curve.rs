@@ -252,34 +252,8 @@ fn main() {
             order.len(),
             joint.points()
         );
-        let needs_savings = options.starts.iter().any(|word| word.contains(['W', 'X']));
-        let savings = needs_savings.then(|| {
-            let started = Instant::now();
-            for &shape in &agripath::sortie::joint::savings::SHAPES {
-                let tour = agripath::sortie::joint::savings::savings_tour(&joint, shape);
-                println!(
-                    "{name}: savings shape {shape}: {:.1} s",
-                    joint.full_split_cost(&tour)
-                );
-            }
-            let (tour, shape) = agripath::sortie::joint::savings::best_savings_tour(&joint);
-            println!(
-                "{name}: the savings tour (shape {shape}) in {:.3} s",
-                started.elapsed().as_secs_f64()
-            );
-            tour
-        });
-        let start_or_savings = |letter: char| match letter {
-            'W' => savings.clone().expect("the savings tour"),
-            'X' => backwards(savings.as_ref().expect("the savings tour")),
-            _ => start(letter),
-        };
         for word in &options.starts {
-            let tours: Vec<Vec<Step>> = word
-                .chars()
-                .filter(|&c| c != 'P')
-                .map(start_or_savings)
-                .collect();
+            let tours: Vec<Vec<Step>> = word.chars().filter(|&c| c != 'P').map(start).collect();
             let costs: Vec<String> = word
                 .chars()
                 .filter(|&c| c != 'P')

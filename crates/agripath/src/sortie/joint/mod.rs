@@ -14,7 +14,6 @@
 //! ([`super::exact`]), which finds the same returns (tested).
 
 pub mod petals;
-pub mod savings;
 pub mod search;
 pub mod split;
 pub mod starts;

@@ -49,11 +49,11 @@ pub struct PassProfile {
 }
 
 impl PassProfile {
-    pub(super) fn length(&self) -> f64 {
+    fn length(&self) -> f64 {
         *self.spray_m.last().expect("a pass has points")
     }
 
-    pub(super) fn seconds(&self) -> f64 {
+    fn seconds(&self) -> f64 {
         *self.spray_s.last().expect("a pass has points")
     }
 }
