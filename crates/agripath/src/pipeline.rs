@@ -150,6 +150,23 @@ pub fn supply_point(
 }
 
 /// The supply point [`supply_point`] chooses, and the closed tour its `auto` search was scored
+
+/// Why a vehicle cannot stand at a supply point the operator gave, or `None`: in a field, a
+/// hole or an obstacle, too far from the fields (decision 0016), or on ground `auto` would
+/// not take as level (decisions 0029, 0036).
+fn given_point_warning(scenario: &Scenario, point: GroundPoint) -> Option<String> {
+    let place = geo::Coord {
+        x: point.x,
+        y: point.y,
+    };
+    crate::supply::standing::StandingRule::new(&scenario.farm)
+        .why_not(&scenario.farm, place)
+        .or_else(|| {
+            let ground = |x: f64, y: f64| scenario.terrain.height_m(x, y).ok();
+            crate::supply::level::unlevel(&ground, place)
+                .map(|why| format!("{why}: a drone takes off and lands on level ground"))
+        })
+}
 /// along (a start of the joint search, [`joint_route`]).
 struct SupplyPlan {
     choice: Option<SupplyChoice>,
@@ -177,14 +194,7 @@ fn choose_supply(
                 },
                 point,
                 auto: None,
-                standing_warning: crate::supply::standing::StandingRule::new(&scenario.farm)
-                    .why_not(
-                        &scenario.farm,
-                        geo::Coord {
-                            x: point.x,
-                            y: point.y,
-                        },
-                    ),
+                standing_warning: given_point_warning(scenario, point),
             })))
         }
         (None, SupplyRequest::Auto { listed }) => listed,
@@ -232,12 +242,11 @@ fn choose_supply(
             let auto =
                 crate::supply::choose_auto(&scenario.farm, &work_route, &evaluator, listed)?;
             // The search is a heuristic: on any ground it may still end on level ground.
-            let slope = crate::supply::level::slope_at(&ground, auto.best().point);
-            if slope.is_none_or(|slope| slope > crate::supply::level::MAX_SLOPE) {
+            if let Some(why) = crate::supply::level::unlevel(&ground, auto.best().point) {
                 slope_warning = Some(format!(
-                    "its ground slopes {}, and no place of at most {:.0}% serves the route (a drone takes off and lands on level ground: give one with --supply X,Y)",
-                    slope.map_or("where the terrain has no height".into(), |slope| format!("{:.1}%", 100.0 * slope)),
-                    100.0 * crate::supply::level::MAX_SLOPE
+                    "{why}, and no level place (at most {:.0}%, within {} m) serves the route (a drone takes off and lands on level ground: give one with --supply X,Y)",
+                    100.0 * crate::supply::level::MAX_SLOPE,
+                    crate::supply::level::STAND_RADIUS_M
                 ));
             }
             Ok(auto)

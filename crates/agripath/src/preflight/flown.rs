@@ -3,8 +3,10 @@
 //!
 //! ArduPilot's reading of the items: NAV_TAKEOFF climbs where the vehicle stands (from the
 //! ground at home) to its altitude; NAV_WAYPOINT flies straight to its place; NAV_LAND flies
-//! to its place at the current altitude and descends to the ground; DO_CHANGE_SPEED sets the
-//! ground speed (p2); DO_SPRAYER (p1 = 1 on) or DO_SET_SERVO on the sprayer's channel switch
+//! to its place at the current altitude and descends to the ground; DO_CHANGE_SPEED of speed
+//! type (p1) 0 or 1 sets the horizontal speed (p2), and of type 2 or 3 the climb or descent
+//! speed, which the check flies at the vehicle's figures, so another value is refused
+//! (ArduCopter's `ModeAuto::do_change_speed`); DO_SPRAYER (p1 = 1 on) or DO_SET_SERVO on the sprayer's channel switch
 //! the spray; DO_SET_CAM_TRIGG_DIST (p1 > 0 on, 0 off) switches a survey camera, read as
 //! the same on/off state. Altitudes: frame 0 above sea level, frame 3 above home's ground, frame 10 above
 //! the terrain under the vehicle (interpolated along the leg, as terrain following does).
@@ -198,6 +200,29 @@ pub struct Unflyable {
     pub why: String,
 }
 
+/// The speeds a mission starts with: the horizontal speed before its first DO_CHANGE_SPEED,
+/// and the vertical speeds every climb and descent is flown at.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StartSpeeds {
+    /// Horizontal speed, m/s.
+    pub horizontal_mps: f64,
+    /// Climb speed, m/s (the vehicle's `climb_speed_mps`).
+    pub climb_mps: f64,
+    /// Descent speed, m/s (the vehicle's `descent_speed_mps`).
+    pub descent_mps: f64,
+}
+
+impl StartSpeeds {
+    /// `vehicle`'s: its transit speed and its vertical speeds.
+    pub fn of(vehicle: &crate::model::Vehicle) -> Self {
+        Self {
+            horizontal_mps: vehicle.transit_speed_mps,
+            climb_mps: vehicle.climb_speed_mps,
+            descent_mps: vehicle.descent_mps(),
+        }
+    }
+}
+
 /// The legs of `items`, starting on the ground at home (`home_xy`, ground `home_ground_m`);
 /// `to_plan` turns (lon, lat) into plan metres.
 pub fn fly(
@@ -205,7 +230,7 @@ pub fn fly(
     home_xy: (f64, f64),
     home_ground_m: f64,
     sprayer: SprayerCommand,
-    first_speed_mps: f64,
+    speeds: StartSpeeds,
     to_plan: &dyn Fn(f64, f64) -> (f64, f64),
 ) -> Result<Vec<Leg>, Unflyable> {
     let mut legs = Vec::new();
@@ -215,7 +240,7 @@ pub fn fly(
         height: Height::SeaLevel(home_ground_m),
     };
     let mut spraying = false;
-    let mut speed = first_speed_mps;
+    let mut speed = speeds.horizontal_mps;
     let mut landed = false;
     for (index, item) in items.iter().enumerate() {
         let number = index + 1;
@@ -297,11 +322,34 @@ pub fn fly(
                 landed = true;
             }
             CMD_DO_CHANGE_SPEED => {
-                let value = item.params[1];
+                let (kind, value) = (item.params[0], item.params[1]);
                 if !(value.is_finite() && value > 0.0) {
                     return Err(fail(format!("speed {value} m/s")));
                 }
-                speed = value;
+                // ArduCopter sets the horizontal speed for airspeed and ground speed alike,
+                // and the vertical speeds for types 2 and 3.
+                let vertical = |name: &str, assumed: f64| {
+                    if (value - assumed).abs() > 1e-6 {
+                        Err(fail(format!(
+                            "DO_CHANGE_SPEED sets the {name} speed to {value} m/s; the check \
+                             flies every {name} at the vehicle's {assumed} m/s"
+                        )))
+                    } else {
+                        Ok(())
+                    }
+                };
+                if kind == 0.0 || kind == 1.0 {
+                    speed = value;
+                } else if kind == 2.0 {
+                    vertical("climb", speeds.climb_mps)?;
+                } else if kind == 3.0 {
+                    vertical("descent", speeds.descent_mps)?;
+                } else {
+                    return Err(fail(format!(
+                        "DO_CHANGE_SPEED of speed type {kind} (0 airspeed, 1 ground speed, \
+                         2 climb, 3 descent)"
+                    )));
+                }
             }
             CMD_DO_SPRAYER => {
                 spraying = item.params[0] == 1.0;
@@ -373,6 +421,52 @@ mod tests {
         [0.0, 1.0, 0.0, 0.0, 0.0, lon, 30.0]
     }
 
+    const START: StartSpeeds = StartSpeeds {
+        horizontal_mps: 5.0,
+        climb_mps: 2.5,
+        descent_mps: 1.5,
+    };
+
+    /// ArduCopter's DO_CHANGE_SPEED: types 0 and 1 set the horizontal speed; types 2 and 3 set
+    /// the climb and descent speeds, which leave the legs' speed alone (a sprayer's legs
+    /// would fly at the transit speed, half the dose, if type 2 were read as the spray
+    /// speed) and are refused unless they are the vehicle's own figures.
+    #[test]
+    fn the_speed_type_says_which_speed_changes() {
+        let fly_with = |kind: f64, value: f64| {
+            let items = [
+                item(CMD_NAV_TAKEOFF, at(0.0)),
+                item(CMD_DO_CHANGE_SPEED, [kind, value, -1.0, 0.0, 0.0, 0.0, 0.0]),
+                item(CMD_NAV_WAYPOINT, at(1.0)),
+                item(CMD_NAV_LAND, at(1.0)),
+            ];
+            let to_plan = |lon: f64, lat: f64| (lon * 100.0, lat * 100.0);
+            fly(
+                &items,
+                (0.0, 0.0),
+                0.0,
+                SprayerCommand::DoSprayer,
+                START,
+                &to_plan,
+            )
+        };
+        for kind in [0.0, 1.0] {
+            assert_eq!(fly_with(kind, 3.0).unwrap()[1].speed_mps, 3.0);
+        }
+        // The vehicle's own vertical speeds: flown, the horizontal speed unchanged.
+        assert_eq!(fly_with(2.0, 2.5).unwrap()[1].speed_mps, 5.0);
+        assert_eq!(fly_with(3.0, 1.5).unwrap()[1].speed_mps, 5.0);
+        for (kind, value, says) in [
+            (2.0, 3.0, "climb speed to 3 m/s"),
+            (3.0, 3.0, "descent speed to 3 m/s"),
+            (4.0, 3.0, "speed type 4"),
+        ] {
+            let error = fly_with(kind, value).unwrap_err();
+            assert_eq!(error.item, 2);
+            assert!(error.why.contains(says), "{}", error.why);
+        }
+    }
+
     #[test]
     fn the_camera_trigger_is_the_survey_on_and_off_state() {
         let trigger = |distance: f64| {
@@ -396,7 +490,7 @@ mod tests {
             (0.0, 0.0),
             0.0,
             SprayerCommand::DoSprayer,
-            5.0,
+            START,
             &to_plan,
         )
         .unwrap();
@@ -409,7 +503,7 @@ mod tests {
             (0.0, 0.0),
             0.0,
             SprayerCommand::DoSprayer,
-            5.0,
+            START,
             &to_plan,
         )
         .unwrap_err();
@@ -420,7 +514,7 @@ mod tests {
             (0.0, 0.0),
             0.0,
             SprayerCommand::DoSprayer,
-            5.0,
+            START,
             &to_plan,
         )
         .unwrap_err();

@@ -19,8 +19,21 @@ use crate::terrain::nearness::GroundNearness;
 /// How far above the cruise height (over the highest ground under a leg) a file may fly.
 pub const CEILING_SLACK_M: f64 = 10.0;
 
-/// Float slack of a bound, metres (as the other checks').
+/// Float slack of the ceiling, metres (as the other checks' that hold the plan's own settings:
+/// the files' altitudes are written to the centimetre).
 const SLACK_M: f64 = 0.02;
+
+/// Rounding allowed below the floor, metres: none to speak of. The floor is the one bound no
+/// setting moves, and the report prints it against 0.5 m (a 2 cm slack let 0.482 m read
+/// "passed", trial 8, decision 0036).
+const FLOOR_ROUNDING_M: f64 = 1e-9;
+
+/// Height above its own ground from which a takeoff or a landing is held to the floor in
+/// any direction: twice the floor. Below it the vehicle stands on, or leaves, the ground
+/// under it; from it on, a slope as steep as 60° beneath it is still the floor away
+/// (1 m · cos 60°), so only a face beside the column (a pylon, a cliff's foot, a ditch's
+/// wall) fails it.
+pub(super) const COLUMN_AIRBORNE_M: f64 = 2.0 * MIN_GROUND_CLEARANCE_M;
 
 /// A sample waiting for the ground it is held to: `(sortie, item, x, y, altitude)`.
 type Sample = (usize, usize, f64, f64, f64);
@@ -98,17 +111,22 @@ impl HeightBounds {
     /// Records the samples `(x, y, altitude, ground)` of one airborne leg of shape `shape`:
     /// item `item` of sortie `sortie`; places printed by `place`. Call [`Self::end_sortie`]
     /// after each sortie's legs.
+    ///
+    /// `beside_m`: the highest ground beside the leg that a transit clears as well
+    /// ([`crate::mission::flight::TRANSIT_CORRIDOR_M`]; `f64::NEG_INFINITY` for none), which
+    /// the ceiling is held over.
     pub fn record(
         &mut self,
         (sortie, item): (usize, usize),
         points: &[(f64, f64, f64, f64)],
         shape: LegShape,
+        beside_m: f64,
         place: &dyn Fn(f64, f64) -> String,
     ) {
         for &(x, y, altitude, ground) in points {
             let clearance = altitude - ground;
             self.lowest_clearance_m = self.lowest_clearance_m.min(clearance);
-            self.floor.record_at((x, y), clearance, clearance < MIN_GROUND_CLEARANCE_M - SLACK_M, || {
+            self.floor.record_at((x, y), clearance, clearance < MIN_GROUND_CLEARANCE_M - FLOOR_ROUNDING_M, || {
                 format!(
                     "sortie {sortie}, item {item} at {}: {clearance:.2} m above the ground (never below {MIN_GROUND_CLEARANCE_M} m)",
                     place(x, y)
@@ -129,7 +147,7 @@ impl HeightBounds {
         let highest = points
             .iter()
             .map(|&(_, _, _, ground)| ground)
-            .fold(f64::NEG_INFINITY, f64::max);
+            .fold(beside_m, f64::max);
         let (low, high) = points
             .iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), p| {
@@ -216,14 +234,54 @@ impl HeightBounds {
             return;
         };
         let distance = near.distance_m;
-        if distance >= beneath || beneath < MIN_GROUND_CLEARANCE_M - SLACK_M {
+        if distance >= beneath || beneath < MIN_GROUND_CLEARANCE_M - FLOOR_ROUNDING_M {
             return;
         }
         self.lowest_clearance_m = self.lowest_clearance_m.min(distance);
         let [x, y] = near.at;
-        self.floor.record_at((x, y), distance, distance < MIN_GROUND_CLEARANCE_M - SLACK_M, || {
+        self.floor.record_at((x, y), distance, distance < MIN_GROUND_CLEARANCE_M - FLOOR_ROUNDING_M, || {
             format!(
                 "sortie {sortie}, item {item} at {}: {distance:.2} m from the ground beside it, a slope or a bank ({beneath:.2} m above the ground beneath; never nearer than {MIN_GROUND_CLEARANCE_M} m in any direction)",
+                place(x, y)
+            )
+        });
+    }
+
+    /// Holds a takeoff's or a landing's column (item `item` of sortie `sortie`, its samples
+    /// `points`, `(x, y, altitude, ground)`, all over one place) to the floor in any direction
+    /// from [`COLUMN_AIRBORNE_M`] above its ground to its top. Only a failure is recorded:
+    /// where the column passes, its figure would be the distance at the height where the
+    /// check begins, a number of this rule's making, not of the flight's.
+    pub fn record_column<H: Fn(f64, f64) -> Option<f64>>(
+        &mut self,
+        (sortie, item): (usize, usize),
+        points: &[(f64, f64, f64, f64)],
+        nearness: &mut GroundNearness<H>,
+        place: &dyn Fn(f64, f64) -> String,
+    ) {
+        let Some(&(x, y, _, ground)) = points.first() else {
+            return;
+        };
+        let top = points
+            .iter()
+            .map(|&(_, _, altitude, _)| altitude)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let bottom = ground + COLUMN_AIRBORNE_M;
+        if top <= bottom {
+            return;
+        }
+        let Some(near) = nearness.leg([x, y, bottom], [x, y, top]) else {
+            return;
+        };
+        let distance = near.distance_m;
+        if distance >= MIN_GROUND_CLEARANCE_M - FLOOR_ROUNDING_M {
+            return;
+        }
+        self.lowest_clearance_m = self.lowest_clearance_m.min(distance);
+        let [near_x, near_y] = near.at;
+        self.floor.record_at((near_x, near_y), distance, true, || {
+            format!(
+                "sortie {sortie}, item {item} at {}: the climb or descent where the vehicle stands passes {distance:.2} m from the ground beside it (a face, a mast or a bank; never nearer than {MIN_GROUND_CLEARANCE_M} m in any direction once {COLUMN_AIRBORNE_M} m up)",
                 place(x, y)
             )
         });
@@ -253,7 +311,7 @@ mod tests {
         let vehicle = Vehicle::default();
         let mut bounds = HeightBounds::new(&vehicle);
         let place = |x: f64, y: f64| format!("({x}, {y})");
-        bounds.record((1, 3), points, shape, &place);
+        bounds.record((1, 3), points, shape, f64::NEG_INFINITY, &place);
         bounds.end_sortie(&place);
         let (mut checks, mut lines) = (Vec::new(), Vec::new());
         for tally in bounds.tallies() {
@@ -261,6 +319,66 @@ mod tests {
         }
         assert!(checks[0].passed, "the floor: {lines:?}");
         lines.len()
+    }
+
+    /// Trial 8: a takeoff 1.25 m from the centre of a mast one 1 m cell wide (its bilinear
+    /// face 0.25 m beside the column) fails the floor once 1 m up; the same column 4 m away,
+    /// and one on a plane sloping 50 %, pass without touching the floor's figure.
+    #[test]
+    fn a_takeoff_column_is_held_to_the_floor_beside_it() {
+        use crate::terrain::Terrain;
+        let (columns, rows) = (12, 12);
+        let grid = |height: &dyn Fn(usize, usize) -> f32| crate::terrain::Grid {
+            columns,
+            rows,
+            first_center_x: 0.5,
+            first_center_y: 11.5,
+            cell_x: 1.0,
+            cell_y: 1.0,
+            heights: (0..rows * columns)
+                .map(|index| height(index % columns, index / columns))
+                .collect(),
+            epsg: None,
+            source: "mast".into(),
+        };
+        let mast = grid(&|column, row| {
+            if (column, row) == (6, 6) {
+                140.0
+            } else {
+                100.0
+            }
+        });
+        let slope = grid(&|column, _| 100.0 + 0.5 * column as f32);
+        let column_at = |terrain: &crate::terrain::Grid, x: f64, y: f64| {
+            let vehicle = Vehicle::default();
+            let mut bounds = HeightBounds::new(&vehicle);
+            let mut nearness = GroundNearness::new(
+                terrain,
+                |x, y| terrain.height_m(x, y).ok(),
+                1.0,
+                MIN_GROUND_CLEARANCE_M,
+            );
+            let ground = terrain.height_m(x, y).unwrap();
+            let points = [(x, y, ground, ground), (x, y, ground + 17.5, ground)];
+            let place = |x: f64, y: f64| format!("({x}, {y})");
+            bounds.record_column((1, 1), &points, &mut nearness, &place);
+            let (mut checks, mut lines) = (Vec::new(), Vec::new());
+            for tally in bounds.tallies() {
+                tally.finish(&mut checks, &mut lines, &mut Vec::new());
+            }
+            (checks[0].passed, checks[0].figure, lines)
+        };
+        // The mast's cell centre is (6.5, 5.5); its bilinear surface reaches 1 m either way.
+        let (passed, figure, lines) = column_at(&mast, 6.5 + 1.25, 5.5);
+        assert!(!passed);
+        assert!(figure < 0.3, "{figure}");
+        assert!(lines[0].contains("climb or descent"), "{lines:?}");
+        for (terrain, x, y) in [(&mast, 6.5 + 4.0, 5.5), (&slope, 6.0, 6.0)] {
+            let (passed, figure, lines) = column_at(terrain, x, y);
+            assert!(passed, "{lines:?}");
+            // No figure recorded: the check reports its limit.
+            assert_eq!(figure, MIN_GROUND_CLEARANCE_M);
+        }
     }
 
     #[test]

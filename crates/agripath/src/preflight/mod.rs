@@ -187,7 +187,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             home_xy,
             home_ground,
             settings.sprayer,
-            vehicle.transit_speed_mps,
+            flown::StartSpeeds::of(vehicle),
             &to_plan,
         ) {
             Ok(legs) => legs,
@@ -296,6 +296,9 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 );
             }
             if leg.motion != Motion::Flight {
+                // A takeoff or a landing stands on the ground it leaves or reaches; above it
+                // a face beside the column is as near as any (trial 8, decision 0036).
+                heights.record_column((sortie, leg.item), &points, &mut nearness, &place);
                 continue;
             }
             let shape = if horizontal < SLACK_M {
@@ -305,7 +308,20 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             } else {
                 heights::LegShape::Along
             };
-            heights.record((sortie, leg.item), &points, shape, &place);
+            // A level transit clears the ground beside it too; the ceiling is held over that
+            // ground (the spray legs' own ground is what they follow).
+            let beside = if shape == heights::LegShape::Along && !leg.spraying {
+                crate::mission::flight::highest_ground_near(
+                    terrain,
+                    (leg.from.x, leg.from.y),
+                    (leg.to.x, leg.to.y),
+                    crate::mission::flight::TRANSIT_CORRIDOR_M,
+                )
+                .unwrap_or(f64::NEG_INFINITY)
+            } else {
+                f64::NEG_INFINITY
+            };
+            heights.record((sortie, leg.item), &points, shape, beside, &place);
             heights.record_sideways((sortie, leg.item), &points, &mut nearness, &place);
             if leg.spraying && horizontal > 0.0 {
                 figures.spray_m += horizontal;

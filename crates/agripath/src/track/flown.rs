@@ -62,7 +62,7 @@ pub fn as_flown(scenario: &TrackScenario, track: &[[f64; 3]]) -> Vec<[f64; 3]> {
 mod tests {
     use super::*;
     use crate::mission::flight::SprayerCommand;
-    use crate::preflight::flown::{fly, Height, Motion};
+    use crate::preflight::flown::{fly, Height, Motion, StartSpeeds};
     use crate::preflight::read_back::read_waypoints;
 
     /// The places `text` (a track's `.waypoints`) flies to in the air, read back through the
@@ -76,7 +76,11 @@ mod tests {
             home,
             ground,
             SprayerCommand::DoSprayer,
-            5.0,
+            StartSpeeds {
+                horizontal_mps: 5.0,
+                climb_mps: 2.5,
+                descent_mps: 1.5,
+            },
             &|lon, lat| scenario.from_lon_lat(lon, lat),
         )
         .expect("flyable");

@@ -158,9 +158,61 @@ pub fn highest_ground(terrain: &dyn Terrain, a: (f64, f64), b: (f64, f64)) -> Re
     Ok(highest)
 }
 
+/// Half the width of the corridor whose ground a transit clears by its height, metres: the
+/// distance it keeps from obstacles. Ground beside a leg (a mast, a bank) is as much in its
+/// way as ground beneath it: a transit held only to the ground under it passed 0.49 m beside
+/// a mast one DEM cell wide (trial 8, decision 0036).
+pub const TRANSIT_CORRIDOR_M: f64 = OBSTACLE_CLEARANCE_M;
+
+/// Lines across the corridor the ground is read along: the leg's own and four either side,
+/// a quarter of the corridor's half width apart.
+const CORRIDOR_LINES: i32 = 4;
+
+/// The highest ground within `half_width_m` of the straight leg a → b: along the leg
+/// ([`highest_ground`], which fails where the terrain has no height) and along lines
+/// beside it, a quarter of `half_width_m` apart and as far beyond its ends (where those
+/// leave the terrain's extent, they are not read).
+pub fn highest_ground_near(
+    terrain: &dyn Terrain,
+    a: (f64, f64),
+    b: (f64, f64),
+    half_width_m: f64,
+) -> Result<f64, Fault> {
+    let mut highest = highest_ground(terrain, a, b)?;
+    let length = (b.0 - a.0).hypot(b.1 - a.1);
+    let (along_x, along_y) = if length > 1e-9 {
+        ((b.0 - a.0) / length, (b.1 - a.1) / length)
+    } else {
+        (1.0, 0.0)
+    };
+    let spacing = half_width_m / f64::from(CORRIDOR_LINES);
+    for line in -CORRIDOR_LINES..=CORRIDOR_LINES {
+        let offset = spacing * f64::from(line);
+        let (dx, dy) = (-along_y * offset, along_x * offset);
+        let (ex, ey) = (along_x * half_width_m, along_y * half_width_m);
+        let from = (a.0 + dx - ex, a.1 + dy - ey);
+        let to = (b.0 + dx + ex, b.1 + dy + ey);
+        let span = length + 2.0 * half_width_m;
+        let place = |t: f64| (from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1));
+        let places =
+            crate::terrain::profile_places(terrain, from, to, span, TRANSIT_SAMPLE_M, |t| {
+                let (x, y) = place(t);
+                terrain.height_m(x, y).ok().map(|ground| vec![ground])
+            });
+        for t in places {
+            let (x, y) = place(t);
+            if let Ok(ground) = terrain.height_m(x, y) {
+                highest = highest.max(ground);
+            }
+        }
+    }
+    Ok(highest)
+}
+
 /// A transit between two places at a level altitude: the corners it turns at to keep out of
 /// the obstacles (the geofence's exclusion zones) and the altitude above sea level that
-/// clears the highest ground under every leg by `clearance_m`.
+/// clears the highest ground under and beside every leg ([`TRANSIT_CORRIDOR_M`]) by
+/// `clearance_m`.
 struct Transit {
     corners: Vec<RoutePoint>,
     altitude_m: f64,
@@ -204,7 +256,12 @@ fn transit(
     path.push((to.x, to.y));
     let mut highest = f64::NEG_INFINITY;
     for pair in path.windows(2) {
-        highest = highest.max(highest_ground(scenario.terrain.as_ref(), pair[0], pair[1])?);
+        highest = highest.max(highest_ground_near(
+            scenario.terrain.as_ref(),
+            pair[0],
+            pair[1],
+            TRANSIT_CORRIDOR_M,
+        )?);
     }
     Ok(Transit {
         corners,
@@ -488,5 +545,38 @@ mod tests {
         assert!((lon - 126.63).abs() < 1e-9 && (lat - 45.75).abs() < 1e-9);
         let (_, north) = frame.lon_lat(0.0, 1000.0);
         assert!((north - 45.75 - 1000.0 / 111_150.0).abs() < 2e-4);
+    }
+    /// A transit clears the ground beside it: a mast one 1 m cell wide, its centre 1.5 m
+    /// beside the leg, is not under the leg but within the corridor (trial 8).
+    #[test]
+    fn the_corridor_sees_a_mast_beside_the_leg() {
+        let (columns, rows) = (20, 10);
+        let grid = crate::terrain::Grid {
+            columns,
+            rows,
+            first_center_x: 0.5,
+            first_center_y: 9.5,
+            cell_x: 1.0,
+            cell_y: 1.0,
+            heights: (0..rows * columns)
+                .map(|index| {
+                    if index == 3 * columns + 10 {
+                        140.0
+                    } else {
+                        100.0
+                    }
+                })
+                .collect(),
+            epsg: None,
+            source: "mast".into(),
+        };
+        // The mast's centre is (10.5, 6.5); the leg runs along y = 5.
+        let (a, b) = ((2.0, 5.0), (18.0, 5.0));
+        assert_eq!(highest_ground(&grid, a, b).unwrap(), 100.0);
+        let near = highest_ground_near(&grid, a, b, TRANSIT_CORRIDOR_M).unwrap();
+        assert!(near >= 139.0, "{near}");
+        // Beyond the corridor it is not in the way.
+        let far = highest_ground_near(&grid, (2.0, 2.0), (18.0, 2.0), TRANSIT_CORRIDOR_M);
+        assert_eq!(far.unwrap(), 100.0);
     }
 }
