@@ -52,6 +52,31 @@ if "leaflet-image-layer" not in dom:
 if 'href="sheet.html"' not in dom:
     failures.append("the viewer does not link to the mission sheet")
 
+# A field named with markup (trial 7): the viewer shows the name as text when its popup
+# opens, and runs nothing from it.
+hostile = os.path.join(scratch, "hostile.geojson")
+payload = 'North<img src=x onerror="document.body.dataset.pwned=1">'
+with open(hostile, "w") as handle:
+    json.dump({"type": "FeatureCollection", "features": [{"type": "Feature", "properties": {"name": payload},
+               "geometry": {"type": "Polygon", "coordinates": [[[9.95, 49.8], [9.9528, 49.8], [9.9528, 49.8011],
+                                                                [9.95, 49.8011], [9.95, 49.8]]]}}]}, handle)
+named = os.path.join(scratch, "named")
+subprocess.run([AGRIPATH, "plan", "--fields", hostile, "--out", named], check=True, stdout=subprocess.DEVNULL)
+with open(os.path.join(named, "plan.html")) as handle:
+    viewer = handle.read()
+opener = ("<script>setTimeout(() => { for (const g of groups.values()) g.eachLayer(l => l.eachLayer && "
+          "l.eachLayer(x => { if (x.feature && x.feature.properties.kind === 'field') x.openPopup(); })); }, 300);"
+          "</script>")
+with open(os.path.join(named, "probe.html"), "w") as handle:
+    handle.write(viewer.replace("</body>", opener + "</body>"))
+probed = subprocess.run([CHROMIUM, *FLAGS, f"--user-data-dir={profile}", "--dump-dom",
+                         "file://" + os.path.join(named, "probe.html")],
+                        check=True, capture_output=True, text=True, timeout=120).stdout
+if "data-pwned" in probed:
+    failures.append("a field's name ran as markup in the viewer's popup")
+if "North&lt;img" not in probed:
+    failures.append("the field's popup did not open with its name as text")
+
 # The mission sheet printed by the same browser: agripath's --pdf finds it through
 # AGRIPATH_BROWSER; the PDF must be a PDF of two pages or more (the table, then the map).
 printed = os.path.join(scratch, "printed")

@@ -102,11 +102,18 @@ function style(feature) {{
     default: return {{ color: "#333", weight: 1 }};
   }}
 }}
+// The popup is built as nodes with text, never as HTML from the properties: a field's name
+// comes from the operator's file and must not run as markup (trial 7).
 function popup(feature) {{
-  const rows = Object.entries(feature.properties)
-    .map(([k, v]) => "<tr><td>" + k + "</td><td>" + (typeof v === "number" ? Math.round(v * 1000) / 1000 : v) + "</td></tr>")
-    .join("");
-  return "<table class='agripath-popup'>" + rows + "</table>";
+  const table = document.createElement("table");
+  table.className = "agripath-popup";
+  for (const [key, value] of Object.entries(feature.properties)) {{
+    const row = table.insertRow();
+    row.insertCell().textContent = key;
+    row.insertCell().textContent = typeof value === "number" ? String(Math.round(value * 1000) / 1000)
+      : (value !== null && typeof value === "object") ? JSON.stringify(value) : String(value);
+  }}
+  return table;
 }}
 const groups = new Map();
 function group(name) {{
