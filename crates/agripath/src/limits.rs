@@ -10,8 +10,14 @@ pub const MAX_FARM_EXTENT_M: f64 = 200_000.0;
 /// Widest farm in longitude, degrees: one UTM zone's width, so a farm touches at most two
 /// zones. (Below 72° of latitude [`MAX_FARM_EXTENT_M`] is the tighter bound.)
 pub const MAX_FARM_LONGITUDE_SPAN_DEG: f64 = 6.0;
-/// Largest coordinate magnitude accepted in a local frame, metres.
-pub const MAX_LOCAL_COORDINATE_M: f64 = 1.0e7;
+/// Largest coordinate magnitude accepted in a local frame, metres. A local frame is a plane
+/// laid on the Earth at `--origin` (its x and y added to the origin's UTM easting and
+/// northing); 100 km from its (0, 0) the map's scale there differs from the origin's by at
+/// most 0.15 % (UTM's scale factor, k = 0.9996 · (1 + e²/2R²), over 100 km more of
+/// easting). Coordinates far beyond a farm's size are a projected grid's (UTM, a national
+/// grid) read as local metres, which lay the fields thousands of km off, bent (trial 7: a
+/// field at (2,000 km, 0) sprayed 0.96 of its length, one at (10,000 km, 10,000 km) 0.41).
+pub const MAX_LOCAL_COORDINATE_M: f64 = 100_000.0;
 /// Raster cells a terrain model may hold in memory (4 bytes each: 1.6 GB).
 pub const MAX_TERRAIN_CELLS: u64 = 400_000_000;
 /// Points of an XYZ point cloud.

@@ -102,7 +102,8 @@ pub fn build(
                         what: "coordinate".into(),
                         value: format!("({x}, {y})"),
                         why: format!(
-                            "local coordinates are metres and must lie within ±{MAX_LOCAL_COORDINATE_M} (is this lon/lat? then drop \"crs\": \"local\")"
+                            "local coordinates are metres from the frame's origin and must lie within ±{} km of it, where the plane laid on the Earth at --origin keeps its scale (is this lon/lat? then drop \"crs\": \"local\"; a projected grid such as UTM? then give the fields in lon/lat)",
+                            MAX_LOCAL_COORDINATE_M / 1000.0
                         ),
                     });
                 }
