@@ -218,6 +218,13 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
     let verdict = crate::preflight::check(&world, &preflight_settings(mission), &mission_files);
     let mut report = mission.report.clone();
     report.preflight = Some(verdict.clone());
+    if mission.sorties.is_none() {
+        report.sortie_details = verdict
+            .sorties
+            .iter()
+            .map(|flown| crate::report::SortieReport::as_flown(flown, vehicle))
+            .collect();
+    }
     let supply_options = supply_options(&report);
     let geojson_of = |farm: &crate::model::Farm| {
         let mut geojson = plan_geojson(

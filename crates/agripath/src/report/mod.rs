@@ -202,6 +202,29 @@ pub struct SortieReport {
     pub return_point: Option<[f64; 3]>,
 }
 
+impl SortieReport {
+    /// The one flight of a plan not split into sorties (`--sorties none`), from its mission
+    /// file as the preflight flew it: every written mission file has its row (trial 7 found
+    /// `sortie_details` empty beside a written `sortie_01.plan`).
+    pub fn as_flown(flown: &crate::preflight::SortieFlown, vehicle: &Vehicle) -> Self {
+        Self {
+            sortie: flown.sortie,
+            file: flown.file.clone(),
+            spray_m: round(flown.spray_m, 1e-4),
+            litres: vehicle
+                .application_rate_l_per_ha
+                .map(|rate| round(rate / 10_000.0 * vehicle.swath_width_m * flown.spray_m, 1e-3)),
+            tank_percent: flown.tank_fraction.map(|f| round(100.0 * f, 1e-3)),
+            photos_estimate: vehicle
+                .trigger_distance_m()
+                .map(|distance| (flown.spray_m / distance).round() as u64),
+            flight_time_s: round(flown.flight_time_s, 1e-3),
+            battery_percent: round(100.0 * flown.battery_fraction, 1e-3),
+            return_point: None,
+        }
+    }
+}
+
 /// Flight time of the transfers: legs inside a field at turn speed; climbing legs at transit
 /// speed plus the 2h climb and descent at climb and descent speed.
 pub fn transfer_time_s(route: &Route, sorties: Option<&PlannedSorties>, vehicle: &Vehicle) -> f64 {
