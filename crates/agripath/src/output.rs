@@ -215,11 +215,15 @@ pub fn check_target(target: &Path) -> std::io::Result<()> {
             let _ = std::fs::remove_dir(&probe);
             Ok(())
         }
-        Err(error) => Err(refused(format!(
-            "cannot write in {}: {}",
-            parent.display(),
-            crate::files::reason(&error)
-        ))),
+        // The machine's refusal, not the caller's path: its kind is kept (the CLI exits 1).
+        Err(error) => Err(std::io::Error::new(
+            error.kind(),
+            format!(
+                "cannot write in {}: {}",
+                parent.display(),
+                crate::files::reason(&error)
+            ),
+        )),
     }
 }
 

@@ -37,7 +37,16 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
             .and_then(|()| {
                 agripath::output::check_inputs_outside(out, &arguments.command.input_files())
             })
-            .map_err(|error| InputError::new("--out", Fault::Structure(error.to_string())))?;
+            .map_err(|error| {
+                // A path that cannot be a plan folder is the caller's input (status 2); a
+                // folder the machine will not let us write in is not (status 1, as a full
+                // disk is).
+                if error.kind() == std::io::ErrorKind::InvalidInput {
+                    Failure::from(InputError::new("--out", Fault::Structure(error.to_string())))
+                } else {
+                    Failure::Output(format!("--out: {error}"))
+                }
+            })?;
     }
     match arguments.command {
         Command::Demo { out, pdf } => plan::demo(
