@@ -1,6 +1,8 @@
 //! Every mission item of every sortie as CSV, for spreadsheets and other tools:
 //! `sortie,index,action,value,lon,lat,ground_m,above_ground_m,sea_level_m`. Sorties are
-//! numbered from 1, as the `sortie_NN` files, the KML and the sheet number them. Without
+//! numbered from 1, as the `sortie_NN` files, the KML and the sheet number them; `index` is
+//! the mission item's number, from 1 after home (the `.waypoints` row, QGroundControl's item
+//! number, and the `item K` of the preflight's lines, so a failure is found by it). Without
 //! heights above sea level (no DEM, no stated ground height) `sea_level_m` is left empty:
 //! `ground_m` is then the terrain model's (flat 0 m, the field file's or a formula's), and
 //! a sea-level column over it would read as true altitudes (decision 0012: never sea level
@@ -34,7 +36,7 @@ pub fn waypoints_csv(missions: &[SortieMission], sea_level_known: bool) -> Strin
                 text,
                 "{},{},{},{},{:.9},{:.9},{:.3},{:.3},{sea_level}",
                 mission.sortie + 1,
-                index,
+                index + 1,
                 action,
                 value,
                 item.lon,
