@@ -111,11 +111,54 @@ def validity_cases(folder, random_source):
     check(min(verdicts.values()) >= 30, f"too few cases of one kind: {verdicts}")
 
 
+def orientation_cases(folder):
+    """plan.geojson's polygons as RFC 7946 §3.1.6 orders their rings (exterior
+    counterclockwise, holes clockwise), whatever way the input's rings turn: a field drawn
+    clockwise with a counterclockwise hole, in lon/lat, planned; every Polygon of the plan
+    (fields, obstacles, missed patches) checked with shapely."""
+    shell = [[9.95, 49.8], [9.95, 49.8015], [9.9535, 49.8015], [9.9535, 49.8], [9.95, 49.8]]  # clockwise
+    hole = [[9.9515, 49.8005], [9.952, 49.8005], [9.952, 49.8009], [9.9515, 49.8009], [9.9515, 49.8005]]
+    collection = {"type": "FeatureCollection", "features": [
+        {"type": "Feature", "properties": {"name": "clockwise"},
+         "geometry": {"type": "Polygon", "coordinates": [shell, hole]}}]}
+    path = os.path.join(folder, "clockwise.geojson")
+    with open(path, "w") as handle:
+        json.dump(collection, handle)
+    out = os.path.join(folder, "clockwise_plan")
+    result = subprocess.run([BINARY, "plan", "--fields", path, "--out", out], capture_output=True, text=True)
+    check(result.returncode == 0, f"{path}: plan exit {result.returncode}: {result.stderr.strip()}")
+    if result.returncode != 0:
+        return
+    with open(os.path.join(out, "plan.geojson")) as handle:
+        features = json.load(handle)["features"]
+    polygons = 0
+    for feature in features:
+        geometry = feature["geometry"]
+        if geometry["type"] != "Polygon":
+            continue
+        polygons += 1
+        rings = geometry["coordinates"]
+        shape = Polygon(rings[0], rings[1:])
+        kind = feature["properties"].get("kind")
+        # The input's polygons are valid; a missed patch may be a wedge whose tip lies on its
+        # own far side within the file's 1e-9° (decision 0036), and has no orientation then.
+        if kind in ("field", "obstacle", "access"):
+            check(shape.is_valid, f"plan.geojson: a {kind} polygon is not valid ({len(rings[0])} points)")
+        elif not shape.is_valid:
+            continue
+        check(shape.exterior.is_ccw, f"plan.geojson: a {kind} polygon's exterior runs clockwise")
+        for interior in shape.interiors:
+            check(not interior.is_ccw, f"plan.geojson: a {kind} polygon's hole runs counterclockwise")
+    check(polygons > 0, "plan.geojson: no polygon to check")
+    print(f"orientation: {polygons} polygons of plan.geojson checked against RFC 7946")
+
+
 def main():
     random_source = random.Random(20261123)
     with tempfile.TemporaryDirectory() as folder:
         projection_cases(folder, random_source)
         validity_cases(folder, random_source)
+        orientation_cases(folder)
     for message in failed:
         print("FAILED:", message)
     print(f"oracles: {passed} passed, {len(failed)} failed")

@@ -211,9 +211,12 @@ impl SortieReport {
             sortie: flown.sortie,
             file: flown.file.clone(),
             spray_m: round(flown.spray_m, 1e-4),
-            litres: vehicle
-                .application_rate_l_per_ha
-                .map(|rate| round(rate / 10_000.0 * vehicle.swath_width_m * flown.spray_m, 1e-3)),
+            litres: vehicle.application_rate_l_per_ha.map(|rate| {
+                round(
+                    rate / 10_000.0 * vehicle.swath_width_m * flown.spray_m,
+                    1e-3,
+                )
+            }),
             tank_percent: flown.tank_fraction.map(|f| round(100.0 * f, 1e-3)),
             photos_estimate: vehicle
                 .trigger_distance_m()

@@ -42,7 +42,10 @@ pub fn run(arguments: Arguments) -> Result<(), Failure> {
                 // folder the machine will not let us write in is not (status 1, as a full
                 // disk is).
                 if error.kind() == std::io::ErrorKind::InvalidInput {
-                    Failure::from(InputError::new("--out", Fault::Structure(error.to_string())))
+                    Failure::from(InputError::new(
+                        "--out",
+                        Fault::Structure(error.to_string()),
+                    ))
                 } else {
                     Failure::Output(format!("--out: {error}"))
                 }
