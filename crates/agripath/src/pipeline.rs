@@ -149,8 +149,6 @@ pub fn supply_point(
     Ok(choose_supply(scenario, settings, coverage, transfers, given)?.choice)
 }
 
-/// The supply point [`supply_point`] chooses, and the closed tour its `auto` search was scored
-
 /// Why a vehicle cannot stand at a supply point the operator gave, or `None`: in a field, a
 /// hole or an obstacle, too far from the fields (decision 0016), or on ground `auto` would
 /// not take as level (decisions 0029, 0036).
@@ -167,6 +165,8 @@ fn given_point_warning(scenario: &Scenario, point: GroundPoint) -> Option<String
                 .map(|why| format!("{why}: a drone takes off and lands on level ground"))
         })
 }
+
+/// The supply point [`supply_point`] chooses, and the closed tour its `auto` search was scored
 /// along (a start of the joint search, [`joint_route`]).
 struct SupplyPlan {
     choice: Option<SupplyChoice>,
