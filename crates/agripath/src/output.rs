@@ -234,12 +234,32 @@ fn parent_of(target: &Path) -> &Path {
         .unwrap_or(Path::new("."))
 }
 
+/// The target's name as its hidden siblings (`.NAME.partial-PID`, `.NAME.old-PID`) carry
+/// it: whole up to [`LONGEST_SIBLING_NAME`] bytes, else its first bytes and a hash of the
+/// whole, so that a folder name near the file system's 255-byte limit still gets siblings
+/// (trial 7: a 245-byte `--out` failed with "File name too long").
 fn name_of(target: &Path) -> String {
-    target
+    let name = target
         .file_name()
         .map(|name| name.to_string_lossy().into_owned())
-        .unwrap_or_else(|| "out".into())
+        .unwrap_or_else(|| "out".into());
+    if name.len() <= LONGEST_SIBLING_NAME {
+        return name;
+    }
+    let mut cut = LONGEST_SIBLING_NAME - 17;
+    while !name.is_char_boundary(cut) {
+        cut -= 1;
+    }
+    // FNV-1a: stable across runs and builds, so a later run finds a dead run's siblings.
+    let hash = name.bytes().fold(0xcbf2_9ce4_8422_2325_u64, |hash, byte| {
+        (hash ^ u64::from(byte)).wrapping_mul(0x0100_0000_01b3)
+    });
+    format!("{}~{hash:016x}", &name[..cut])
 }
+
+/// Longest target name kept whole in its siblings' names: 255 bytes less the dot and
+/// `.partial-` with a ten-digit process id.
+const LONGEST_SIBLING_NAME: usize = 200;
 
 /// Swaps two paths in one step (Linux `renameat2` with `RENAME_EXCHANGE`). The project's one
 /// `unsafe`: std has no atomic exchange, and without one a kill between two renames leaves
@@ -484,6 +504,28 @@ mod tests {
         assert!(!legacy_old.exists());
         assert!(alive.exists());
         drop(staged);
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+    /// A folder name of 245 bytes (legal: the limit is 255) gets siblings within the limit,
+    /// the same on every run, distinct from another long name with the same first bytes.
+    #[test]
+    fn a_long_folder_name_gets_short_siblings() {
+        let long = "c".repeat(245);
+        let name = name_of(Path::new(&long));
+        assert!(
+            name.len() + ".partial-4294967295".len() < 255,
+            "{}",
+            name.len()
+        );
+        assert_eq!(name, name_of(Path::new(&long)));
+        assert_ne!(name, name_of(Path::new(&("c".repeat(244) + "d"))));
+        assert_eq!(name_of(Path::new("plan")), "plan");
+        let root = std::env::temp_dir().join(format!("agripath-long-{}", std::process::id()));
+        let target = root.join("é".repeat(120));
+        let staged = StagedFolder::new(&target).unwrap();
+        staged.write("report.json", b"{}").unwrap();
+        staged.commit().unwrap();
+        assert!(target.join("report.json").is_file());
         std::fs::remove_dir_all(&root).unwrap();
     }
 }

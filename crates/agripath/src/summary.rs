@@ -58,6 +58,9 @@ pub struct ScenarioSummary {
     pub surveys: bool,
     /// Seed 001's h: the climb above spray height for a transfer that leaves the work area, metres.
     pub safe_height_m: f64,
+    /// What the field file's reading noted but did not refuse (two fields of one name, an
+    /// access road that runs into a field, …), as the text form prints after `note:`.
+    pub notes: Vec<String>,
 }
 
 impl ScenarioSummary {
@@ -135,6 +138,7 @@ impl ScenarioSummary {
             spray_height_m: scenario.vehicle.spray_height_m,
             surveys: scenario.vehicle.is_survey(),
             safe_height_m: scenario.vehicle.safe_height_m,
+            notes: farm.notes.clone(),
         }
     }
 

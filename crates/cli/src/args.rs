@@ -242,6 +242,7 @@ pub enum TerrainAction {
         /// Cell size for gridding an XYZ point cloud, metres.
         #[arg(long)]
         cell: Option<f64>,
+        /// Print the figures as JSON.
         #[arg(long)]
         json: bool,
     },
@@ -255,6 +256,7 @@ pub enum TerrainAction {
         /// The pairs are longitude and latitude (degrees), for a DEM in UTM or lon/lat.
         #[arg(long)]
         lonlat: bool,
+        /// Cell size for gridding an XYZ point cloud, metres.
         #[arg(long)]
         cell: Option<f64>,
     },
@@ -273,6 +275,7 @@ pub enum TerrainAction {
         /// Area to draw, for unbounded terrains: MIN_X,MIN_Y,MAX_X,MAX_Y.
         #[arg(long, value_delimiter = ',', allow_hyphen_values = true)]
         extent: Option<Vec<f64>>,
+        /// Cell size for gridding an XYZ point cloud, metres.
         #[arg(long)]
         cell: Option<f64>,
     },

@@ -155,7 +155,7 @@ pub struct Report {
     pub altitude_assumption: String,
     /// Why the plan's terrain may not be the ground it will fly over (`null` when it is a DEM,
     /// or a farm in local metres, the papers' flat ground): printed as a `warning:` line.
-    #[serde(skip_serializing_if = "Option::is_none")]
+    /// Always present (a reader's key does not come and go with the terrain; trial 7).
     pub terrain_warning: Option<String>,
     /// What the mission files were asked for (altitude reference, sprayer, terrain tolerance,
     /// origin of a local frame, fence margin): what `agripath check` holds them to.

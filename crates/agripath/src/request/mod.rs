@@ -239,8 +239,7 @@ pub fn validate(inputs: &ScenarioInputs, json: bool) -> Result<String, InputErro
     Ok(if json {
         serde_json::to_string_pretty(&summary).expect("a summary serialises") + "\n"
     } else {
-        let notes: String = scenario
-            .farm
+        let notes: String = summary
             .notes
             .iter()
             .map(|note| format!("note: {note}\n"))

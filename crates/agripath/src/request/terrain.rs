@@ -118,9 +118,18 @@ pub fn sample(
             }
             _ => x,
         };
-        let height = model
-            .height_m(x, y)
-            .map_err(|error| InputError::new(argument, Fault::Terrain(error)))?;
+        let height = model.height_m(x, y).map_err(|error| {
+            // The point as the caller typed it, then as the DEM's frame holds it.
+            let fault = if lon_lat {
+                Fault::Structure(format!(
+                    "lon/lat ({}, {}) in the DEM's frame: {error}",
+                    pair[0], pair[1]
+                ))
+            } else {
+                Fault::Terrain(error)
+            };
+            InputError::new(argument, fault)
+        })?;
         lines.push(format!("{} {} {}", pair[0], pair[1], height));
     }
     Ok(lines.join("\n") + "\n")
