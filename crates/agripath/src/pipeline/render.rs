@@ -87,6 +87,7 @@ pub fn preflight_settings(mission: &PlannedMission) -> crate::preflight::Preflig
     let settings = &mission.settings;
     let promise = crate::preflight::Promise {
         headland_passes: settings.coverage.headland_passes,
+        edge_gaps: settings.coverage.edge_cut == crate::coverage::EdgeCut::Gap,
         covered_fraction: mission
             .coverage
             .fields

@@ -45,6 +45,7 @@ pub fn check_folder(world: &World, folder: &std::path::Path) -> Result<Verdict, 
     let fields = report["fields"].as_array().cloned().unwrap_or_default();
     let promise = Promise {
         headland_passes: report["settings"]["headland_passes"].as_u64().unwrap_or(1) as usize,
+        edge_gaps: report["settings"]["edge_cut"] == "gap",
         covered_fraction: world
             .farm
             .fields

@@ -31,6 +31,9 @@ pub struct PreflightSettings {
 pub struct Promise {
     /// Edge passes around each boundary and hole; 0 is the seed's layout.
     pub headland_passes: usize,
+    /// Whether the edge passes end where the core first ends (`--edge-cut gap`), leaving the
+    /// sliver between them unsprayed by choice.
+    pub edge_gaps: bool,
     /// Per field, the share of its sprayable area the plan's measure covers.
     pub covered_fraction: Vec<f64>,
     /// Strip area the plan's measure puts outside the sprayable region, m².
@@ -44,7 +47,9 @@ impl PreflightSettings {
     /// and at most [`MAX_OUTSIDE_FRACTION`] outside. The seed's layout (`--headland 0`)
     /// leaves 2-4 % at oblique swath ends and runs swaths to the boundary, half a swath
     /// overhanging it: it is held to its own coverage − ½ point and its own overhang
-    /// + 0.1 point.
+    /// + 0.1 point. `--edge-cut gap` leaves its gaps by the operator's choice: it is held to
+    /// its own coverage − ½ point where that is under 99 % (trial 7: a plain rectangle
+    /// planned with it covered 98.93 % and failed).
     pub fn new(
         mission: &MissionSettings,
         boundary_margin_m: f64,
@@ -65,6 +70,8 @@ impl PreflightSettings {
                 .map(|&covered| {
                     if seed_layout {
                         (covered - 0.005).max(0.0)
+                    } else if promise.edge_gaps {
+                        (covered - 0.005).clamp(0.0, 0.99)
                     } else {
                         0.99
                     }
@@ -76,5 +83,31 @@ impl PreflightSettings {
                 MAX_OUTSIDE_FRACTION
             },
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Edge passes hold a field to 99 %; `--edge-cut gap`, whose gaps are the operator's
+    /// choice, to its own coverage − ½ point (never more than 99 %); the seed's layout too.
+    #[test]
+    fn the_coverage_required_follows_the_layout_chosen() {
+        let required = |headland_passes: usize, edge_gaps: bool, covered: f64| {
+            let promise = Promise {
+                headland_passes,
+                edge_gaps,
+                covered_fraction: vec![covered],
+                outside_m2: 0.0,
+                sprayed_m2: 1.0,
+            };
+            PreflightSettings::new(&MissionSettings::default(), 0.0, 0.0, &promise)
+                .required_coverage[0]
+        };
+        assert_eq!(required(1, false, 0.9893), 0.99);
+        assert!((required(1, true, 0.9893) - 0.9843).abs() < 1e-12);
+        assert_eq!(required(1, true, 0.9999), 0.99);
+        assert!((required(0, false, 0.97) - 0.965).abs() < 1e-12);
     }
 }
