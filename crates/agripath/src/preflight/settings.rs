@@ -46,9 +46,9 @@ impl PreflightSettings {
     /// The settings a plan is held to (decision 0012). With edge passes: 99 % of each field
     /// and at most [`MAX_OUTSIDE_FRACTION`] outside. The seed's layout (`--headland 0`)
     /// leaves 2-4 % at oblique swath ends and runs swaths to the boundary, half a swath
-    /// overhanging it: it is held to its own coverage − ½ point and its own overhang
-    /// + 0.1 point. `--edge-cut gap` leaves its gaps by the operator's choice: it is held to
-    /// its own coverage − ½ point where that is under 99 % (trial 7: a plain rectangle
+    /// overhanging it: it is held to its own coverage less ½ point and its own overhang plus
+    /// 0.1 point. `--edge-cut gap` leaves its gaps by the operator's choice: it is held to
+    /// its own coverage less ½ point where that is under 99 % (trial 7: a plain rectangle
     /// planned with it covered 98.93 % and failed).
     pub fn new(
         mission: &MissionSettings,
