@@ -154,7 +154,12 @@ pub fn parse(text: &str) -> Result<Grid, Located> {
         cell_y,
         heights,
         epsg: None,
-        source: format!("ESRI ASCII grid {columns} × {rows}, cell {cell_x} m"),
+        // Square cells by one figure, others (`dx`/`dy` headers) by both (trial 8).
+        source: if cell_x == cell_y {
+            format!("ESRI ASCII grid {columns} × {rows}, cell {cell_x} m")
+        } else {
+            format!("ESRI ASCII grid {columns} × {rows}, cell {cell_x} × {cell_y} m")
+        },
     })
 }
 
