@@ -262,18 +262,8 @@ impl Report {
                 .sorties
                 .iter()
                 .enumerate()
-                .map(|(index, sortie)| SortieReport {
-                    sortie: index + 1,
-                    file: format!("{}.plan", crate::mission::sortie_file_stem(index)),
-                    spray_m: round(sortie.spray_m, 1e-4),
-                    litres: sortie.litres.map(|l| round(l, 1e-3)),
-                    tank_percent: sortie.tank_fraction.map(|f| round(100.0 * f, 1e-3)),
-                    photos_estimate: vehicle
-                        .trigger_distance_m()
-                        .map(|distance| (sortie.spray_m / distance).round() as u64),
-                    flight_time_s: round(sortie.flight_s, 1e-3),
-                    battery_percent: round(100.0 * sortie.battery_fraction, 1e-3),
-                    return_point: (index + 1 < split.plan.sorties.len()).then(|| {
+                .map(|(index, sortie)| {
+                    let return_point = (index + 1 < split.plan.sorties.len()).then(|| {
                         let point = split.work_route.points()[sortie.last];
                         let (x, y) = scenario.farm.coordinate_system.to_input(point.x, point.y);
                         [
@@ -281,7 +271,15 @@ impl Report {
                             round(y, 1e-9),
                             round(point.ground_m + vehicle.spray_height_m, 1e-4),
                         ]
-                    }),
+                    });
+                    SortieReport::new(
+                        index,
+                        sortie.spray_m,
+                        sortie.tank_fraction,
+                        (sortie.flight_s, sortie.battery_fraction),
+                        return_point,
+                        vehicle,
+                    )
                 })
                 .collect()
         });

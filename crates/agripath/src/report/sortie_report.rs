@@ -32,27 +32,45 @@ pub struct SortieReport {
 }
 
 impl SortieReport {
+    /// Sortie `index` (from 0) of `vehicle`: its spray metres, the share of a tank they take
+    /// (none where the tank does not limit), its flight seconds and share of the battery, and
+    /// its return point; figures rounded as `report.json` writes them.
+    pub fn new(
+        index: usize,
+        spray_m: f64,
+        tank_fraction: Option<f64>,
+        (flight_s, battery_fraction): (f64, f64),
+        return_point: Option<[f64; 3]>,
+        vehicle: &Vehicle,
+    ) -> Self {
+        Self {
+            sortie: index + 1,
+            file: format!("{}.plan", crate::mission::sortie_file_stem(index)),
+            spray_m: round(spray_m, 1e-4),
+            litres: vehicle
+                .application_rate_l_per_ha
+                .map(|rate| round(rate / 10_000.0 * vehicle.swath_width_m * spray_m, 1e-3)),
+            tank_percent: tank_fraction.map(|f| round(100.0 * f, 1e-3)),
+            photos_estimate: vehicle
+                .trigger_distance_m()
+                .map(|distance| (spray_m / distance).round() as u64),
+            flight_time_s: round(flight_s, 1e-3),
+            battery_percent: round(100.0 * battery_fraction, 1e-3),
+            return_point,
+        }
+    }
+
     /// The one flight of a plan not split into sorties (`--sorties none`), from its mission
     /// file as the preflight flew it: every written mission file has its row (trial 7 found
     /// `sortie_details` empty beside a written `sortie_01.plan`).
     pub fn as_flown(flown: &crate::preflight::SortieFlown, vehicle: &Vehicle) -> Self {
-        Self {
-            sortie: flown.sortie,
-            file: flown.file.clone(),
-            spray_m: round(flown.spray_m, 1e-4),
-            litres: vehicle.application_rate_l_per_ha.map(|rate| {
-                round(
-                    rate / 10_000.0 * vehicle.swath_width_m * flown.spray_m,
-                    1e-3,
-                )
-            }),
-            tank_percent: flown.tank_fraction.map(|f| round(100.0 * f, 1e-3)),
-            photos_estimate: vehicle
-                .trigger_distance_m()
-                .map(|distance| (flown.spray_m / distance).round() as u64),
-            flight_time_s: round(flown.flight_time_s, 1e-3),
-            battery_percent: round(100.0 * flown.battery_fraction, 1e-3),
-            return_point: None,
-        }
+        Self::new(
+            flown.sortie - 1,
+            flown.spray_m,
+            flown.tank_fraction,
+            (flown.flight_time_s, flown.battery_fraction),
+            None,
+            vehicle,
+        )
     }
 }
