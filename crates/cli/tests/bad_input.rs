@@ -784,6 +784,12 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             bad("too_wide.geojson"),
             "span 300 km",
         ),
+        // Local metres 300 km from their origin: a projected grid read as local (trial 7).
+        (
+            fields("local_far.geojson"),
+            bad("local_far.geojson"),
+            "within ±100 km",
+        ),
         (
             fields("farm_too_spread.geojson"),
             bad("farm_too_spread.geojson"),

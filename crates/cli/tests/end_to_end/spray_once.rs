@@ -42,9 +42,9 @@ fn figures(report: &serde_json::Value) -> (f64, f64, f64) {
 
 #[test]
 fn edge_cuts_trade_double_dose_for_missed_ground_as_flown() {
-    let (overlap, geojson) = plan("overlap");
+    let (overlap, _) = plan("overlap");
     let (balanced, _) = plan("balanced");
-    let (gap, _) = plan("gap");
+    let (gap, gap_geojson) = plan("gap");
     let (overlap_double, overlap_missed, overlap_covered) = figures(&overlap);
     let (balanced_double, balanced_missed, balanced_covered) = figures(&balanced);
     let (gap_double, gap_missed, _) = figures(&gap);
@@ -60,20 +60,25 @@ fn edge_cuts_trade_double_dose_for_missed_ground_as_flown() {
     for report in [&overlap, &balanced] {
         assert_eq!(report["preflight"]["safe"], true);
     }
-    // The ground no swath reaches, drawn in plan.geojson, is what the preflight left out
-    // unsprayed or less (a square end may spray some of it).
-    let drawn: f64 = geojson["features"]
+    // The ground left unsprayed that plan.geojson draws (missed and unreachable) is what the
+    // preflight counts, less the slivers under 1 cm of mean width the file leaves out
+    // (decision 0036: on this farm every unreachable piece is one, 3-7 mm wide along the
+    // boundary). Measured on the gap plan, which misses the most: 4,261 of 4,278 m².
+    let drawn: f64 = gap_geojson["features"]
         .as_array()
         .unwrap()
         .iter()
-        .filter(|f| f["properties"]["kind"] == "unreachable")
+        .filter(|f| f["properties"]["kind"] == "unreachable" || f["properties"]["kind"] == "missed")
         .map(|f| f["properties"]["area_m2"].as_f64().unwrap())
         .sum();
-    let left_out: f64 = overlap["preflight"]["fields"]
+    let counted: f64 = gap["preflight"]["fields"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|f| f["unreachable_m2"].as_f64().unwrap())
+        .map(|f| f["unreachable_m2"].as_f64().unwrap() + f["missed_m2"].as_f64().unwrap())
         .sum();
-    assert!(drawn > 0.0 && left_out <= drawn + 0.5, "{left_out} {drawn}");
+    assert!(
+        drawn <= counted + 0.5 && drawn >= 0.98 * counted,
+        "drawn {drawn} counted {counted}"
+    );
 }

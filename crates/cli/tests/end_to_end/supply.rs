@@ -364,7 +364,7 @@ fn auto_keeps_to_level_ground_and_warns_on_a_hillside() {
     assert!(report["supply"]["warning"]
         .as_str()
         .unwrap()
-        .contains("no place of at most 10%"));
+        .contains("no level place (at most 10%"));
     let auto = &report["supply"]["auto"];
     assert!(
         auto["first_point"]["cost_s"].as_f64().unwrap().is_finite(),
