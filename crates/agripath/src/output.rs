@@ -246,7 +246,7 @@ fn name_of(target: &Path) -> String {
     if name.len() <= LONGEST_SIBLING_NAME {
         return name;
     }
-    let mut cut = LONGEST_SIBLING_NAME - 17;
+    let mut cut = LONGEST_SIBLING_NAME - HASH_SUFFIX_BYTES;
     while !name.is_char_boundary(cut) {
         cut -= 1;
     }
@@ -257,9 +257,12 @@ fn name_of(target: &Path) -> String {
     format!("{}~{hash:016x}", &name[..cut])
 }
 
-/// Longest target name kept whole in its siblings' names: 255 bytes less the dot and
-/// `.partial-` with a ten-digit process id.
+/// Longest target name kept whole in its siblings' names, bytes: well under the 235 that
+/// 255 leaves once the dot and `.partial-` with a ten-digit process id are added.
 const LONGEST_SIBLING_NAME: usize = 200;
+
+/// Bytes of the hash a shortened name ends with: `~` and 16 hexadecimal digits.
+const HASH_SUFFIX_BYTES: usize = 17;
 
 /// Swaps two paths in one step (Linux `renameat2` with `RENAME_EXCHANGE`). The project's one
 /// `unsafe`: std has no atomic exchange, and without one a kill between two renames leaves
@@ -506,6 +509,7 @@ mod tests {
         drop(staged);
         std::fs::remove_dir_all(&root).unwrap();
     }
+
     /// A folder name of 245 bytes (legal: the limit is 255) gets siblings within the limit,
     /// the same on every run, distinct from another long name with the same first bytes.
     #[test]

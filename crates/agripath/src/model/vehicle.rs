@@ -436,6 +436,13 @@ impl Vehicle {
         Ok(())
     }
 
+    /// Litres one metre of swath sprays: the application rate over a swath-wide strip
+    /// (`None` when the vehicle gives no rate).
+    pub fn litres_per_spray_m(&self) -> Option<f64> {
+        self.application_rate_l_per_ha
+            .map(|rate| rate / 10_000.0 * self.swath_width_m)
+    }
+
     /// Metres of swath one tank sprays, if the tank limits a sortie (never for a survey).
     pub fn spray_length_per_tank_m(&self) -> Option<f64> {
         if self.is_survey() {

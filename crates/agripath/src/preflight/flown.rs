@@ -5,11 +5,13 @@
 //! ground at home) to its altitude; NAV_WAYPOINT flies straight to its place; NAV_LAND flies
 //! to its place at the current altitude and descends to the ground; DO_CHANGE_SPEED of speed
 //! type (p1) 0 or 1 sets the horizontal speed (p2), and of type 2 or 3 the climb or descent
-//! speed, which the check flies at the vehicle's figures, so another value is refused
-//! (ArduCopter's `ModeAuto::do_change_speed`); DO_SPRAYER (p1 = 1 on) or DO_SET_SERVO on the sprayer's channel switch
-//! the spray; DO_SET_CAM_TRIGG_DIST (p1 > 0 on, 0 off) switches a survey camera, read as
-//! the same on/off state. Altitudes: frame 0 above sea level, frame 3 above home's ground, frame 10 above
-//! the terrain under the vehicle (interpolated along the leg, as terrain following does).
+//! speed (ArduCopter's `ModeAuto::do_change_speed`), which the check flies at the vehicle's
+//! figures, so another value is refused, as is a type above 3 (ArduCopter ignores it or, in
+//! older firmware, reads it as horizontal: refused as the safe choice); DO_SPRAYER (p1 = 1
+//! on) or DO_SET_SERVO on the sprayer's channel switch the spray; DO_SET_CAM_TRIGG_DIST
+//! (p1 > 0 on, 0 off) switches a survey camera, read as the same on/off state. Altitudes:
+//! frame 0 above sea level, frame 3 above home's ground, frame 10 above the terrain under the
+//! vehicle (interpolated along the leg, as terrain following does).
 
 use super::read_back::FileItem;
 use crate::mission::flight::SprayerCommand;

@@ -32,7 +32,8 @@ const FLOOR_ROUNDING_M: f64 = 1e-9;
 /// any direction: twice the floor. Below it the vehicle stands on, or leaves, the ground
 /// under it; from it on, a slope as steep as 60° beneath it is still the floor away
 /// (1 m · cos 60°), so only a face beside the column (a pylon, a cliff's foot, a ditch's
-/// wall) fails it.
+/// wall) fails it. (That is the geometry; the nearness search is a lower bound, which near a
+/// steep face errs low, so a slope a little under 60° can fail too: on the safe side.)
 pub(super) const COLUMN_AIRBORNE_M: f64 = 2.0 * MIN_GROUND_CLEARANCE_M;
 
 /// A sample waiting for the ground it is held to: `(sortie, item, x, y, altitude)`.

@@ -356,12 +356,9 @@ impl Report {
                 1e-4,
             ),
             spray_time_s: round(spray_time_s, 1e-3),
-            litres: vehicle.application_rate_l_per_ha.map(|rate| {
-                round(
-                    rate / 10_000.0 * vehicle.swath_width_m * (spray_length_m + edge_length_m),
-                    1e-3,
-                )
-            }),
+            litres: vehicle
+                .litres_per_spray_m()
+                .map(|per_m| round(per_m * (spray_length_m + edge_length_m), 1e-3)),
             survey: vehicle
                 .trigger_distance_m()
                 .map(|trigger_distance_m| SurveyReport {

@@ -48,8 +48,8 @@ impl SortieReport {
             file: format!("{}.plan", crate::mission::sortie_file_stem(index)),
             spray_m: round(spray_m, 1e-4),
             litres: vehicle
-                .application_rate_l_per_ha
-                .map(|rate| round(rate / 10_000.0 * vehicle.swath_width_m * spray_m, 1e-3)),
+                .litres_per_spray_m()
+                .map(|per_m| round(per_m * spray_m, 1e-3)),
             tank_percent: tank_fraction.map(|f| round(100.0 * f, 1e-3)),
             photos_estimate: vehicle
                 .trigger_distance_m()

@@ -143,9 +143,7 @@ impl SortieModel {
             refill_max_s: vehicle.refill_max_s,
             transit_mps: vehicle.transit_speed_mps,
             return_climb_m,
-            litres_per_m: vehicle
-                .application_rate_l_per_ha
-                .map(|rate| rate / 10_000.0 * vehicle.swath_width_m),
+            litres_per_m: vehicle.litres_per_spray_m(),
         }
     }
 

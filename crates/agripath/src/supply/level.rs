@@ -35,7 +35,9 @@ pub const BUMP_M: f64 = 0.1;
 const RING_RADII_M: [f64; 6] = [0.25, 0.5, 0.75, 1.0, 1.5, STAND_RADIUS_M];
 
 /// Directions read on each ring: on the outer ring, 0.79 m apart, so a feature one 1 m cell
-/// wide (whose bilinear surface is 2 m wide) is met.
+/// wide (whose bilinear surface is 2 m wide) is met. On a raster finer than 0.4 m a feature
+/// one cell wide can fall between two directions; the takeoff column's floor in the
+/// preflight (decision 0036) still holds a face beside the point.
 const RING_DIRECTIONS: usize = 16;
 
 /// Why `point` is not level enough to stand on (module doc), or `None` when it is.

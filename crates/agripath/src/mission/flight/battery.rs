@@ -5,9 +5,9 @@
 //!
 //! Eq. 2 times each leg between a route point P and the supply point S as
 //! (‖P, S‖ + |H_P − H_S| + 2h) / v_off. A mission flies it as this module's writer does: up
-//! from S's ground to the cruise altitude, max ground under the leg G + c (c = spray height +
-//! max(h, 5 m)), level at transit speed, down to P's spray height, at climb speed w, and the
-//! same way back. Per sortie the two legs climb and descend
+//! from S's ground to the cruise altitude, max ground under and within 2 m beside the leg
+//! G + c (c = spray height + max(h, 5 m)), level at transit speed, down to P's spray height, at
+//! climb speed w, and the same way back. Per sortie the two legs climb and descend
 //!
 //!   V = 4c − 2·spray height + e(first) + e(last),  e(P) = 2·G(P) − H_S − H_P ≥ |H_P − H_S|,
 //!
@@ -38,7 +38,7 @@ use crate::sortie::route::RoutePoint;
 use crate::sortie::SortieModel;
 use crate::terrain::Terrain;
 
-use super::highest_ground;
+use super::{highest_ground_near, TRANSIT_CORRIDOR_M};
 
 /// The sortie model of `vehicle` from `supply` on flat ground: eq. 2's legs with 2h, and the
 /// battery reserve for the climbs at climb speed (the module's first term).
@@ -75,9 +75,15 @@ pub fn sortie_model_over(
     // Each point's leg sampled every metre as the writer samples it: thousands of terrain
     // queries per point, so the points are shared among the machine's cores.
     let extras = crate::parallel::try_map_in_order(&points, |_, point| {
-        let highest = highest_ground(terrain, (supply.x, supply.y), (point.x, point.y))?
-            .max(supply.ground_m)
-            .max(point.ground_m);
+        // The corridor the writer clears (a mast beside the leg is climbed over too).
+        let highest = highest_ground_near(
+            terrain,
+            (supply.x, supply.y),
+            (point.x, point.y),
+            TRANSIT_CORRIDOR_M,
+        )?
+        .max(supply.ground_m)
+        .max(point.ground_m);
         // Out: up G − H_S, down G − H_P; home: up G − H_P, down G − H_S (e(P) in all).
         let (from_supply_m, from_point_m) = (highest - supply.ground_m, highest - point.ground_m);
         let out_s = vehicle.vertical_s(from_supply_m) + vehicle.vertical_s(-from_point_m);

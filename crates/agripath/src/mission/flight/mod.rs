@@ -164,14 +164,16 @@ pub fn highest_ground(terrain: &dyn Terrain, a: (f64, f64), b: (f64, f64)) -> Re
 /// a mast one DEM cell wide (trial 8, decision 0036).
 pub const TRANSIT_CORRIDOR_M: f64 = OBSTACLE_CLEARANCE_M;
 
-/// Lines across the corridor the ground is read along: the leg's own and four either side,
-/// a quarter of the corridor's half width apart.
-const CORRIDOR_LINES: i32 = 4;
+/// Most spacing of the lines across the corridor the ground is read along, metres; on a
+/// raster it is also at most half a cell, so that a feature one cell wide (whose bilinear
+/// surface is two cells wide) is met by a line (a review: a 0.25 m DEM's pole sat between
+/// lines 0.5 m apart).
+const CORRIDOR_LINE_SPACING_M: f64 = 0.5;
 
 /// The highest ground within `half_width_m` of the straight leg a → b: along the leg
-/// ([`highest_ground`], which fails where the terrain has no height) and along lines
-/// beside it, a quarter of `half_width_m` apart and as far beyond its ends (where those
-/// leave the terrain's extent, they are not read).
+/// ([`highest_ground`], which fails where the terrain has no height) and along lines beside
+/// it, [`CORRIDOR_LINE_SPACING_M`] or half a raster cell apart and as far beyond its ends as
+/// `half_width_m` (where those leave the terrain's extent, they are not read).
 pub fn highest_ground_near(
     terrain: &dyn Terrain,
     a: (f64, f64),
@@ -185,14 +187,22 @@ pub fn highest_ground_near(
     } else {
         (1.0, 0.0)
     };
-    let spacing = half_width_m / f64::from(CORRIDOR_LINES);
-    for line in -CORRIDOR_LINES..=CORRIDOR_LINES {
-        let offset = spacing * f64::from(line);
-        let (dx, dy) = (-along_y * offset, along_x * offset);
-        let (ex, ey) = (along_x * half_width_m, along_y * half_width_m);
-        let from = (a.0 + dx - ex, a.1 + dy - ey);
-        let to = (b.0 + dx + ex, b.1 + dy + ey);
-        let span = length + 2.0 * half_width_m;
+    let spacing = terrain
+        .lattice()
+        .map_or(CORRIDOR_LINE_SPACING_M, |(_, (cell_x, cell_y))| {
+            CORRIDOR_LINE_SPACING_M.min(cell_x.abs().min(cell_y.abs()) / 2.0)
+        });
+    let lines = (half_width_m / spacing).ceil() as i32;
+    let (beyond_x, beyond_y) = (along_x * half_width_m, along_y * half_width_m);
+    let span = length + 2.0 * half_width_m;
+    // Line 0 is the leg's own, read again from `half_width_m` before its start to as far
+    // past its end.
+    for line in -lines..=lines {
+        let offset =
+            (half_width_m * f64::from(line) / f64::from(lines)).clamp(-half_width_m, half_width_m);
+        let (across_x, across_y) = (-along_y * offset, along_x * offset);
+        let from = (a.0 + across_x - beyond_x, a.1 + across_y - beyond_y);
+        let to = (b.0 + across_x + beyond_x, b.1 + across_y + beyond_y);
         let place = |t: f64| (from.0 + t * (to.0 - from.0), from.1 + t * (to.1 - from.1));
         let places =
             crate::terrain::profile_places(terrain, from, to, span, TRANSIT_SAMPLE_M, |t| {
@@ -546,6 +556,7 @@ mod tests {
         let (_, north) = frame.lon_lat(0.0, 1000.0);
         assert!((north - 45.75 - 1000.0 / 111_150.0).abs() < 2e-4);
     }
+
     /// A transit clears the ground beside it: a mast one 1 m cell wide, its centre 1.5 m
     /// beside the leg, is not under the leg but within the corridor (trial 8).
     #[test]
