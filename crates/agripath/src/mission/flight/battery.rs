@@ -5,8 +5,8 @@
 //!
 //! Eq. 2 times each leg between a route point P and the supply point S as
 //! (‖P, S‖ + |H_P − H_S| + 2h) / v_off. A mission flies it as this module's writer does: up
-//! from S's ground to the cruise altitude, max ground under and within 2 m beside the leg
-//! G + c (c = spray height + max(h, 5 m)), level at transit speed, down to P's spray height, at
+//! from S's ground to the cruise altitude, max ground under the leg and within 2 m of its
+//! ends G + c (c = spray height + max(h, 5 m)), level at transit speed, down to P's spray height, at
 //! climb speed w, and the same way back. Per sortie the two legs climb and descend
 //!
 //!   V = 4c − 2·spray height + e(first) + e(last),  e(P) = 2·G(P) − H_S − H_P ≥ |H_P − H_S|,
@@ -38,7 +38,7 @@ use crate::sortie::route::RoutePoint;
 use crate::sortie::SortieModel;
 use crate::terrain::Terrain;
 
-use super::{highest_ground_near, TRANSIT_CORRIDOR_M};
+use super::{highest_ground, highest_ground_near, TRANSIT_CORRIDOR_M};
 
 /// The sortie model of `vehicle` from `supply` on flat ground: eq. 2's legs with 2h, and the
 /// battery reserve for the climbs at climb speed (the module's first term).
@@ -72,18 +72,32 @@ pub fn sortie_model_over(
 ) -> Result<SortieModel, Fault> {
     let mut model = sortie_model(vehicle, supply);
     let points: Vec<GroundPoint> = points.into_iter().collect();
+    // The writer clears the corridor beside each leg too (a mast is climbed over). Read in
+    // full for every point it cost Christmas Island's plan 0.8 s, so the model reads the
+    // corridor round both ends, where the supply point's own neighbourhood (trial 8's mast
+    // and pylon) is shared by every leg, and the leg's own line between; a mast beside the
+    // middle of a leg is left to the re-plan that holds back what the files overrun
+    // (decision 0012).
+    let around_supply = highest_ground_near(
+        terrain,
+        (supply.x, supply.y),
+        (supply.x, supply.y),
+        TRANSIT_CORRIDOR_M,
+    )?;
     // Each point's leg sampled every metre as the writer samples it: thousands of terrain
     // queries per point, so the points are shared among the machine's cores.
     let extras = crate::parallel::try_map_in_order(&points, |_, point| {
-        // The corridor the writer clears (a mast beside the leg is climbed over too).
-        let highest = highest_ground_near(
+        let around_point = highest_ground_near(
             terrain,
-            (supply.x, supply.y),
+            (point.x, point.y),
             (point.x, point.y),
             TRANSIT_CORRIDOR_M,
-        )?
-        .max(supply.ground_m)
-        .max(point.ground_m);
+        )?;
+        let highest = highest_ground(terrain, (supply.x, supply.y), (point.x, point.y))?
+            .max(around_supply)
+            .max(around_point)
+            .max(supply.ground_m)
+            .max(point.ground_m);
         // Out: up G − H_S, down G − H_P; home: up G − H_P, down G − H_S (e(P) in all).
         let (from_supply_m, from_point_m) = (highest - supply.ground_m, highest - point.ground_m);
         let out_s = vehicle.vertical_s(from_supply_m) + vehicle.vertical_s(-from_point_m);
