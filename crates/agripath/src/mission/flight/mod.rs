@@ -168,7 +168,7 @@ pub const TRANSIT_CORRIDOR_M: f64 = OBSTACLE_CLEARANCE_M;
 /// raster it is also at most half a cell, so that a feature one cell wide (whose bilinear
 /// surface is two cells wide) is met by a line (a review: a 0.25 m DEM's pole sat between
 /// lines 0.5 m apart).
-const CORRIDOR_LINE_SPACING_M: f64 = 0.5;
+pub const CORRIDOR_LINE_SPACING_M: f64 = 0.5;
 
 /// The highest ground within `half_width_m` of the straight leg a → b: along the leg
 /// ([`highest_ground`], which fails where the terrain has no height) and along lines beside
