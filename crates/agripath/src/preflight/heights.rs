@@ -77,6 +77,8 @@ pub(super) struct HeightBounds {
     stretch: Vec<Sample>,
     stretch_highest: f64,
     stretch_altitude: Option<f64>,
+    /// Whether the stretch is a transit that follows the terrain.
+    stretch_is_terrain_transit: bool,
     /// Samples of climbs and descents in place since the stretch being flown.
     in_place: Vec<Sample>,
     /// Those between the stretch before and the stretch being flown, held when it closes.
@@ -104,6 +106,7 @@ impl HeightBounds {
             stretch: Vec::new(),
             stretch_highest: f64::NEG_INFINITY,
             stretch_altitude: None,
+            stretch_is_terrain_transit: false,
             in_place: Vec::new(),
             before_stretch: Vec::new(),
         }
@@ -113,15 +116,20 @@ impl HeightBounds {
     /// item `item` of sortie `sortie`; places printed by `place`. Call [`Self::end_sortie`]
     /// after each sortie's legs.
     ///
-    /// `beside_m`: the highest ground beside the leg that a transit clears as well
-    /// ([`crate::mission::flight::TRANSIT_CORRIDOR_M`]; `f64::NEG_INFINITY` for none), which
-    /// the ceiling is held over.
+    /// `transit_beside_m`: for a transit leg, the highest ground beside it that it clears as
+    /// well ([`crate::mission::flight::TRANSIT_CORRIDOR_M`]), which the ceiling is held over;
+    /// `None` for any other leg. `off_spray`: the leg does not spray. Consecutive legs off
+    /// spray that follow the terrain are one stretch, as level ones are: the writer gives a
+    /// whole transit, corners and all, one altitude over the highest ground of all its legs,
+    /// and terrain following holds each corner's height above the ground there (a review
+    /// run: Christmas Island's home leg over a corner read 32.1 m above its own ground).
     pub fn record(
         &mut self,
         (sortie, item): (usize, usize),
         points: &[(f64, f64, f64, f64)],
         shape: LegShape,
-        beside_m: f64,
+        transit_beside_m: Option<f64>,
+        off_spray: bool,
         place: &dyn Fn(f64, f64) -> String,
     ) {
         for &(x, y, altitude, ground) in points {
@@ -148,14 +156,16 @@ impl HeightBounds {
         let highest = points
             .iter()
             .map(|&(_, _, _, ground)| ground)
-            .fold(beside_m, f64::max);
+            .fold(transit_beside_m.unwrap_or(f64::NEG_INFINITY), f64::max);
         let (low, high) = points
             .iter()
             .fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), p| {
                 (low.min(p.2), high.max(p.2))
             });
         let level = (high - low <= 1e-6).then_some(low);
-        let continues = matches!((level, self.stretch_altitude), (Some(a), Some(b)) if (a - b).abs() <= 1e-6)
+        let terrain_transit = shape == LegShape::FollowingTerrain && off_spray;
+        let continues = (matches!((level, self.stretch_altitude), (Some(a), Some(b)) if (a - b).abs() <= 1e-6)
+            || (terrain_transit && self.stretch_is_terrain_transit))
             && self.in_place.is_empty();
         if !continues {
             self.close_stretch(place);
@@ -164,6 +174,7 @@ impl HeightBounds {
         self.stretch.extend(samples);
         self.stretch_highest = self.stretch_highest.max(highest);
         self.stretch_altitude = level;
+        self.stretch_is_terrain_transit = terrain_transit;
     }
 
     /// Holds the stretch being flown to the highest ground under it, and the climbs and
@@ -183,6 +194,7 @@ impl HeightBounds {
         self.previous_highest = self.stretch_highest;
         self.stretch_highest = f64::NEG_INFINITY;
         self.stretch_altitude = None;
+        self.stretch_is_terrain_transit = false;
     }
 
     /// Ends a sortie: its last stretch held, and its last climbs and descents to it.
@@ -312,7 +324,7 @@ mod tests {
         let vehicle = Vehicle::default();
         let mut bounds = HeightBounds::new(&vehicle);
         let place = |x: f64, y: f64| format!("({x}, {y})");
-        bounds.record((1, 3), points, shape, f64::NEG_INFINITY, &place);
+        bounds.record((1, 3), points, shape, None, false, &place);
         bounds.end_sortie(&place);
         let (mut checks, mut lines) = (Vec::new(), Vec::new());
         for tally in bounds.tallies() {
@@ -380,6 +392,39 @@ mod tests {
             // No figure recorded: the check reports its limit.
             assert_eq!(figure, MIN_GROUND_CLEARANCE_M);
         }
+    }
+
+    /// A transit over a corner that follows the terrain: its first leg crosses a 30 m ridge,
+    /// its second runs over level ground, both at the one altitude the writer gave the whole
+    /// transit. Off spray, the two legs are one stretch held over the ridge; as legs of
+    /// their own, the second reads 30 m above its ground and breaks the ceiling.
+    #[test]
+    fn a_terrain_following_transit_is_held_over_the_ground_of_all_its_legs() {
+        let vehicle = Vehicle::default();
+        let altitude = 30.0 + vehicle.cruise_height_m();
+        // Terrain following holds the ends' height above the ground (both ends of the ridge
+        // leg are on level ground at the transit's altitude) over the ridge between them.
+        let ridge = leg(|t| 30.0 * (1.0 - (2.0 * t - 1.0).abs()), |_| altitude);
+        let level = leg(|_| 0.0, |_| 0.0)
+            .into_iter()
+            .map(|(x, y, _, ground)| (x + 100.0, y, altitude, ground))
+            .collect::<Vec<_>>();
+        let ceiling_failures = |off_spray: bool| {
+            let mut bounds = HeightBounds::new(&vehicle);
+            let place = |x: f64, y: f64| format!("({x}, {y})");
+            for (item, points) in [(2, &ridge), (3, &level)] {
+                let shape = LegShape::FollowingTerrain;
+                bounds.record((1, item), points, shape, Some(0.0), off_spray, &place);
+            }
+            bounds.end_sortie(&place);
+            let (mut checks, mut lines) = (Vec::new(), Vec::new());
+            for tally in bounds.tallies() {
+                tally.finish(&mut checks, &mut lines, &mut Vec::new());
+            }
+            !checks[1].passed
+        };
+        assert!(!ceiling_failures(true));
+        assert!(ceiling_failures(false));
     }
 
     #[test]

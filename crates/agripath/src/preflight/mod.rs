@@ -316,7 +316,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             // written: the ceiling is held over that ground (trial 8's mast; a review found
             // terrain-following transits left out).
             let transit_leg = !leg.spraying && shape != heights::LegShape::InPlace && !within_field;
-            let beside = if transit_leg {
+            let beside = transit_leg.then(|| {
                 crate::mission::flight::highest_ground_near(
                     terrain,
                     (leg.from.x, leg.from.y),
@@ -324,10 +324,15 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                     crate::mission::flight::TRANSIT_CORRIDOR_M,
                 )
                 .unwrap_or(f64::NEG_INFINITY)
-            } else {
-                f64::NEG_INFINITY
-            };
-            heights.record((sortie, leg.item), &points, shape, beside, &place);
+            });
+            heights.record(
+                (sortie, leg.item),
+                &points,
+                shape,
+                beside,
+                !leg.spraying,
+                &place,
+            );
             heights.record_sideways((sortie, leg.item), &points, &mut nearness, &place);
             if leg.spraying && horizontal > 0.0 {
                 figures.spray_m += horizontal;
