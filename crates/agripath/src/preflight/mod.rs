@@ -44,6 +44,7 @@ use crate::coverage::region::GroundPatches;
 use crate::geometry::rings;
 use crate::limits::MIN_GROUND_CLEARANCE_M;
 use crate::mission::flight::GeoFrame;
+use crate::mission::flight::{highest_ground_near, TRANSIT_CORRIDOR_M};
 use crate::mission::mavlink::Command;
 use crate::model::{Farm, Vehicle};
 use crate::terrain::nearness::GroundNearness;
@@ -296,8 +297,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 );
             }
             if leg.motion != Motion::Flight {
-                // A takeoff or a landing stands on the ground it leaves or reaches; above it
-                // a face beside the column is as near as any (trial 8, decision 0036).
+                // Takeoff, landing: held to the floor beside them once up (decision 0036).
                 heights.record_column((sortie, leg.item), &points, &mut nearness, &place);
                 continue;
             }
@@ -311,26 +311,21 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
             let within_field = points
                 .iter()
                 .all(|&(x, y, _, _)| zones.over_field(Coord { x, y }));
-            // A transit (off spray, leaving the fields or crossing a hole or an obstacle, level
-            // or following the terrain) clears the ground beside it too, as the missions are
-            // written: the ceiling is held over that ground (trial 8's mast; a review found
-            // terrain-following transits left out).
-            let transit_leg = !leg.spraying && shape != heights::LegShape::InPlace && !within_field;
-            let beside = transit_leg.then(|| {
-                crate::mission::flight::highest_ground_near(
-                    terrain,
-                    (leg.from.x, leg.from.y),
-                    (leg.to.x, leg.to.y),
-                    crate::mission::flight::TRANSIT_CORRIDOR_M,
-                )
-                .unwrap_or(f64::NEG_INFINITY)
+            // A transit (off spray, leaving the fields or crossing a hole or obstacle) clears
+            // the ground beside it as written: the ceiling is held over it (decision 0036).
+            let is_transit = !leg.spraying && shape != heights::LegShape::InPlace && !within_field;
+            let ends = ((leg.from.x, leg.from.y), (leg.to.x, leg.to.y));
+            let beside = is_transit.then(|| {
+                highest_ground_near(terrain, ends.0, ends.1, TRANSIT_CORRIDOR_M)
+                    .unwrap_or(f64::NEG_INFINITY)
             });
+            let off_spray = !leg.spraying;
             heights.record(
                 (sortie, leg.item),
                 &points,
                 shape,
                 beside,
-                !leg.spraying,
+                off_spray,
                 &place,
             );
             heights.record_sideways((sortie, leg.item), &points, &mut nearness, &place);
