@@ -16,6 +16,7 @@ its landing included, against the battery they must land with (`battery_flown`).
 
 Run: python tests/oracles/mission_oracle.py target/debug/agripath
 """
+import csv
 import glob
 import json
 import math
@@ -74,6 +75,19 @@ def check_folder(folder, frames, with_plan=True):
                 check(item.frame in frames, f"{name}: item {index} frame {item.frame}")
                 check(-90 <= item.x <= 90 and -180 <= item.y <= 180 and item.x != 0, f"{name}: item {index} position")
         check(loader.wp(1).command == 22 and loader.wp(count - 1).command == 21, f"{name}: takeoff first, land last")
+        # waypoints.csv's `index` is the mission item's number (the .waypoints row): each row
+        # of this sortie names its item's place (trial 7 found it one less).
+        csv_path = os.path.join(folder, "waypoints.csv")
+        sortie = name[len("sortie_"):-len(".waypoints")]
+        if os.path.exists(csv_path) and sortie.isdigit():
+            with open(csv_path) as handle:
+                rows = [row for row in csv.DictReader(handle) if row["sortie"] == str(int(sortie))]
+            check(len(rows) == count - 1, f"waypoints.csv: {len(rows)} rows for {name}'s {count - 1} items")
+            for row in rows:
+                item = loader.wp(int(row["index"]))
+                if item.command in (16, 21, 22):
+                    check(abs(float(row["lat"]) - item.x) < 1e-7 and abs(float(row["lon"]) - item.y) < 1e-7,
+                          f"waypoints.csv: sortie {sortie} index {row['index']} is not that item's place")
         if not with_plan:
             continue
         plan_path = path[: -len(".waypoints")] + ".plan"

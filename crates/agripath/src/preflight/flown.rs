@@ -429,6 +429,19 @@ mod tests {
         descent_mps: 1.5,
     };
 
+    /// `items` flown from home at (0, 0) on the ground at 0 m, a degree being 100 m.
+    fn fly_items(items: &[FileItem]) -> Result<Vec<Leg>, Unflyable> {
+        let to_plan = |lon: f64, lat: f64| (lon * 100.0, lat * 100.0);
+        fly(
+            items,
+            (0.0, 0.0),
+            0.0,
+            SprayerCommand::DoSprayer,
+            START,
+            &to_plan,
+        )
+    }
+
     /// ArduCopter's DO_CHANGE_SPEED: types 0 and 1 set the horizontal speed; types 2 and 3 set
     /// the climb and descent speeds, which leave the legs' speed alone (a sprayer's legs
     /// would fly at the transit speed, half the dose, if type 2 were read as the spray
@@ -442,15 +455,7 @@ mod tests {
                 item(CMD_NAV_WAYPOINT, at(1.0)),
                 item(CMD_NAV_LAND, at(1.0)),
             ];
-            let to_plan = |lon: f64, lat: f64| (lon * 100.0, lat * 100.0);
-            fly(
-                &items,
-                (0.0, 0.0),
-                0.0,
-                SprayerCommand::DoSprayer,
-                START,
-                &to_plan,
-            )
+            fly_items(&items)
         };
         for kind in [0.0, 1.0] {
             assert_eq!(fly_with(kind, 3.0).unwrap()[1].speed_mps, 3.0);
@@ -486,40 +491,15 @@ mod tests {
             item(CMD_NAV_WAYPOINT, at(3.0)),
             item(CMD_NAV_LAND, at(3.0)),
         ];
-        let to_plan = |lon: f64, lat: f64| (lon * 100.0, lat * 100.0);
-        let legs = fly(
-            &items,
-            (0.0, 0.0),
-            0.0,
-            SprayerCommand::DoSprayer,
-            START,
-            &to_plan,
-        )
-        .unwrap();
+        let legs = fly_items(&items).unwrap();
         let on: Vec<(f64, bool)> = legs.iter().map(|leg| (leg.to.x, leg.spraying)).collect();
         assert_eq!(on[..3], [(0.0, false), (100.0, false), (200.0, true)]);
         assert_eq!(on[3], (300.0, false));
         let negative = [item(CMD_NAV_TAKEOFF, at(0.0)), trigger(-1.0)];
-        let error = fly(
-            &negative,
-            (0.0, 0.0),
-            0.0,
-            SprayerCommand::DoSprayer,
-            START,
-            &to_plan,
-        )
-        .unwrap_err();
+        let error = fly_items(&negative).unwrap_err();
         assert_eq!(error.item, 2);
         // No landing: refused at the last item.
-        let error = fly(
-            &items[..items.len() - 1],
-            (0.0, 0.0),
-            0.0,
-            SprayerCommand::DoSprayer,
-            START,
-            &to_plan,
-        )
-        .unwrap_err();
+        let error = fly_items(&items[..items.len() - 1]).unwrap_err();
         assert_eq!(error.item, items.len() - 1);
         assert!(error.why.contains("without a landing"), "{}", error.why);
     }

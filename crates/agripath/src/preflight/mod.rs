@@ -313,13 +313,13 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                 .all(|&(x, y, _, _)| zones.over_field(Coord { x, y }));
             // A transit (off spray, leaving the fields or crossing a hole or obstacle) clears
             // the ground beside it as written: the ceiling is held over it (decision 0036).
-            let is_transit = !leg.spraying && shape != heights::LegShape::InPlace && !within_field;
+            let off_spray = !leg.spraying;
+            let is_transit = off_spray && shape != heights::LegShape::InPlace && !within_field;
             let ends = ((leg.from.x, leg.from.y), (leg.to.x, leg.to.y));
             let beside = is_transit.then(|| {
                 highest_ground_near(terrain, ends.0, ends.1, TRANSIT_CORRIDOR_M)
                     .unwrap_or(f64::NEG_INFINITY)
             });
-            let off_spray = !leg.spraying;
             heights.record(
                 (sortie, leg.item),
                 &points,
@@ -910,6 +910,33 @@ mod tests {
                 .failures
                 .iter()
                 .any(|line| line.contains("the dose would be 25% of the rate")),
+            "{:?}",
+            edited.failures
+        );
+    }
+
+    /// Trial 7's edit of a written mission: the speed item before each swath (type 1, the
+    /// spray speed) turned to type 2, a climb speed. ArduCopter then flies the swaths at the
+    /// transit speed set before them, and the check must see it.
+    #[test]
+    fn a_speed_item_turned_into_a_climb_speed_fails() {
+        let (scenario, settings, mut files) = planned();
+        let spray = scenario.vehicle.spray_speed_mps;
+        edit(&mut files, |items| {
+            for item in items
+                .iter_mut()
+                .filter(|item| item["command"] == 178 && item["params"][1].as_f64() == Some(spray))
+            {
+                item["params"][0] = 2.0.into();
+            }
+        });
+        let edited = verdict(&scenario, &settings, &files);
+        assert!(!edited.safe);
+        assert!(
+            edited
+                .failures
+                .iter()
+                .any(|line| line.contains("sets the climb speed")),
             "{:?}",
             edited.failures
         );

@@ -6,8 +6,8 @@
 //! Eq. 2 times each leg between a route point P and the supply point S as
 //! (‖P, S‖ + |H_P − H_S| + 2h) / v_off. A mission flies it as this module's writer does: up
 //! from S's ground to the cruise altitude, max ground under the leg and within 2 m of its
-//! ends G + c (c = spray height + max(h, 5 m)), level at transit speed, down to P's spray height, at
-//! climb speed w, and the same way back. Per sortie the two legs climb and descend
+//! ends G + c (c = spray height + max(h, 5 m)), level at transit speed, down to P's spray
+//! height, at climb speed w, and the same way back. Per sortie the two legs climb and descend
 //!
 //!   V = 4c − 2·spray height + e(first) + e(last),  e(P) = 2·G(P) − H_S − H_P ≥ |H_P − H_S|,
 //!
@@ -78,24 +78,14 @@ pub fn sortie_model_over(
     // and pylon) is shared by every leg, and the leg's own line between; a mast beside the
     // middle of a leg is left to the re-plan that holds back what the files overrun
     // (decision 0012).
-    let around_supply = highest_ground_near(
-        terrain,
-        (supply.x, supply.y),
-        (supply.x, supply.y),
-        TRANSIT_CORRIDOR_M,
-    )?;
+    let around = |x: f64, y: f64| highest_ground_near(terrain, (x, y), (x, y), TRANSIT_CORRIDOR_M);
+    let around_supply = around(supply.x, supply.y)?;
     // Each point's leg sampled every metre as the writer samples it: thousands of terrain
     // queries per point, so the points are shared among the machine's cores.
     let extras = crate::parallel::try_map_in_order(&points, |_, point| {
-        let around_point = highest_ground_near(
-            terrain,
-            (point.x, point.y),
-            (point.x, point.y),
-            TRANSIT_CORRIDOR_M,
-        )?;
         let highest = highest_ground(terrain, (supply.x, supply.y), (point.x, point.y))?
             .max(around_supply)
-            .max(around_point)
+            .max(around(point.x, point.y)?)
             .max(supply.ground_m)
             .max(point.ground_m);
         // Out: up G − H_S, down G − H_P; home: up G − H_P, down G − H_S (e(P) in all).
