@@ -169,15 +169,15 @@ impl Corner {
     /// The figures with leg 1 sprayed up to `end` and leg 2 from `start`; `sector` adds the
     /// outer sector of a turn sprayed through (x ≥ 0, u·p ≤ 0, |p| ≤ h, as 32 chords).
     fn figures(&self, end: f64, start: f64, sector: bool) -> Figures {
+        let parts = self.parts();
+        let (one, two) = (self.leg_one(end), self.leg_two(start));
+        parts.figures(&one, &two, &parts.strip(&one), &parts.strip(&two), sector)
+    }
+
+    /// What every cut of this corner shares: the field, the core and the near stretches.
+    fn parts(&self) -> CornerParts {
         let extent = self.extent();
         let field = self.field_and_near();
-        let near = &field[2..];
-        let (one, two) = (self.leg_one(end), self.leg_two(start));
-        let of = |parts: &[&[HalfPlane]]| {
-            let planes: Vec<HalfPlane> =
-                parts.iter().flat_map(|part| part.iter().copied()).collect();
-            area(&planes, extent)
-        };
         let h = self.half;
         let core = [
             (Coord { x: 0.0, y: 1.0 }, h),
@@ -185,13 +185,104 @@ impl Corner {
             field[2],
             field[3],
         ];
-        let double_m2 = of(&[&one, &two, &field]);
-        let one_in = of(&[&one, &field]);
-        let two_in = of(&[&two, &field]);
-        let mut covered_once = one_in + two_in - double_m2;
-        let sprayed_near = of(&[&one, near]) + of(&[&two, near]) - of(&[&one, &two, near]);
+        CornerParts {
+            extent,
+            field,
+            field_m2: area(&field, extent),
+            core_m2: area(&core, extent),
+            half: h,
+            along: self.along,
+        }
+    }
+
+    /// The best (e₁, e₂) and its figures: a 25 × 25 grid over [−3h, 3h]², refined three
+    /// times (9 × 9 around the best at a quarter of the step); strictly better only, so ties keep
+    /// the first in the grid's fixed order. A leg's own areas depend on its cut alone, so they
+    /// are computed once per grid line, not once per grid point (the figures are the same to
+    /// the bit).
+    fn best_cut(&self) -> (f64, f64, Figures) {
+        let parts = self.parts();
+        let span = 3.0 * self.half;
+        let mut step = 2.0 * span / 24.0;
+        let mut best = (0.0, 0.0, self.figures(0.0, 0.0, false));
+        let mut centre = (0.0, 0.0);
+        for (count, first) in [(25, -span), (9, 0.0), (9, 0.0), (9, 0.0)] {
+            let origin = if count == 25 {
+                (first, first)
+            } else {
+                (centre.0 - 4.0 * step, centre.1 - 4.0 * step)
+            };
+            let legs_two: Vec<(f64, [HalfPlane; 3], Strip)> = (0..count)
+                .map(|j| {
+                    let start = origin.1 + j as f64 * step;
+                    let two = self.leg_two(start);
+                    (start, two, parts.strip(&two))
+                })
+                .collect();
+            for i in 0..count {
+                let end = origin.0 + i as f64 * step;
+                let one = self.leg_one(end);
+                let strip_one = parts.strip(&one);
+                for (start, two, strip_two) in &legs_two {
+                    let figures = parts.figures(&one, two, &strip_one, strip_two, false);
+                    if figures.score() < best.2.score() - 1e-9 {
+                        best = (end, *start, figures);
+                    }
+                }
+            }
+            centre = (best.0, best.1);
+            step /= 4.0;
+        }
+        best
+    }
+}
+
+/// A strip's areas that do not depend on the other leg: |R ∩ F ∩ N| and |R ∩ N|.
+struct Strip {
+    inside_m2: f64,
+    near_m2: f64,
+}
+
+/// A corner's regions that every cut shares ([`Corner::parts`]).
+struct CornerParts {
+    extent: f64,
+    field: [HalfPlane; 4],
+    field_m2: f64,
+    core_m2: f64,
+    half: f64,
+    along: Coord<f64>,
+}
+
+impl CornerParts {
+    /// Area of the intersection of the half-planes of `parts`, in that order.
+    fn of(&self, parts: &[&[HalfPlane]]) -> f64 {
+        let planes: Vec<HalfPlane> = parts.iter().flat_map(|part| part.iter().copied()).collect();
+        area(&planes, self.extent)
+    }
+
+    fn strip(&self, leg: &[HalfPlane; 3]) -> Strip {
+        Strip {
+            inside_m2: self.of(&[leg, &self.field]),
+            near_m2: self.of(&[leg, &self.field[2..]]),
+        }
+    }
+
+    /// D, M and O of the strips `one` and `two` (of areas `strip_one` and `strip_two`).
+    fn figures(
+        &self,
+        one: &[HalfPlane; 3],
+        two: &[HalfPlane; 3],
+        strip_one: &Strip,
+        strip_two: &Strip,
+        sector: bool,
+    ) -> Figures {
+        let (field, near) = (&self.field, &self.field[2..]);
+        let double_m2 = self.of(&[one, two, field]);
+        let mut covered_once = strip_one.inside_m2 + strip_two.inside_m2 - double_m2;
+        let sprayed_near = strip_one.near_m2 + strip_two.near_m2 - self.of(&[one, two, near]);
         let outside_m2 = (sprayed_near - covered_once).max(0.0);
         if sector {
+            let h = self.half;
             let chords: Vec<HalfPlane> = (0..32)
                 .map(|k| {
                     let angle = std::f64::consts::TAU * (k as f64 + 0.5) / 32.0;
@@ -204,47 +295,18 @@ impl Corner {
                     )
                 })
                 .collect();
-            covered_once += of(&[
+            covered_once += self.of(&[
                 &chords,
                 &[(Coord { x: 1.0, y: 0.0 }, 0.0), (-self.along, 0.0)],
-                &field,
+                field,
             ]);
         }
-        let missed_m2 = (of(&[&field]) - of(&[&core]) - covered_once).max(0.0);
+        let missed_m2 = (self.field_m2 - self.core_m2 - covered_once).max(0.0);
         Figures {
             double_m2,
             missed_m2,
             outside_m2,
         }
-    }
-
-    /// The best (e₁, e₂) and its figures: a 25 × 25 grid over [−3h, 3h]², refined three
-    /// times (9 × 9 around the best at a quarter of the step); strictly better only, so ties keep
-    /// the first in the grid's fixed order.
-    fn best_cut(&self) -> (f64, f64, Figures) {
-        let span = 3.0 * self.half;
-        let mut step = 2.0 * span / 24.0;
-        let mut best = (0.0, 0.0, self.figures(0.0, 0.0, false));
-        let mut centre = (0.0, 0.0);
-        for (count, first) in [(25, -span), (9, 0.0), (9, 0.0), (9, 0.0)] {
-            let origin = if count == 25 {
-                (first, first)
-            } else {
-                (centre.0 - 4.0 * step, centre.1 - 4.0 * step)
-            };
-            for i in 0..count {
-                for j in 0..count {
-                    let (end, start) = (origin.0 + i as f64 * step, origin.1 + j as f64 * step);
-                    let figures = self.figures(end, start, false);
-                    if figures.score() < best.2.score() - 1e-9 {
-                        best = (end, start, figures);
-                    }
-                }
-            }
-            centre = (best.0, best.1);
-            step /= 4.0;
-        }
-        best
     }
 }
 
