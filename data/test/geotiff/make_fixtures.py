@@ -74,3 +74,33 @@ write("../bad/all_nodata.tif", np.full((ROWS, COLS), -9999.0, np.float32), tags=
 huge = heights(np.float32)
 huge[5, 6] = np.finfo(np.float32).max
 write("../bad/huge_height.tif", huge)
+
+# Heights in other units, tiny rasters and an internal mask (decision 0037). The stored values
+# are heights(np.int16) or heights(np.float32); the tests know what they mean in metres.
+def gdal_metadata(items):
+    body = "".join(f'<Item name="{name}" sample="0" role="{role}">{value}</Item>' for name, role, value in items)
+    return (42112, "s", 0, f"<GDALMetadata>{body}</GDALMetadata>", False)
+
+
+def vertical_tags(key, value):
+    keys = [1, 1, 0, 4, 1024, 0, 1, 1, 1025, 0, 1, 1, 3072, 0, 1, 32633, key, 0, 1, value]
+    return [t for t in geo_tags() if t[0] != 34735] + [(34735, "H", len(keys), keys, False)]
+
+
+def units_and_masks():
+    write("int16_scale_offset.tif", heights(np.int16),
+          tags=geo_tags(nodata=-32768) + [gdal_metadata([("OFFSET", "offset", 100), ("SCALE", "scale", 0.1)])])
+    write("float32_navd88_feet.tif", heights(np.float32), tags=vertical_tags(4096, 8228))
+    write("float32_us_survey_feet.tif", heights(np.float32), tags=vertical_tags(4099, 9003))
+    write("float32_unittype_furlong.tif", heights(np.float32),
+          tags=geo_tags() + [gdal_metadata([("UNITTYPE", "unittype", "furlong")])])
+    write("float32_1x1_tiled.tif", np.full((1, 1), 123.5, np.float32), tile=(16, 16))
+    with tifffile.TiffWriter("float32_internal_mask.tif") as tif:
+        tif.write(heights(np.float32), photometric="minisblack", extratags=geo_tags())
+        mask = np.ones((ROWS, COLS), bool)
+        mask[2:5, 3:9] = False
+        tif.write(mask, photometric=4, subfiletype=4, compression="zlib")
+
+
+if __name__ == "__main__":
+    units_and_masks()

@@ -4,7 +4,14 @@
 //! Georeferencing from the GeoTIFF tags: ModelPixelScale + ModelTiepoint, or a
 //! ModelTransformation without rotation (rotated or sheared rasters are refused); GeoKeys
 //! 1025 (PixelIsArea/PixelIsPoint), 3072 (projected EPSG) and 2048 (geographic EPSG);
-//! GDAL_NODATA (tag 42113) marks cells without data.
+//! GDAL_NODATA (tag 42113) marks cells without data; a GDAL internal mask (an image of
+//! NewSubfileType 4 the size of the DEM) is refused, since the crate cannot decode it.
+//!
+//! Heights are read in metres as GDAL reads them (decision 0037): the band's scale and offset
+//! from GDAL_METADATA (tag 42112: height = stored × scale + offset, no data compared before
+//! that), then the vertical unit to metres: VerticalUnitsGeoKey (4099), else GDAL's UNITTYPE,
+//! else a vertical CRS (VerticalCSTypeGeoKey 4096) of [`FEET_VERTICAL_CRS`] or
+//! [`US_FEET_VERTICAL_CRS`]. A unit it does not know is refused, never read as metres.
 
 use std::io::Cursor;
 use std::path::Path;
@@ -25,8 +32,24 @@ const GEODETIC_DATUM: u16 = 2050;
 const PROJECTED_CS_TYPE: u16 = 3072;
 const PROJECTION: u16 = 3074;
 const DATUM_GDA94: u16 = 6283;
+const VERTICAL_CS_TYPE: u16 = 4096;
+const VERTICAL_UNITS: u16 = 4099;
 const RASTER_PIXEL_IS_POINT: u16 = 2;
 const USER_DEFINED: u16 = 32767;
+/// GDAL's dataset and band metadata (XML).
+const GDAL_METADATA: u16 = 42112;
+/// NewSubfileType's bit of a transparency mask.
+const SUBFILE_MASK: u32 = 4;
+/// The international foot, metres.
+const FOOT_M: f64 = 0.3048;
+/// The US survey foot, metres.
+const US_FOOT_M: f64 = 1200.0 / 3937.0;
+/// EPSG vertical CRSs whose heights are in international feet: NAVD88 height (ft), MSL height
+/// (ft), GCVD54, LCVD61 and CBVD61 heights (ft).
+pub const FEET_VERTICAL_CRS: [u16; 5] = [8228, 8050, 6130, 6131, 6132];
+/// EPSG vertical CRSs whose heights are in US survey feet: NGVD29 height (ftUS), NAVD88
+/// height (ftUS), MSL height (ftUS).
+pub const US_FEET_VERTICAL_CRS: [u16; 3] = [5702, 6360, 8052];
 
 /// Reads a GeoTIFF DEM.
 pub fn read(path: &Path) -> Result<Grid, InputError> {
@@ -62,9 +85,11 @@ pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
             )))
         }
     }
+    // Room for the whole image, and never less than the crate's own limits: a tiny image
+    // may be stored in a tile far larger than itself.
     let mut limits = Limits::default();
-    limits.decoding_buffer_size = (cells * 8) as usize;
-    limits.intermediate_buffer_size = (cells * 8) as usize;
+    limits.decoding_buffer_size = limits.decoding_buffer_size.max((cells * 8) as usize);
+    limits.intermediate_buffer_size = limits.intermediate_buffer_size.max((cells * 8) as usize);
     decoder = decoder.with_limits(limits);
 
     let keys = decoder
@@ -107,6 +132,23 @@ pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
         .and_then(|value| value.into_string().ok())
         .and_then(|text| text.trim_matches(char::from(0)).trim().parse().ok());
 
+    let metadata = decoder
+        .find_tag(Tag::Unknown(GDAL_METADATA))
+        .map_err(tiff_fault)?
+        .and_then(|value| value.into_string().ok())
+        .map(|text| band_metadata(&text))
+        .unwrap_or_default();
+    let unit = vertical_unit(key(VERTICAL_UNITS), key(VERTICAL_CS_TYPE), &metadata)?;
+    let (scale, offset) = (
+        metadata.scale.unwrap_or(1.0),
+        metadata.offset.unwrap_or(0.0),
+    );
+    if !(scale.is_finite() && scale != 0.0 && offset.is_finite()) {
+        return Err(Fault::Tiff(format!(
+            "the band's scale {scale} and offset {offset} (GDAL_METADATA) do not make heights"
+        )));
+    }
+
     let image = decoder.read_image().map_err(tiff_fault)?;
     let mut heights = to_f32(image)?;
     if heights.len() as u64 != cells {
@@ -123,7 +165,13 @@ pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
             }
         }
     }
+    refuse_internal_mask(&mut decoder, columns, rows)?;
+    let to_metres = unit.map_or(1.0, |(_, metres)| metres);
+    let rescaled = scale != 1.0 || offset != 0.0 || to_metres != 1.0;
     for height in &mut heights {
+        if rescaled {
+            *height = ((f64::from(*height) * scale + offset) * to_metres) as f32;
+        }
         if !height.is_finite() {
             *height = f32::NAN;
         }
@@ -144,7 +192,7 @@ pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
         } else {
             ""
         }
-    );
+    ) + &heights_note(scale, offset, unit);
     Ok(Grid {
         columns: columns as usize,
         rows: rows as usize,
@@ -156,6 +204,118 @@ pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
         epsg,
         source,
     })
+}
+
+/// What `source` says of how the stored values became metres.
+fn heights_note(scale: f64, offset: f64, unit: Option<(&str, f64)>) -> String {
+    let mut note = String::new();
+    if scale != 1.0 || offset != 0.0 {
+        note += &format!(", heights = stored × {scale} + {offset}");
+    }
+    if let Some((name, metres)) = unit.filter(|&(_, metres)| metres != 1.0) {
+        note += &format!(", heights in {name} (× {metres} to metres)");
+    }
+    note
+}
+
+/// The band-0 items of GDAL_METADATA that change what a stored value means.
+#[derive(Debug, Default, PartialEq)]
+struct BandMetadata {
+    scale: Option<f64>,
+    offset: Option<f64>,
+    unit_type: Option<String>,
+}
+
+/// Reads `<Item name=".." sample="0" role="scale|offset|unittype">value</Item>` (GDAL's form;
+/// items of other bands, and dataset items, are not the height band's).
+fn band_metadata(xml: &str) -> BandMetadata {
+    let attribute = |tag: &str, name: &str| {
+        let start = tag.find(&format!("{name}=\""))? + name.len() + 2;
+        let length = tag[start..].find('"')?;
+        Some(tag[start..start + length].to_string())
+    };
+    let mut metadata = BandMetadata::default();
+    for item in xml.split("<Item").skip(1) {
+        let Some(close) = item.find('>') else {
+            continue;
+        };
+        let (tag, rest) = (&item[..close], &item[close + 1..]);
+        let value = rest.split("</Item>").next().unwrap_or("").trim();
+        if attribute(tag, "sample").as_deref() != Some("0") {
+            continue;
+        }
+        let role = attribute(tag, "role").or_else(|| attribute(tag, "name"));
+        match role.map(|role| role.to_ascii_lowercase()).as_deref() {
+            Some("scale") => metadata.scale = value.parse().ok().or(Some(f64::NAN)),
+            Some("offset") => metadata.offset = value.parse().ok().or(Some(f64::NAN)),
+            Some("unittype") if !value.is_empty() => metadata.unit_type = Some(value.to_string()),
+            _ => {}
+        }
+    }
+    metadata
+}
+
+/// The heights' unit and its length in metres, from the GeoKeys or GDAL's UNITTYPE; `None`
+/// when nothing says (metres). A unit it does not know is refused.
+fn vertical_unit(
+    units_key: Option<u16>,
+    vertical_crs: Option<u16>,
+    metadata: &BandMetadata,
+) -> Result<Option<(&'static str, f64)>, Fault> {
+    if let Some(code) = units_key.filter(|&code| code != USER_DEFINED && code != 0) {
+        return match code {
+            9001 => Ok(Some(("metres", 1.0))),
+            9002 => Ok(Some(("feet", FOOT_M))),
+            9003 => Ok(Some(("US survey feet", US_FOOT_M))),
+            other => Err(Fault::Tiff(format!(
+                "the heights' unit is EPSG unit {other} (VerticalUnitsGeoKey), which agripath does not convert: write the DEM in metres (gdal_translate -scale or gdalwarp -t_srs with a metre vertical CRS)"
+            ))),
+        };
+    }
+    if let Some(unit) = &metadata.unit_type {
+        return match unit.trim().to_ascii_lowercase().as_str() {
+            "m" | "metre" | "meter" | "metres" | "meters" => Ok(Some(("metres", 1.0))),
+            "ft" | "foot" | "feet" | "international foot" => Ok(Some(("feet", FOOT_M))),
+            "us-ft" | "ftus" | "us survey foot" | "us_survey_foot" | "foot_us" => {
+                Ok(Some(("US survey feet", US_FOOT_M)))
+            }
+            other => Err(Fault::Tiff(format!(
+                "the heights' unit is '{other}' (GDAL UNITTYPE), which agripath does not convert: write the DEM in metres"
+            ))),
+        };
+    }
+    Ok(match vertical_crs {
+        Some(code) if FEET_VERTICAL_CRS.contains(&code) => Some(("feet", FOOT_M)),
+        Some(code) if US_FEET_VERTICAL_CRS.contains(&code) => Some(("US survey feet", US_FOOT_M)),
+        _ => None,
+    })
+}
+
+/// Refuses a GDAL internal mask (NewSubfileType 4, the DEM's size): its 0 cells are no data,
+/// but the `tiff` crate does not decode transparency masks, and read without it they would
+/// be taken for ground. Overviews and other images are passed over.
+fn refuse_internal_mask(
+    decoder: &mut Decoder<Cursor<&[u8]>>,
+    columns: u32,
+    rows: u32,
+) -> Result<(), Fault> {
+    let tiff_fault = |error: tiff::TiffError| Fault::Tiff(format!("its images: {error}"));
+    while decoder.more_images() {
+        decoder.next_image().map_err(tiff_fault)?;
+        let subfile = decoder
+            .find_tag(Tag::NewSubfileType)
+            .map_err(tiff_fault)?
+            .and_then(|value| value.into_u32().ok())
+            .unwrap_or(0);
+        if subfile & SUBFILE_MASK != 0
+            && decoder.dimensions().map_err(tiff_fault)? == (columns, rows)
+        {
+            return Err(Fault::Tiff(
+                "it carries a GDAL internal mask of no-data cells, which agripath does not read (read without it, those cells would be taken for ground): write them as a no-data value instead (gdalwarp -dstnodata -9999 IN.tif OUT.tif)".into(),
+            ));
+        }
+    }
+    Ok(())
 }
 
 /// A user-defined projected CS built from a UTM projection code (EPSG 16001-16060 north,
@@ -361,6 +521,96 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(plain.contains("no georeferencing"), "{plain}");
+    }
+
+    /// Heights as GDAL reads them: stored × scale + offset, then the vertical unit in metres
+    /// (decision 0037); the fixtures hold `expected`'s values, written by tifffile.
+    #[test]
+    fn scale_offset_and_feet_become_metres() {
+        let centre = |row: usize, column: usize| {
+            (
+                500_000.0 + (column as f64 + 0.5) * 2.0,
+                4_000_000.0 - (row as f64 + 0.5) * 2.0,
+            )
+        };
+        let cases: [(&str, bool, fn(f64) -> f64); 3] = [
+            ("int16_scale_offset.tif", false, |stored| {
+                stored * 0.1 + 100.0
+            }),
+            ("float32_navd88_feet.tif", true, |stored| stored * 0.3048),
+            ("float32_us_survey_feet.tif", true, |stored| {
+                stored * 1200.0 / 3937.0
+            }),
+        ];
+        for (name, float, metres) in cases {
+            let grid = read(&fixture(name)).unwrap_or_else(|error| panic!("{error}"));
+            for (row, column) in [(0, 0), (7, 13), (23, 39)] {
+                let (x, y) = centre(row, column);
+                let height = grid.height_m(x, y).unwrap();
+                let wanted = metres(expected(row, column, float));
+                assert!(
+                    (height - wanted).abs() < 1e-4,
+                    "{name} at ({row}, {column}): {height} against {wanted}"
+                );
+            }
+            assert!(grid.source.contains("heights"), "{}", grid.source);
+        }
+    }
+
+    #[test]
+    fn a_unit_it_does_not_know_and_an_internal_mask_are_refused() {
+        let furlong = read(&fixture("float32_unittype_furlong.tif"))
+            .unwrap_err()
+            .to_string();
+        assert!(furlong.contains("'furlong'"), "{furlong}");
+        let masked = read(&fixture("float32_internal_mask.tif"))
+            .unwrap_err()
+            .to_string();
+        assert!(masked.contains("internal mask"), "{masked}");
+        assert!(masked.contains("gdalwarp -dstnodata"), "{masked}");
+    }
+
+    /// A 1 × 1 raster stored in a 16 × 16 tile (the decoder's buffer is the tile's, not the
+    /// image's).
+    #[test]
+    fn a_raster_smaller_than_its_tile_reads() {
+        let grid =
+            read(&fixture("float32_1x1_tiled.tif")).unwrap_or_else(|error| panic!("{error}"));
+        assert_eq!((grid.columns, grid.rows), (1, 1));
+        assert_eq!(grid.height_m(500_001.0, 3_999_999.0), Ok(123.5));
+    }
+
+    #[test]
+    fn gdal_metadata_items_of_the_first_band_only() {
+        let xml = r#"<GDALMetadata>
+  <Item name="STATISTICS_MEAN" sample="0">12</Item>
+  <Item name="OFFSET" sample="1" role="offset">7</Item>
+  <Item name="OFFSET" sample="0" role="offset">150</Item>
+  <Item name="SCALE" sample="0" role="scale">0.10000000000000001</Item>
+  <Item name="UNITTYPE" sample="0" role="unittype">ft</Item>
+</GDALMetadata>"#;
+        let metadata = band_metadata(xml);
+        assert_eq!(metadata.offset, Some(150.0));
+        assert_eq!(metadata.scale, Some(0.1));
+        assert_eq!(metadata.unit_type.as_deref(), Some("ft"));
+        assert_eq!(
+            vertical_unit(None, None, &metadata).unwrap(),
+            Some(("feet", FOOT_M))
+        );
+        // The GeoKey wins over GDAL's unit type; a vertical CRS says feet only when nothing else does.
+        assert_eq!(
+            vertical_unit(Some(9001), None, &metadata).unwrap(),
+            Some(("metres", 1.0))
+        );
+        assert_eq!(
+            vertical_unit(None, Some(6360), &BandMetadata::default()).unwrap(),
+            Some(("US survey feet", US_FOOT_M))
+        );
+        assert_eq!(
+            vertical_unit(None, Some(5703), &BandMetadata::default()).unwrap(),
+            None
+        );
+        assert!(vertical_unit(Some(9036), None, &metadata).is_err());
     }
 
     /// The SPSO DEM is uncompressed float32 strips: its stored values can be read straight
