@@ -165,9 +165,13 @@ impl Zones {
             let field = &self.fields[*k as usize];
             field.boundary.contains(p) && field.holes.iter().any(|hole| enters(hole, p, 0.0))
         };
+        // On a field's edge within the files' rounding counts as on it: a field drawn in
+        // another's hole is sprayed to its edge, which the written file may put a few
+        // millimetres outside it.
         let on_crop_of = |k: &u32| {
             let field = &self.fields[*k as usize];
-            field.boundary.contains(p) && !field.holes.iter().any(|hole| enters(hole, p, 0.0))
+            (field.boundary.contains(p) || field.boundary.near(p, SLACK_M))
+                && !field.holes.iter().any(|hole| enters(hole, p, 0.0))
         };
         (near.iter().any(in_hole_of) && !near.iter().any(on_crop_of))
             || self.enters_obstacle(p, self.obstacle_margin_m)
@@ -201,5 +205,43 @@ impl Fence {
     /// files' rounding).
     pub fn breached_at(&self, p: Coord<f64>) -> bool {
         self.ring.contains(p) != self.inclusion && !self.ring.near(p, SLACK_M)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::field::Field;
+    use geo::{LineString, Polygon};
+
+    fn ring(corners: &[(f64, f64)]) -> LineString<f64> {
+        LineString::from(corners.to_vec())
+    }
+
+    /// Trial 9: a field drawn inside another's hole is sprayed to its edge, and the written
+    /// file may put that edge a few millimetres outside it, in the hole.
+    #[test]
+    fn a_field_in_anothers_hole_is_crop_to_its_edge() {
+        let outer = Polygon::new(
+            ring(&[(0.0, 0.0), (200.0, 0.0), (200.0, 200.0), (0.0, 200.0)]),
+            vec![ring(&[(50.0, 50.0), (150.0, 50.0), (150.0, 150.0), (50.0, 150.0)])],
+        );
+        let island = Polygon::new(
+            ring(&[(70.0, 70.0), (130.0, 70.0), (130.0, 130.0), (70.0, 130.0)]),
+            vec![],
+        );
+        let farm = Farm::local(
+            "island.geojson",
+            vec![Field::new("Outer", outer), Field::new("Island", island)],
+        );
+        let zones = Zones::new(&farm, 0.0);
+        // On the island's edge, a few millimetres out into the hole, and inside it.
+        for p in [(70.0, 100.0), (69.995, 100.0), (100.0, 130.004), (100.0, 100.0)] {
+            assert!(!zones.no_go(Coord { x: p.0, y: p.1 }), "{p:?}");
+        }
+        // The hole's ground round the island is still a hole.
+        for p in [(60.0, 100.0), (69.9, 100.0), (100.0, 140.0)] {
+            assert!(zones.no_go(Coord { x: p.0, y: p.1 }), "{p:?}");
+        }
     }
 }
