@@ -31,6 +31,12 @@ pub enum RawGeometry {
     Lines(Vec<Vec<[f64; 2]>>),
 }
 
+/// Radius of an obstacle drawn as a point with no `radius_m`, metres: a pole or a pylon's leg
+/// (decision 0037). The planner keeps its swaths and the preflight its checks off the circle.
+pub const POINT_OBSTACLE_RADIUS_M: f64 = 1.0;
+/// Corners of the polygon an obstacle point becomes (drawn round its circle).
+const POINT_OBSTACLE_CORNERS: usize = 16;
+
 /// One feature of a field file, before any checking.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RawFeature {
@@ -41,6 +47,9 @@ pub struct RawFeature {
     /// `properties.kind`: `field` when absent, `obstacle` for no-spray zones, `access` for
     /// roads, tracks and yards.
     pub kind: Option<String>,
+    /// `properties.radius_m`: the size of an obstacle drawn as a point (a pole, a pylon, a
+    /// tree), [`POINT_OBSTACLE_RADIUS_M`] when absent.
+    pub radius_m: Option<f64>,
     /// The feature's geometry.
     pub geometry: RawGeometry,
 }
@@ -128,6 +137,32 @@ pub fn build(
         let kind = feature.kind.clone().unwrap_or_else(|| "field".to_string());
         let fault_here = |fault: Fault| InputError::new(path, fault).at(feature.place.clone());
         match &feature.geometry {
+            RawGeometry::Point(position) if kind == "obstacle" => {
+                let radius_m = feature.radius_m.unwrap_or(POINT_OBSTACLE_RADIUS_M);
+                if !(radius_m.is_finite() && radius_m > 0.0 && radius_m <= 1000.0) {
+                    return Err(fault_here(Fault::InvalidValue {
+                        what: "radius_m".into(),
+                        value: radius_m.to_string(),
+                        why: "an obstacle point's radius is metres, more than 0 and at most 1000"
+                            .into(),
+                    }));
+                }
+                let centre = project(*position).map_err(fault_here)?;
+                let number = obstacles.len() + 1;
+                let name = feature
+                    .name
+                    .clone()
+                    .unwrap_or_else(|| format!("obstacle {number}"));
+                if feature.radius_m.is_none() {
+                    notes.push(format!(
+                        "obstacle '{name}' is a point: kept clear as a circle of radius {radius_m} m (give it radius_m for its real size)"
+                    ));
+                }
+                obstacles.push(Obstacle {
+                    name,
+                    polygon: circle_around(centre, radius_m),
+                });
+            }
             RawGeometry::Point(position) => markers.push(Marker {
                 kind: kind.clone(),
                 name: feature.name.clone().unwrap_or_else(|| kind.clone()),
@@ -262,6 +297,23 @@ pub fn build(
         ));
     }
     Ok(farm)
+}
+
+/// The polygon round the circle of `radius_m` about `centre` (its sides touch the circle, so
+/// the circle is inside it).
+fn circle_around(centre: Coord<f64>, radius_m: f64) -> geo::Polygon<f64> {
+    let step = std::f64::consts::TAU / POINT_OBSTACLE_CORNERS as f64;
+    let corner_m = radius_m / (step / 2.0).cos();
+    let corners: Vec<Coord<f64>> = (0..=POINT_OBSTACLE_CORNERS)
+        .map(|k| {
+            let angle = step * (k % POINT_OBSTACLE_CORNERS) as f64;
+            Coord {
+                x: centre.x + corner_m * angle.cos(),
+                y: centre.y + corner_m * angle.sin(),
+            }
+        })
+        .collect();
+    geo::Polygon::new(geo::LineString(corners), vec![])
 }
 
 /// Whether a farm read in local metres is one in degrees read wrongly: under 1 m across (no

@@ -73,6 +73,7 @@ pub fn parse(path: &Path, text: &str, choice: CoordinateChoice) -> Result<Farm, 
             place: "geometry".into(),
             name: None,
             kind: None,
+            radius_m: None,
             geometry: read_geometry(object).map_err(|fault| fail(fault).at("geometry"))?,
         }],
     };
@@ -157,10 +158,20 @@ fn read_feature(value: &Value, place: &str) -> Result<Option<RawFeature>, Fault>
         Some(name) => format!("{place} ({name})"),
         None => place.to_string(),
     };
+    let radius_m = match properties.and_then(|properties| properties.get("radius_m")) {
+        None | Some(Value::Null) => None,
+        Some(Value::Number(number)) => number.as_f64(),
+        Some(other) => {
+            return Err(Fault::Structure(format!(
+                "properties.radius_m is {other}, expected a number of metres"
+            )))
+        }
+    };
     Ok(Some(RawFeature {
         place,
         name,
         kind,
+        radius_m,
         geometry,
     }))
 }
@@ -275,6 +286,26 @@ mod tests {
         assert!((farm.fields[0].area_m2() - (10_000.0 - 50.0)).abs() < 1e-9);
         assert_eq!(farm.obstacles.len(), 1);
         assert_eq!(farm.markers[0].kind, "launch");
+    }
+
+    #[test]
+    fn an_obstacle_point_is_a_circle_of_its_radius() {
+        let text = r#"{"type":"FeatureCollection","crs":"local","features":[
+          {"type":"Feature","properties":{"name":"A"},"geometry":{"type":"Polygon","coordinates":[
+            [[0,0],[100,0],[100,100],[0,100],[0,0]]]}},
+          {"type":"Feature","properties":{"kind":"obstacle","name":"pole","radius_m":2},"geometry":{"type":"Point","coordinates":[50,50]}}]}"#;
+        let read = farm(text).unwrap();
+        assert_eq!(read.obstacles.len(), 1);
+        let pole = &read.obstacles[0].polygon;
+        use geo::Contains;
+        assert!(pole.contains(&geo::Point::new(51.99, 50.0)));
+        assert!(pole.contains(&geo::Point::new(50.0, 48.01)));
+        assert!(!pole.contains(&geo::Point::new(52.2, 50.0)));
+        assert!(read.markers.is_empty());
+        for bad in ["0", "-1", "\"2\""] {
+            let text = text.replace("\"radius_m\":2", &format!("\"radius_m\":{bad}"));
+            assert!(farm(&text).is_err(), "{bad}");
+        }
     }
 
     #[test]

@@ -51,16 +51,28 @@ pub fn parse_kmz(
         .map(|name| name.map(|name| name.into_owned()))
         .collect::<Result<_, _>>()
         .map_err(|error| fail(format!("unreadable entry name in the archive: {error}")))?;
-    let entry = names
+    // macOS's Finder adds "__MACOSX/._name.kml" resource forks beside the real entries: they
+    // are not KML.
+    let documents: Vec<&String> = names
+        .iter()
+        .filter(|name| {
+            let file_name = name.rsplit(['/', '\\']).next().unwrap_or(name);
+            name.to_ascii_lowercase().ends_with(".kml")
+                && !name.starts_with("__MACOSX/")
+                && !file_name.starts_with("._")
+        })
+        .collect();
+    let entry = documents
         .iter()
         .find(|name| name.eq_ignore_ascii_case("doc.kml"))
-        .or_else(|| {
-            names
-                .iter()
-                .find(|name| name.to_ascii_lowercase().ends_with(".kml"))
-        })
-        .ok_or_else(|| fail("the KMZ archive holds no .kml document".into()))?
-        .clone();
+        .or_else(|| documents.first())
+        .map(|name| (*name).clone())
+        .ok_or_else(|| fail("the KMZ archive holds no .kml document".into()))?;
+    let others: Vec<&str> = documents
+        .iter()
+        .filter(|name| **name != &entry)
+        .map(|name| name.as_str())
+        .collect();
     let file = archive
         .by_name(&entry)
         .map_err(|error| fail(format!("cannot open {entry} in the archive: {error}")))?;
@@ -88,7 +100,15 @@ pub fn parse_kmz(
             )),
         ));
     }
-    parse(path, &text, choice).map_err(|error| error.at_inner(&entry))
+    let mut farm = parse(path, &text, choice).map_err(|error| error.at_inner(&entry))?;
+    if !others.is_empty() {
+        farm.notes.push(format!(
+            "the KMZ holds {} more .kml document(s) ({}), not read: a KMZ's fields are those of its root document, {entry}",
+            others.len(),
+            others.join(", ")
+        ));
+    }
+    Ok(farm)
 }
 
 impl InputError {
@@ -161,6 +181,7 @@ const MAX_DEPTH: usize = 256;
 struct PlacemarkState {
     name: Option<String>,
     kind: Option<String>,
+    radius_m: Option<String>,
     polygons: Vec<RawRings>,
     point: Option<[f64; 2]>,
     lines: Vec<Vec<[f64; 2]>>,
@@ -309,10 +330,21 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                         }
                     }
                     "value" | "SimpleData"
-                        if matches!(data_name.as_deref(), Some("kind") | Some("type")) =>
+                        if matches!(
+                            data_name.as_deref().map(str::to_ascii_lowercase).as_deref(),
+                            Some("kind") | Some("type")
+                        ) =>
                     {
                         if let Some(state) = placemark.as_mut() {
                             state.kind = Some(content.trim().to_ascii_lowercase());
+                        }
+                    }
+                    "value" | "SimpleData"
+                        if data_name.as_deref().map(str::to_ascii_lowercase).as_deref()
+                            == Some("radius_m") =>
+                    {
+                        if let Some(state) = placemark.as_mut() {
+                            state.radius_m = Some(content.trim().to_string());
                         }
                     }
                     "coordinates" => {
@@ -332,6 +364,13 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                                     (placemark.as_mut(), positions.first())
                                 {
                                     state.point.get_or_insert(*first);
+                                }
+                            }
+                            // A LinearRing that is the Placemark's geometry itself (valid
+                            // KML): a boundary without holes.
+                            (None, true) if parent == "LinearRing" => {
+                                if let Some(state) = placemark.as_mut() {
+                                    state.polygons.push(vec![positions]);
                                 }
                             }
                             _ if parent == "LineString" => {
@@ -366,6 +405,7 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                                 place: format!("Polygon {}", features.len()),
                                 name: None,
                                 kind: None,
+                                radius_m: None,
                                 geometry: RawGeometry::Polygons(vec![rings]),
                             }),
                         }
@@ -401,11 +441,23 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                                 None
                             }
                         };
+                        let radius_m = match state.radius_m {
+                            None => None,
+                            Some(text) => Some(text.parse::<f64>().map_err(|_| {
+                                (
+                                    Some(place.clone()),
+                                    Fault::Kml(format!(
+                                        "radius_m is '{text}', expected a number of metres"
+                                    )),
+                                )
+                            })?),
+                        };
                         if let Some(geometry) = geometry {
                             features.push(RawFeature {
                                 place,
                                 name: state.name,
                                 kind,
+                                radius_m,
                                 geometry,
                             });
                         }
@@ -592,6 +644,86 @@ mod tests {
         std::fs::remove_dir_all(&folder).unwrap();
         assert_eq!(farm.fields.len(), 1);
         assert_eq!(farm.obstacles.len(), 1);
+    }
+
+    /// Trial 9: Finder's resource forks first in the archive, and a second document.
+    #[test]
+    fn kmz_skips_macos_resource_forks_and_names_documents_it_does_not_read() {
+        let mut buffer = std::io::Cursor::new(Vec::new());
+        {
+            let mut writer = zip::ZipWriter::new(&mut buffer);
+            let options = zip::write::SimpleFileOptions::default();
+            for (name, text) in [
+                ("__MACOSX/._fields.kml", "\0\u{5}\u{16}\u{7}Mac OS X"),
+                ("fields.kml", FIELD_KML),
+                ("extra/other.kml", FIELD_KML),
+            ] {
+                writer.start_file(name, options).unwrap();
+                std::io::Write::write_all(&mut writer, text.as_bytes()).unwrap();
+            }
+            writer.finish().unwrap();
+        }
+        let farm = parse_kmz(
+            Path::new("f.kmz"),
+            buffer.into_inner(),
+            CoordinateChoice::FromFile,
+        )
+        .unwrap();
+        assert_eq!(farm.fields[0].name, "North");
+        assert!(
+            farm.notes
+                .iter()
+                .any(|note| note.contains("extra/other.kml")),
+            "{:?}",
+            farm.notes
+        );
+    }
+
+    /// Trial 9: a pylon drawn as a point (kind under another case, a radius given), and a
+    /// field drawn as a bare LinearRing, both valid KML.
+    #[test]
+    fn point_obstacles_and_bare_rings_are_read() {
+        let text = r#"<?xml version="1.0" encoding="UTF-8"?>
+<kml xmlns="http://www.opengis.net/kml/2.2"><Document>
+  <Placemark><name>Ring</name><LinearRing><coordinates>
+    8.50,47.30 8.51,47.30 8.51,47.31 8.50,47.31 8.50,47.30
+  </coordinates></LinearRing></Placemark>
+  <Placemark><name>Pylon</name>
+    <ExtendedData><Data name="Kind"><value>obstacle</value></Data>
+      <Data name="radius_m"><value>3.5</value></Data></ExtendedData>
+    <Point><coordinates>8.505,47.305</coordinates></Point></Placemark>
+  <Folder><name>No-spray zones</name>
+    <Placemark><name>Tree</name><Point><coordinates>8.502,47.302</coordinates></Point></Placemark>
+  </Folder>
+</Document></kml>"#;
+        let farm = parse(Path::new("f.kml"), text, CoordinateChoice::FromFile).unwrap();
+        assert_eq!(farm.fields.len(), 1);
+        assert_eq!(farm.fields[0].name, "Ring");
+        assert_eq!(farm.obstacles.len(), 2);
+        assert!(farm.markers.is_empty());
+        // The circle's polygon holds the disc: its area is a little above π r².
+        let area = |k: usize| geo::Area::unsigned_area(&farm.obstacles[k].polygon);
+        let disc = |r: f64| std::f64::consts::PI * r * r;
+        assert!(
+            area(0) > disc(3.5) && area(0) < 1.03 * disc(3.5),
+            "{}",
+            area(0)
+        );
+        assert!(
+            area(1) > disc(1.0) && area(1) < 1.03 * disc(1.0),
+            "{}",
+            area(1)
+        );
+        assert!(
+            farm.notes
+                .iter()
+                .any(|note| note.contains("'Tree' is a point")),
+            "{:?}",
+            farm.notes
+        );
+        let bad = text.replace(">3.5<", ">three<");
+        let error = parse(Path::new("f.kml"), &bad, CoordinateChoice::FromFile).unwrap_err();
+        assert!(error.to_string().contains("radius_m is 'three'"), "{error}");
     }
 
     #[test]

@@ -224,7 +224,12 @@ mod tests {
     fn a_field_in_anothers_hole_is_crop_to_its_edge() {
         let outer = Polygon::new(
             ring(&[(0.0, 0.0), (200.0, 0.0), (200.0, 200.0), (0.0, 200.0)]),
-            vec![ring(&[(50.0, 50.0), (150.0, 50.0), (150.0, 150.0), (50.0, 150.0)])],
+            vec![ring(&[
+                (50.0, 50.0),
+                (150.0, 50.0),
+                (150.0, 150.0),
+                (50.0, 150.0),
+            ])],
         );
         let island = Polygon::new(
             ring(&[(70.0, 70.0), (130.0, 70.0), (130.0, 130.0), (70.0, 130.0)]),
@@ -236,7 +241,12 @@ mod tests {
         );
         let zones = Zones::new(&farm, 0.0);
         // On the island's edge, a few millimetres out into the hole, and inside it.
-        for p in [(70.0, 100.0), (69.995, 100.0), (100.0, 130.004), (100.0, 100.0)] {
+        for p in [
+            (70.0, 100.0),
+            (69.995, 100.0),
+            (100.0, 130.004),
+            (100.0, 100.0),
+        ] {
             assert!(!zones.no_go(Coord { x: p.0, y: p.1 }), "{p:?}");
         }
         // The hole's ground round the island is still a hole.
