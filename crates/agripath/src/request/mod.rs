@@ -235,7 +235,23 @@ pub fn check(inputs: &ScenarioInputs, folder: &Path) -> Result<Outcome, InputErr
 /// `agripath validate`: what the inputs hold, as text ending in `valid`, or as JSON.
 pub fn validate(inputs: &ScenarioInputs, json: bool) -> Result<String, InputError> {
     let scenario = inputs.load()?;
-    let summary = crate::summary::ScenarioSummary::of(&scenario);
+    let mut summary = crate::summary::ScenarioSummary::of(&scenario);
+    // `plan` refuses two launch markers unless --start or --supply chooses (trial 9: validate
+    // said `valid` with no word of it).
+    let launches: Vec<&str> = scenario
+        .farm
+        .markers
+        .iter()
+        .filter(|marker| marker.is_launch())
+        .map(|marker| marker.name.as_str())
+        .collect();
+    if launches.len() > 1 {
+        summary.notes.push(format!(
+            "{} launch points ('{}'): plan needs --start X,Y or --supply auto|X,Y to choose where the drone starts",
+            launches.len(),
+            launches.join("', '")
+        ));
+    }
     Ok(if json {
         serde_json::to_string_pretty(&summary).expect("a summary serialises") + "\n"
     } else {

@@ -203,6 +203,16 @@ impl PlanOptions {
                 "--origin is not used: the fields are in lon/lat, and the mission files place them where they lie".into(),
             );
         }
+        if scenario.vehicle.camera.is_some() && self.sprayer != "do-sprayer" {
+            return Err(bad_value(
+                "--sprayer",
+                &self.sprayer,
+                format!(
+                    "vehicle '{}' is a survey vehicle (it has a [camera]): it has no sprayer to switch",
+                    scenario.vehicle.name
+                ),
+            ));
+        }
         if let Some(why) = crate::limits::terrain_tolerance_fault(
             mission.terrain_tolerance_m,
             scenario.vehicle.spray_height_m,

@@ -560,6 +560,57 @@ fn plan_commands(path: &Path) -> Vec<(u64, f64)> {
         .collect()
 }
 
+/// Trial 9: a servo sprayer asked of a survey vehicle was silently dropped.
+#[test]
+fn a_sprayer_asked_of_a_survey_vehicle_is_refused() {
+    let folder = scratch("survey-servo");
+    let out = folder.join("out");
+    let scenario = data("scenarios/christmas_island_survey.toml");
+    let output = agripath_without_browser(&[
+        "plan",
+        scenario.to_str().unwrap(),
+        "--sprayer",
+        "servo:9:1900:1100",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(2), "{output:?}");
+    let message = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        message.contains("--sprayer") && message.contains("is a survey vehicle"),
+        "{message}"
+    );
+    assert!(!out.exists());
+    let _ = std::fs::remove_dir_all(&folder);
+}
+
+/// Trial 9: `validate` said `valid` for two launch markers, which `plan` refuses without a
+/// choice.
+#[test]
+fn validate_notes_two_launch_points() {
+    let folder = scratch("two-launch");
+    std::fs::create_dir_all(&folder).unwrap();
+    let fields = folder.join("two_launch.geojson");
+    std::fs::write(
+        &fields,
+        r#"{"type":"FeatureCollection","crs":"local","features":[
+          {"type":"Feature","properties":{"name":"A"},"geometry":{"type":"Polygon","coordinates":[[[0,0],[100,0],[100,60],[0,60],[0,0]]]}},
+          {"type":"Feature","properties":{"kind":"launch","name":"Gate"},"geometry":{"type":"Point","coordinates":[-10,0]}},
+          {"type":"Feature","properties":{"kind":"home","name":"Yard"},"geometry":{"type":"Point","coordinates":[110,0]}}]}"#,
+    )
+    .unwrap();
+    let printed = stdout(&agripath_without_browser(&[
+        "validate",
+        "--fields",
+        fields.to_str().unwrap(),
+    ]));
+    assert!(
+        printed.contains("note: 2 launch points ('Gate', 'Yard'): plan needs --start"),
+        "{printed}"
+    );
+    let _ = std::fs::remove_dir_all(&folder);
+}
+
 #[test]
 fn a_survey_vehicle_triggers_its_camera_on_each_swath_and_has_no_tank() {
     let folder = scratch("survey");
