@@ -1,6 +1,8 @@
 //! ESRI ASCII grids (`.asc`): six header lines — `ncols`, `nrows`, `xllcorner` or
 //! `xllcenter`, `yllcorner` or `yllcenter`, `cellsize` (or `dx` and `dy`), optional
-//! `NODATA_value` — then `nrows` rows of `ncols` heights, northern row first.
+//! `NODATA_value` — then `nrows` rows of `ncols` heights, northern row first. A `.prj` beside
+//! the grid (same name) gives its coordinate system ([`super::prj`]); without one the grid has
+//! none, and only local fields drawn in its frame can use it.
 
 use std::path::Path;
 
@@ -12,13 +14,29 @@ use crate::limits::MAX_TERRAIN_CELLS;
 /// Reads an ESRI ASCII grid file; errs on an unreadable file or a bad header or body, with its place.
 pub fn read(path: &Path) -> Result<Grid, InputError> {
     let text = read_text(path)?;
-    parse(&text).map_err(|(place, fault)| {
+    let mut grid = parse(&text).map_err(|(place, fault)| {
         let error = InputError::new(path, fault);
         match place {
             Some(place) => error.at(place),
             None => error,
         }
-    })
+    })?;
+    let beside = ["prj", "PRJ"]
+        .iter()
+        .map(|extension| path.with_extension(extension))
+        .find(|candidate| candidate.is_file());
+    if let Some(prj) = beside {
+        let wkt = read_text(&prj)?;
+        let code = super::prj::epsg_of(&wkt).map_err(|why| {
+            InputError::new(
+                &prj,
+                Fault::Structure(format!("the grid's coordinate system is {why}")),
+            )
+        })?;
+        grid.epsg = Some(code);
+        grid.source += &format!(", EPSG:{code} (from its .prj)");
+    }
+    Ok(grid)
 }
 
 type Located = (Option<String>, Fault);
@@ -167,6 +185,37 @@ pub fn parse(text: &str) -> Result<Grid, Located> {
 mod tests {
     use super::*;
     use crate::terrain::Terrain;
+
+    /// Trial 9: an agency's grid with its `.prj` beside it is placed; a `.prj` naming a frame
+    /// agripath does not read is an error naming the `.prj`.
+    #[test]
+    fn a_prj_beside_the_grid_gives_its_frame() {
+        let folder = std::env::temp_dir().join(format!("agripath-prj-{}", std::process::id()));
+        std::fs::create_dir_all(&folder).unwrap();
+        let grid = folder.join("dem.asc");
+        std::fs::write(
+            &grid,
+            "ncols 2\nnrows 2\nxllcorner 449000\nyllcorner 5229000\ncellsize 5\n1 2\n3 4\n",
+        )
+        .unwrap();
+        assert_eq!(read(&grid).unwrap().epsg, None);
+        let prj = folder.join("dem.prj");
+        std::fs::write(&prj, r#"PROJCS["WGS_1984_UTM_Zone_31N",GEOGCS["GCS_WGS_1984",DATUM["D_WGS_1984",SPHEROID["WGS_1984",6378137.0,298.257223563]]],PROJECTION["Transverse_Mercator"],UNIT["Meter",1.0]]"#).unwrap();
+        let placed = read(&grid).unwrap();
+        assert_eq!(placed.epsg, Some(32631));
+        assert!(
+            placed.source.ends_with("EPSG:32631 (from its .prj)"),
+            "{}",
+            placed.source
+        );
+        std::fs::write(&prj, r#"PROJCS["RGF93_Lambert_93",GEOGCS["GCS_RGF_1993"]]"#).unwrap();
+        let error = read(&grid).unwrap_err().to_string();
+        assert!(
+            error.contains("dem.prj") && error.contains("'RGF93_Lambert_93'"),
+            "{error}"
+        );
+        std::fs::remove_dir_all(&folder).unwrap();
+    }
 
     #[test]
     fn corner_header_puts_centres_half_a_cell_in() {

@@ -39,6 +39,12 @@ fn dem_coordinates(epsg: u32) -> Option<DemCoordinates> {
     }
 }
 
+/// Whether a DEM in EPSG `epsg` can be placed under the fields (its coordinates are UTM or
+/// lon/lat on a datum [`dem_coordinates`] reads).
+pub fn placeable(epsg: u32) -> bool {
+    dem_coordinates(epsg).is_some()
+}
+
 /// The corners and edge midpoints of `extent` (in `dem`'s coordinates) as lon/lat: the
 /// outline of a DEM is curved in another frame, and these eight points bound it closely
 /// enough to say where to look.

@@ -13,6 +13,7 @@ pub mod grid;
 pub mod hillshade;
 pub mod nearness;
 pub mod plateaus;
+pub mod prj;
 pub mod xyz;
 
 use std::path::Path;
