@@ -65,7 +65,7 @@ pub fn read(path: &Path) -> Result<Grid, InputError> {
 
 /// Decodes GeoTIFF bytes into a grid.
 pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
-    let tiff_fault = |error: tiff::TiffError| Fault::Tiff(error.to_string());
+    let tiff_fault = |error: tiff::TiffError| Fault::Tiff(in_words(&error));
     let mut decoder = Decoder::new(Cursor::new(bytes)).map_err(tiff_fault)?;
     let (columns, rows) = decoder.dimensions().map_err(tiff_fault)?;
     let cells = u64::from(columns) * u64::from(rows);
@@ -79,9 +79,14 @@ pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
     }
     match decoder.colortype().map_err(tiff_fault)? {
         ColorType::Gray(_) => {}
+        ColorType::Multiband { num_samples, .. } => {
+            return Err(Fault::Tiff(format!(
+                "a DEM has one band of heights; this image has {num_samples}: keep the heights' band (gdal_translate -b 1 IN.tif OUT.tif)"
+            )))
+        }
         other => {
             return Err(Fault::Tiff(format!(
-                "a DEM has one band of heights; this image is {other:?}"
+                "a DEM has one band of heights; this image is colour ({other:?}): keep the heights' band (gdal_translate -b 1 IN.tif OUT.tif)"
             )))
         }
     }
@@ -204,6 +209,28 @@ pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
         epsg,
         source,
     })
+}
+
+/// The decoder's error in an operator's words: a compression it does not decode is named,
+/// with the command that rewrites the file in one it does.
+fn in_words(error: &tiff::TiffError) -> String {
+    use tiff::tags::CompressionMethod;
+    if let tiff::TiffError::UnsupportedError(
+        tiff::TiffUnsupportedError::UnsupportedCompressionMethod(method),
+    ) = error
+    {
+        let name = match method {
+            CompressionMethod::Unknown(34887) => "LERC".to_string(),
+            CompressionMethod::Unknown(34925) => "LZMA".to_string(),
+            CompressionMethod::Unknown(50001) => "WebP".to_string(),
+            CompressionMethod::Unknown(code) => format!("number {code}"),
+            other => format!("{other:?}"),
+        };
+        return format!(
+            "its compression ({name}) is not one agripath decodes (none, DEFLATE, LZW, PackBits): rewrite it with gdal_translate -co COMPRESS=DEFLATE IN.tif OUT.tif"
+        );
+    }
+    error.to_string()
 }
 
 /// What `source` says of how the stored values became metres.
@@ -578,6 +605,22 @@ mod tests {
             read(&fixture("float32_1x1_tiled.tif")).unwrap_or_else(|error| panic!("{error}"));
         assert_eq!((grid.columns, grid.rows), (1, 1));
         assert_eq!(grid.height_m(500_001.0, 3_999_999.0), Ok(123.5));
+    }
+
+    #[test]
+    fn a_compression_it_does_not_decode_is_named_with_the_fix() {
+        use tiff::tags::CompressionMethod;
+        let unsupported = |method| {
+            in_words(&tiff::TiffError::UnsupportedError(
+                tiff::TiffUnsupportedError::UnsupportedCompressionMethod(method),
+            ))
+        };
+        let lerc = unsupported(CompressionMethod::Unknown(34887));
+        assert!(
+            lerc.contains("(LERC)") && lerc.contains("COMPRESS=DEFLATE"),
+            "{lerc}"
+        );
+        assert!(unsupported(CompressionMethod::Unknown(4242)).contains("(number 4242)"));
     }
 
     #[test]
