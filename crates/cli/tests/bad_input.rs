@@ -226,6 +226,31 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         ),
         on_terrain("all_nodata.asc", "every cell of the raster is no-data"),
         on_terrain("sparse.xyz", "too sparse for a terrain model"),
+        // Heights that would be misread (decision 0037): a mask, a unit not known; a `.prj`
+        // naming a frame not read, named as the faulty file.
+        (
+            vec![
+                "terrain".into(),
+                "info".into(),
+                data("test/geotiff/float32_internal_mask.tif"),
+            ],
+            data("test/geotiff/float32_internal_mask.tif"),
+            "it carries a GDAL internal mask",
+        ),
+        (
+            vec![
+                "terrain".into(),
+                "info".into(),
+                data("test/geotiff/float32_unittype_furlong.tif"),
+            ],
+            data("test/geotiff/float32_unittype_furlong.tif"),
+            "the heights' unit is 'furlong'",
+        ),
+        (
+            terrain_info("lambert.asc"),
+            bad("lambert.prj"),
+            "the grid's coordinate system is 'RGF93_Lambert_93'",
+        ),
         (
             vec![
                 "terrain".into(),
