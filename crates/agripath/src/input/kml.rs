@@ -182,6 +182,9 @@ struct PlacemarkState {
     name: Option<String>,
     kind: Option<String>,
     radius_m: Option<String>,
+    /// A `name` in ExtendedData (QGIS and ogr2ogr write the attribute table there): the
+    /// name when the Placemark has no `<name>`.
+    data_name: Option<String>,
     polygons: Vec<RawRings>,
     point: Option<[f64; 2]>,
     lines: Vec<Vec<[f64; 2]>>,
@@ -341,6 +344,17 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                     }
                     "value" | "SimpleData"
                         if data_name.as_deref().map(str::to_ascii_lowercase).as_deref()
+                            == Some("name") =>
+                    {
+                        if let Some(state) = placemark.as_mut() {
+                            let text = content.trim();
+                            if !text.is_empty() {
+                                state.data_name.get_or_insert_with(|| text.to_string());
+                            }
+                        }
+                    }
+                    "value" | "SimpleData"
+                        if data_name.as_deref().map(str::to_ascii_lowercase).as_deref()
                             == Some("radius_m") =>
                     {
                         if let Some(state) = placemark.as_mut() {
@@ -411,7 +425,8 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                         }
                     }
                     "Placemark" => {
-                        let state = placemark.take().unwrap_or_default();
+                        let mut state = placemark.take().unwrap_or_default();
+                        state.name = state.name.take().or(state.data_name.take());
                         let index = features.len();
                         let place = match &state.name {
                             Some(name) => format!("Placemark {} ({name})", index + 1),
@@ -685,7 +700,8 @@ mod tests {
     fn point_obstacles_and_bare_rings_are_read() {
         let text = r#"<?xml version="1.0" encoding="UTF-8"?>
 <kml xmlns="http://www.opengis.net/kml/2.2"><Document>
-  <Placemark><name>Ring</name><LinearRing><coordinates>
+  <Placemark><ExtendedData><SchemaData schemaUrl="fields"><SimpleData name="Name">Ring</SimpleData>
+    </SchemaData></ExtendedData><LinearRing><coordinates>
     8.50,47.30 8.51,47.30 8.51,47.31 8.50,47.31 8.50,47.30
   </coordinates></LinearRing></Placemark>
   <Placemark><name>Pylon</name>
