@@ -23,6 +23,24 @@ use crate::sortie::{plan_sorties, PlannedSorties, SortiePlanner, SortieSettings}
 use crate::supply::evaluator::{plan_cost_s, FixedRouteSplit};
 use crate::supply::{SupplyChoice, SupplyRequest, SupplySource};
 
+/// What is wrong when the field file marks more than one launch point: `plan` needs
+/// `--start` or `--supply` to choose (and `validate` notes it).
+pub fn several_launch_points(farm: &crate::model::Farm) -> Option<String> {
+    let names: Vec<&str> = farm
+        .markers
+        .iter()
+        .filter(|marker| marker.is_launch())
+        .map(|marker| marker.name.as_str())
+        .collect();
+    (names.len() > 1).then(|| {
+        format!(
+            "{} launch points ('{}'): keep one, or choose with --start X,Y or --supply auto|X,Y",
+            names.len(),
+            names.join("', '")
+        )
+    })
+}
+
 /// The start point the inputs give: the given one, else the field file's launch marker (a
 /// point named or typed launch, home, takeoff, supply, base or start), else none (the supply
 /// point is chosen by [`supply_point`], or the start is free). Two launch markers and no
@@ -34,20 +52,15 @@ pub fn start_point(
     if settings.start.is_none() && matches!(settings.supply, SupplyRequest::Auto { .. }) {
         return Ok(None);
     }
+    if let (None, Some(why)) = (settings.start, several_launch_points(&scenario.farm)) {
+        return Err(Fault::Structure(why));
+    }
     let launches: Vec<&crate::model::Marker> = scenario
         .farm
         .markers
         .iter()
         .filter(|marker| marker.is_launch())
         .collect();
-    if settings.start.is_none() && launches.len() > 1 {
-        return Err(Fault::Structure(format!(
-            "{} launch points ('{}' and '{}'): keep one, or choose with --start X,Y",
-            launches.len(),
-            launches[0].name,
-            launches[1].name
-        )));
-    }
     let position = settings.start.or_else(|| {
         launches
             .first()

@@ -235,7 +235,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
                 data("test/geotiff/float32_internal_mask.tif"),
             ],
             data("test/geotiff/float32_internal_mask.tif"),
-            "it carries a GDAL internal mask",
+            "it carries a GDAL mask of no-data cells",
         ),
         (
             vec![
@@ -249,7 +249,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             terrain_info("lambert.asc"),
             bad("lambert.prj"),
-            "the grid's coordinate system is 'RGF93_Lambert_93'",
+            "lambert.asc is 'RGF93_Lambert_93'",
         ),
         (
             vec![
@@ -343,7 +343,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             plan(&bad("two_launches.geojson"), &[]),
             bad("two_launches.geojson"),
-            "2 launch points ('one' and 'two')",
+            "2 launch points ('one', 'two')",
         ),
         // KML and KMZ.
         on(

@@ -34,6 +34,9 @@ pub enum RawGeometry {
 /// Radius of an obstacle drawn as a point with no `radius_m`, metres: a pole or a pylon's leg
 /// (decision 0037). The planner keeps its swaths and the preflight its checks off the circle.
 pub const POINT_OBSTACLE_RADIUS_M: f64 = 1.0;
+/// Smallest radius of an obstacle point, metres: a thin pole; below a few centimetres the
+/// files' rounding is as large as the obstacle.
+pub const MIN_POINT_OBSTACLE_RADIUS_M: f64 = 0.1;
 /// Corners of the polygon an obstacle point becomes (drawn round its circle).
 const POINT_OBSTACLE_CORNERS: usize = 16;
 
@@ -139,12 +142,13 @@ pub fn build(
         match &feature.geometry {
             RawGeometry::Point(position) if kind == "obstacle" => {
                 let radius_m = feature.radius_m.unwrap_or(POINT_OBSTACLE_RADIUS_M);
-                if !(radius_m.is_finite() && radius_m > 0.0 && radius_m <= 1000.0) {
+                if !(radius_m.is_finite()
+                    && (MIN_POINT_OBSTACLE_RADIUS_M..=1000.0).contains(&radius_m))
+                {
                     return Err(fault_here(Fault::InvalidValue {
                         what: "radius_m".into(),
                         value: radius_m.to_string(),
-                        why: "an obstacle point's radius is metres, more than 0 and at most 1000"
-                            .into(),
+                        why: format!("an obstacle point's radius is metres, {MIN_POINT_OBSTACLE_RADIUS_M} to 1000"),
                     }));
                 }
                 let centre = project(*position).map_err(fault_here)?;

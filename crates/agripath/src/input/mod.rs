@@ -7,6 +7,7 @@
 pub mod farm;
 pub mod geojson;
 pub mod kml;
+pub mod kmz;
 
 use std::path::Path;
 
@@ -32,7 +33,7 @@ pub fn read_farm(path: &Path, choice: CoordinateChoice) -> Result<Farm, InputErr
     match extension.as_str() {
         "geojson" | "json" => geojson::read(path, choice),
         "kml" => kml::read_kml(path, choice),
-        "kmz" => kml::read_kmz(path, choice),
+        "kmz" => kmz::read_kmz(path, choice),
         other => Err(InputError::new(
             path,
             Fault::UnknownExtension {

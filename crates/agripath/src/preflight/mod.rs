@@ -12,7 +12,7 @@
 //!   turn) stays within the tolerance of spray height or above;
 //! - **holes and obstacles**: no leg at spray height enters a hole or an obstacle (grown by
 //!   the obstacle margin), and no leg at any height enters an obstacle of the inputs, whatever
-//!   the file's fence says;
+//!   the file's fence says (obstacles tested against their edges, not only at the samples);
 //! - **fence**: every sample inside the file's inclusion polygon and outside its exclusions;
 //! - **coverage** as flown (strips one swath wide along the spray legs, [`sprayed`]) of each
 //!   field's sprayable area: covered / (covered + missed), where missed is ground a swath
@@ -20,7 +20,6 @@
 //!   tips, necks) left unsprayed is reported apart as unreachable; and the **spray outside** the fields, holes and obstacles
 //!   excluded, as a share of all that is sprayed;
 //! - **tank** and **battery** per sortie, recomputed from the files and the vehicle.
-
 //!
 //! The parts: [`settings`] (what a plan is held to), [`verdict`] (the checks' figures and
 //! failure lines, as `report.json` carries them) and [`folder`] (the check run again on a plan
@@ -46,16 +45,14 @@ use crate::limits::MIN_GROUND_CLEARANCE_M;
 use crate::mission::flight::GeoFrame;
 use crate::mission::flight::{highest_ground_near, TRANSIT_CORRIDOR_M};
 use crate::mission::mavlink::Command;
-use crate::model::{Farm, Vehicle};
 use crate::terrain::nearness::GroundNearness;
-use crate::terrain::Terrain;
 use flown::Motion;
 use sprayed::Rings;
 use verdict::Tally;
 
 pub use dose::MAX_SPRAY_SPEED_SHARE;
 pub use folder::check_folder;
-pub use settings::{PreflightSettings, Promise};
+pub use settings::{PreflightSettings, Promise, World};
 pub use verdict::{CheckResult, FieldFlown, SortieFlown, Verdict};
 
 /// Largest distance between two samples of a leg, metres.
@@ -69,16 +66,6 @@ const SLACK_M: f64 = 0.02;
 pub const MAX_OUTSIDE_FRACTION: f64 = 0.005;
 /// Smallest change of direction between two spray legs that sweeps a turn's disc, radians.
 const MIN_TURN_RAD: f64 = 0.5 * std::f64::consts::PI / 180.0;
-
-/// What the flight is flown against.
-pub struct World<'a> {
-    /// The farm: its fields, obstacles and coordinate system.
-    pub farm: &'a Farm,
-    /// The terrain the flight is flown over.
-    pub terrain: &'a dyn Terrain,
-    /// The drone: heights, speeds, swath width, tank and battery.
-    pub vehicle: &'a Vehicle,
-}
 
 /// Runs the check on the mission files among `files` (name, bytes).
 pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<u8>)]) -> Verdict {
@@ -295,6 +282,17 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
                         )
                     },
                 );
+            }
+            // And against the obstacles' edges: a pole thinner than the step is met (0037).
+            let ends = [leg.from, leg.to].map(|end| Coord { x: end.x, y: end.y });
+            let spraying = leg.spraying && horizontal > 0.0;
+            if let Some((p, what)) = zones.leg_through_obstacle(ends, spraying) {
+                let line = format!(
+                    "sortie {sortie}, item {} at {}: {what}",
+                    leg.item,
+                    place(p.x, p.y)
+                );
+                no_go.record_at((p.x, p.y), 1.0, true, || line);
             }
             if leg.motion != Motion::Flight {
                 // Takeoff, landing: held to the floor beside them once up (decision 0036).
@@ -607,6 +605,7 @@ mod tests {
     use super::*;
     use crate::input::{geojson, CoordinateChoice};
     use crate::mission::flight::{AltitudeReference, SprayerCommand};
+    use crate::model::Vehicle;
     use crate::pipeline::{plan_mission, preflight_settings, render};
     use crate::scenario::Scenario;
     use crate::scenario::ScenarioParts;

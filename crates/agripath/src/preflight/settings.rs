@@ -86,6 +86,16 @@ impl PreflightSettings {
     }
 }
 
+/// What the flight is flown against.
+pub struct World<'a> {
+    /// The farm: its fields, obstacles and coordinate system.
+    pub farm: &'a crate::model::Farm,
+    /// The terrain the flight is flown over.
+    pub terrain: &'a dyn crate::terrain::Terrain,
+    /// The drone: heights, speeds, swath width, tank and battery.
+    pub vehicle: &'a crate::model::Vehicle,
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

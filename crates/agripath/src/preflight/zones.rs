@@ -95,10 +95,35 @@ fn enters(ring: &IndexedRing, p: Coord<f64>, margin_m: f64) -> bool {
     }
 }
 
+/// Where, as a fraction of `a`–`b`, that segment crosses `p`–`q` (`None` when they do not
+/// cross, or run parallel).
+fn crossing(a: Coord<f64>, b: Coord<f64>, p: Coord<f64>, q: Coord<f64>) -> Option<f64> {
+    let (r, s) = (
+        Coord {
+            x: b.x - a.x,
+            y: b.y - a.y,
+        },
+        Coord {
+            x: q.x - p.x,
+            y: q.y - p.y,
+        },
+    );
+    let denominator = r.x * s.y - r.y * s.x;
+    if denominator == 0.0 {
+        return None;
+    }
+    let (dx, dy) = (p.x - a.x, p.y - a.y);
+    let t = (dx * s.y - dy * s.x) / denominator;
+    let u = (dx * r.y - dy * r.x) / denominator;
+    ((0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u)).then_some(t)
+}
+
 /// The fields, holes and obstacles of a farm, indexed.
 pub struct Zones {
     fields: Vec<FieldRings>,
     obstacles: Vec<IndexedRing>,
+    /// The obstacles' rings as given, for the exact test of a leg.
+    obstacle_rings: Vec<Vec<Coord<f64>>>,
     field_cells: Cells,
     obstacle_cells: Cells,
     obstacle_margin_m: f64,
@@ -135,6 +160,11 @@ impl Zones {
                 .obstacles
                 .iter()
                 .map(|obstacle| IndexedRing::new(&obstacle.polygon.exterior().0))
+                .collect(),
+            obstacle_rings: farm
+                .obstacles
+                .iter()
+                .map(|obstacle| obstacle.polygon.exterior().0.clone())
                 .collect(),
             field_cells: Cells::new(&field_boxes, reach),
             obstacle_cells: Cells::new(&obstacle_boxes, reach),
@@ -177,6 +207,77 @@ impl Zones {
             || self.enters_obstacle(p, self.obstacle_margin_m)
     }
 
+    /// A place where the straight leg between `ends` enters an obstacle (grown by the obstacle
+    /// margin when `spraying`), beyond the files' rounding, tested against the obstacle's
+    /// edges rather than at samples: the leg's nearest approach to a grown obstacle is at one
+    /// of its ends, a crossing of an edge, or the foot of a corner on it, and a stretch inside
+    /// one lies between two crossings, so those places and the middles between them are all
+    /// that need asking.
+    /// Also says what the leg does there, for the failure line.
+    pub fn leg_through_obstacle(
+        &self,
+        ends: [Coord<f64>; 2],
+        spraying: bool,
+    ) -> Option<(Coord<f64>, &'static str)> {
+        let what = if spraying {
+            "spraying inside an obstacle"
+        } else {
+            "flying through an obstacle"
+        };
+        let margin_m = if spraying {
+            self.obstacle_margin_m
+        } else {
+            0.0
+        };
+        let [a, b] = ends;
+        let reach = margin_m.max(0.0) + SLACK_M;
+        let (low, high) = (
+            Coord {
+                x: a.x.min(b.x) - reach,
+                y: a.y.min(b.y) - reach,
+            },
+            Coord {
+                x: a.x.max(b.x) + reach,
+                y: a.y.max(b.y) + reach,
+            },
+        );
+        let at = |t: f64| Coord {
+            x: a.x + t * (b.x - a.x),
+            y: a.y + t * (b.y - a.y),
+        };
+        for (ring, points) in self.obstacles.iter().zip(&self.obstacle_rings) {
+            let (ring_low, ring_high) = crate::geometry::bounds(points);
+            if ring_high.x < low.x
+                || ring_low.x > high.x
+                || ring_high.y < low.y
+                || ring_low.y > high.y
+            {
+                continue;
+            }
+            let mut places = vec![0.0, 1.0];
+            for edge in points.windows(2) {
+                places.push(crate::geometry::nearest_fraction_on_segment(edge[0], a, b));
+                if let Some(t) = crossing(a, b, edge[0], edge[1]) {
+                    places.push(t);
+                }
+            }
+            places.sort_by(f64::total_cmp);
+            let middles: Vec<f64> = places
+                .windows(2)
+                .map(|pair| (pair[0] + pair[1]) / 2.0)
+                .collect();
+            if let Some(p) = places
+                .into_iter()
+                .chain(middles)
+                .map(at)
+                .find(|&p| enters(ring, p, margin_m))
+            {
+                return Some((p, what));
+            }
+        }
+        None
+    }
+
     /// Whether `p` is over a field (its boundary included), not over a hole or an obstacle.
     pub fn over_field(&self, p: Coord<f64>) -> bool {
         self.field_cells.near(p).iter().any(|&k| {
@@ -216,6 +317,53 @@ mod tests {
 
     fn ring(corners: &[(f64, f64)]) -> LineString<f64> {
         LineString::from(corners.to_vec())
+    }
+
+    /// The review of decision 0037: a pole thinner than the 1 m sampling step, crossed by a
+    /// transit at any offset, is met; a leg that passes it is not.
+    #[test]
+    fn a_leg_is_tested_against_a_thin_poles_edges() {
+        let field = Polygon::new(
+            ring(&[(0.0, 0.0), (100.0, 0.0), (100.0, 100.0), (0.0, 100.0)]),
+            vec![],
+        );
+        let mut farm = Farm::local("pole.geojson", vec![Field::new("A", field)]);
+        let step = std::f64::consts::TAU / 16.0;
+        let corner = 0.25 / (step / 2.0).cos();
+        let pole: Vec<(f64, f64)> = (0..16)
+            .map(|k| {
+                let angle = step * k as f64;
+                (50.0 + corner * angle.cos(), 50.0 + corner * angle.sin())
+            })
+            .collect();
+        farm.obstacles.push(crate::model::Obstacle {
+            name: "pole".into(),
+            polygon: Polygon::new(ring(&pole), vec![]),
+        });
+        let zones = Zones::new(&farm, 1.0);
+        let leg = |offset: f64| {
+            [
+                Coord {
+                    x: 40.3,
+                    y: 50.0 + offset,
+                },
+                Coord {
+                    x: 59.7,
+                    y: 50.0 + offset,
+                },
+            ]
+        };
+        for offset in [0.0, 0.1, 0.2, 0.23] {
+            let (_, what) = zones.leg_through_obstacle(leg(offset), false).expect("met");
+            assert_eq!(what, "flying through an obstacle");
+        }
+        assert!(zones.leg_through_obstacle(leg(0.3), false).is_none());
+        // Spraying, the pole is grown by the 1 m margin.
+        assert!(zones.leg_through_obstacle(leg(1.2), true).is_some());
+        assert!(zones.leg_through_obstacle(leg(1.3), true).is_none());
+        // A leg that ends before the pole.
+        let short = [Coord { x: 40.0, y: 50.0 }, Coord { x: 49.7, y: 50.0 }];
+        assert!(zones.leg_through_obstacle(short, false).is_none());
     }
 
     /// Trial 9: a field drawn inside another's hole is sprayed to its edge, and the written

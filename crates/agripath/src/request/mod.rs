@@ -238,20 +238,9 @@ pub fn validate(inputs: &ScenarioInputs, json: bool) -> Result<String, InputErro
     let mut summary = crate::summary::ScenarioSummary::of(&scenario);
     // `plan` refuses two launch markers unless --start or --supply chooses (trial 9: validate
     // said `valid` with no word of it).
-    let launches: Vec<&str> = scenario
-        .farm
-        .markers
-        .iter()
-        .filter(|marker| marker.is_launch())
-        .map(|marker| marker.name.as_str())
-        .collect();
-    if launches.len() > 1 {
-        summary.notes.push(format!(
-            "{} launch points ('{}'): plan needs --start X,Y or --supply auto|X,Y to choose where the drone starts",
-            launches.len(),
-            launches.join("', '")
-        ));
-    }
+    summary
+        .notes
+        .extend(crate::pipeline::several_launch_points(&scenario.farm));
     Ok(if json {
         serde_json::to_string_pretty(&summary).expect("a summary serialises") + "\n"
     } else {

@@ -134,10 +134,10 @@ pub struct PlanOptions {
         arg(long, value_parser = ["relative", "sea-level", "terrain"])
     )]
     pub altitude: Option<String>,
-    /// Sprayer switching: `do-sprayer` (MAV_CMD_DO_SPRAYER) or `servo:CHANNEL:ON_PWM:OFF_PWM`
-    /// (MAV_CMD_DO_SET_SERVO).
-    #[cfg_attr(feature = "cli", arg(long, default_value = "do-sprayer"))]
-    pub sprayer: String,
+    /// Sprayer switching: `do-sprayer` (MAV_CMD_DO_SPRAYER, the default) or
+    /// `servo:CHANNEL:ON_PWM:OFF_PWM` (MAV_CMD_DO_SET_SERVO); refused for a survey vehicle.
+    #[cfg_attr(feature = "cli", arg(long))]
+    pub sprayer: Option<String>,
     /// Terrain following: the largest gap, metres, between the flown altitude and terrain +
     /// spray height along a swath before another waypoint is added.
     #[cfg_attr(
@@ -180,7 +180,7 @@ impl Default for PlanOptions {
             ants: 50,
             sorties: "joint".into(),
             altitude: None,
-            sprayer: "do-sprayer".into(),
+            sprayer: None,
             terrain_tolerance_m: 1.0,
             origin: None,
         }
@@ -203,10 +203,10 @@ impl PlanOptions {
                 "--origin is not used: the fields are in lon/lat, and the mission files place them where they lie".into(),
             );
         }
-        if scenario.vehicle.camera.is_some() && self.sprayer != "do-sprayer" {
+        if let (Some(_), Some(sprayer)) = (&scenario.vehicle.camera, &self.sprayer) {
             return Err(bad_value(
                 "--sprayer",
-                &self.sprayer,
+                sprayer,
                 format!(
                     "vehicle '{}' is a survey vehicle (it has a [camera]): it has no sprayer to switch",
                     scenario.vehicle.name
@@ -381,10 +381,12 @@ impl PlanOptions {
     fn mission_settings(&self) -> Result<MissionSettings, InputError> {
         let invalid = |what: &str, value: String, why: &str| bad_value(what, value, why);
         let mut settings = MissionSettings {
-            sprayer: self
-                .sprayer
-                .parse::<SprayerCommand>()
-                .map_err(|why| invalid("--sprayer", self.sprayer.clone(), &why))?,
+            sprayer: {
+                let sprayer = self.sprayer.as_deref().unwrap_or("do-sprayer");
+                sprayer
+                    .parse::<SprayerCommand>()
+                    .map_err(|why| invalid("--sprayer", sprayer.to_string(), &why))?
+            },
             ..MissionSettings::default()
         };
         if !(self.terrain_tolerance_m.is_finite() && self.terrain_tolerance_m > 0.0) {

@@ -30,7 +30,10 @@ pub fn read(path: &Path) -> Result<Grid, InputError> {
         let code = super::prj::epsg_of(&wkt).map_err(|why| {
             InputError::new(
                 &prj,
-                Fault::Structure(format!("the grid's coordinate system is {why}")),
+                Fault::Structure(format!(
+                    "the coordinate system of the grid {} is {why}",
+                    path.display()
+                )),
             )
         })?;
         grid.epsg = Some(code);
@@ -200,7 +203,7 @@ mod tests {
         .unwrap();
         assert_eq!(read(&grid).unwrap().epsg, None);
         let prj = folder.join("dem.prj");
-        std::fs::write(&prj, r#"PROJCS["WGS_1984_UTM_Zone_31N",GEOGCS["GCS_WGS_1984",DATUM["D_WGS_1984",SPHEROID["WGS_1984",6378137.0,298.257223563]]],PROJECTION["Transverse_Mercator"],UNIT["Meter",1.0]]"#).unwrap();
+        std::fs::write(&prj, r#"PROJCS["WGS_1984_UTM_Zone_31N",GEOGCS["GCS_WGS_1984",DATUM["D_WGS_1984",SPHEROID["WGS_1984",6378137.0,298.257223563]],PRIMEM["Greenwich",0.0],UNIT["Degree",0.0174532925199433]],PROJECTION["Transverse_Mercator"],PARAMETER["False_Easting",500000.0],PARAMETER["False_Northing",0.0],PARAMETER["Central_Meridian",3.0],PARAMETER["Scale_Factor",0.9996],PARAMETER["Latitude_Of_Origin",0.0],UNIT["Meter",1.0]]"#).unwrap();
         let placed = read(&grid).unwrap();
         assert_eq!(placed.epsg, Some(32631));
         assert!(

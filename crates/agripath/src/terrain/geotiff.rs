@@ -4,14 +4,15 @@
 //! Georeferencing from the GeoTIFF tags: ModelPixelScale + ModelTiepoint, or a
 //! ModelTransformation without rotation (rotated or sheared rasters are refused); GeoKeys
 //! 1025 (PixelIsArea/PixelIsPoint), 3072 (projected EPSG) and 2048 (geographic EPSG);
-//! GDAL_NODATA (tag 42113) marks cells without data; a GDAL internal mask (an image of
-//! NewSubfileType 4 the size of the DEM) is refused, since the crate cannot decode it.
+//! GDAL_NODATA (tag 42113) marks cells without data; a GDAL mask (an image of NewSubfileType 4
+//! the size of the DEM, or a `DEM.tif.msk` beside it) is refused, since the crate cannot decode
+//! it.
 //!
 //! Heights are read in metres as GDAL reads them (decision 0037): the band's scale and offset
-//! from GDAL_METADATA (tag 42112: height = stored × scale + offset, no data compared before
-//! that), then the vertical unit to metres: VerticalUnitsGeoKey (4099), else GDAL's UNITTYPE,
-//! else a vertical CRS (VerticalCSTypeGeoKey 4096) of [`FEET_VERTICAL_CRS`] or
-//! [`US_FEET_VERTICAL_CRS`]. A unit it does not know is refused, never read as metres.
+//! (height = stored × scale + offset, no data compared with the stored value), then the
+//! vertical unit to metres ([`super::gdal_metadata`]), from the file and from the
+//! `DEM.tif.aux.xml` GDAL writes beside it. A `DEM.tif.msk` mask beside it is refused like an
+//! internal one.
 
 use std::io::Cursor;
 use std::path::Path;
@@ -20,6 +21,7 @@ use tiff::decoder::{Decoder, DecodingResult, Limits};
 use tiff::tags::Tag;
 use tiff::ColorType;
 
+use super::gdal_metadata::{vertical_unit, BandMetadata};
 use super::Grid;
 use crate::error::{Fault, InputError};
 use crate::files::read_bytes;
@@ -40,16 +42,6 @@ const USER_DEFINED: u16 = 32767;
 const GDAL_METADATA: u16 = 42112;
 /// NewSubfileType's bit of a transparency mask.
 const SUBFILE_MASK: u32 = 4;
-/// The international foot, metres.
-const FOOT_M: f64 = 0.3048;
-/// The US survey foot, metres.
-const US_FOOT_M: f64 = 1200.0 / 3937.0;
-/// EPSG vertical CRSs whose heights are in international feet: NAVD88 height (ft), MSL height
-/// (ft), GCVD54, LCVD61 and CBVD61 heights (ft).
-pub const FEET_VERTICAL_CRS: [u16; 5] = [8228, 8050, 6130, 6131, 6132];
-/// EPSG vertical CRSs whose heights are in US survey feet: NGVD29 height (ftUS), NAVD88
-/// height (ftUS), MSL height (ftUS).
-pub const US_FEET_VERTICAL_CRS: [u16; 3] = [5702, 6360, 8052];
 
 /// Reads a GeoTIFF DEM.
 pub fn read(path: &Path) -> Result<Grid, InputError> {
@@ -59,12 +51,38 @@ pub fn read(path: &Path) -> Result<Grid, InputError> {
         &[b"II*\0", b"MM\0*", b"II+\0", b"MM\0+"],
         "a readable GeoTIFF",
     )?;
+    let beside = |suffix: &str| {
+        let mut name = path.as_os_str().to_owned();
+        name.push(suffix);
+        std::path::PathBuf::from(name)
+    };
+    if [".msk", ".MSK"]
+        .iter()
+        .any(|suffix| beside(suffix).is_file())
+    {
+        return Err(InputError::new(path, Fault::Tiff(MASK_REFUSED.into())));
+    }
+    let pam = beside(".aux.xml");
+    let sidecar = if pam.is_file() {
+        BandMetadata::of_pam(&crate::files::read_text(&pam)?)
+    } else {
+        BandMetadata::default()
+    };
     let bytes = read_bytes(path)?;
-    decode(&bytes).map_err(|fault| InputError::new(path, fault))
+    decode_with(&bytes, sidecar).map_err(|fault| InputError::new(path, fault))
 }
+
+/// Why a DEM with a GDAL mask (inside the file or beside it) is refused.
+const MASK_REFUSED: &str = "it carries a GDAL mask of no-data cells, which agripath does not read (read without it, those cells would be taken for ground): write them as a no-data value instead (gdalwarp -dstnodata -9999 IN.tif OUT.tif)";
 
 /// Decodes GeoTIFF bytes into a grid.
 pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
+    decode_with(bytes, BandMetadata::default())
+}
+
+/// Decodes GeoTIFF bytes into a grid, with `sidecar` (a PAM `.aux.xml`'s band 1) over the
+/// file's own metadata.
+fn decode_with(bytes: &[u8], sidecar: BandMetadata) -> Result<Grid, Fault> {
     let tiff_fault = |error: tiff::TiffError| Fault::Tiff(in_words(&error));
     let mut decoder = Decoder::new(Cursor::new(bytes)).map_err(tiff_fault)?;
     let (columns, rows) = decoder.dimensions().map_err(tiff_fault)?;
@@ -131,7 +149,7 @@ pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
         )));
     }
 
-    let nodata: Option<f64> = decoder
+    let file_nodata: Option<f64> = decoder
         .find_tag(Tag::GdalNodata)
         .map_err(tiff_fault)?
         .and_then(|value| value.into_string().ok())
@@ -141,8 +159,10 @@ pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
         .find_tag(Tag::Unknown(GDAL_METADATA))
         .map_err(tiff_fault)?
         .and_then(|value| value.into_string().ok())
-        .map(|text| band_metadata(&text))
-        .unwrap_or_default();
+        .map(|text| BandMetadata::of_tiff_tag(&text))
+        .unwrap_or_default()
+        .overlaid(sidecar);
+    let nodata = metadata.nodata.or(file_nodata);
     let unit = vertical_unit(key(VERTICAL_UNITS), key(VERTICAL_CS_TYPE), &metadata)?;
     let (scale, offset) = (
         metadata.scale.unwrap_or(1.0),
@@ -174,8 +194,16 @@ pub fn decode(bytes: &[u8]) -> Result<Grid, Fault> {
     let to_metres = unit.map_or(1.0, |(_, metres)| metres);
     let rescaled = scale != 1.0 || offset != 0.0 || to_metres != 1.0;
     for height in &mut heights {
-        if rescaled {
-            *height = ((f64::from(*height) * scale + offset) * to_metres) as f32;
+        if rescaled && height.is_finite() {
+            let stored = *height;
+            *height = ((f64::from(stored) * scale + offset) * to_metres) as f32;
+            // A finite stored value that scales past f32 is not no data: the range check
+            // after reading refuses it, as it does a huge value stored as it is.
+            if !height.is_finite() {
+                return Err(Fault::Tiff(format!(
+                    "a stored value {stored} × {scale} + {offset} is not a height (an undeclared no-data value?)"
+                )));
+            }
         }
         if !height.is_finite() {
             *height = f32::NAN;
@@ -245,79 +273,6 @@ fn heights_note(scale: f64, offset: f64, unit: Option<(&str, f64)>) -> String {
     note
 }
 
-/// The band-0 items of GDAL_METADATA that change what a stored value means.
-#[derive(Debug, Default, PartialEq)]
-struct BandMetadata {
-    scale: Option<f64>,
-    offset: Option<f64>,
-    unit_type: Option<String>,
-}
-
-/// Reads `<Item name=".." sample="0" role="scale|offset|unittype">value</Item>` (GDAL's form;
-/// items of other bands, and dataset items, are not the height band's).
-fn band_metadata(xml: &str) -> BandMetadata {
-    let attribute = |tag: &str, name: &str| {
-        let start = tag.find(&format!("{name}=\""))? + name.len() + 2;
-        let length = tag[start..].find('"')?;
-        Some(tag[start..start + length].to_string())
-    };
-    let mut metadata = BandMetadata::default();
-    for item in xml.split("<Item").skip(1) {
-        let Some(close) = item.find('>') else {
-            continue;
-        };
-        let (tag, rest) = (&item[..close], &item[close + 1..]);
-        let value = rest.split("</Item>").next().unwrap_or("").trim();
-        if attribute(tag, "sample").as_deref() != Some("0") {
-            continue;
-        }
-        let role = attribute(tag, "role").or_else(|| attribute(tag, "name"));
-        match role.map(|role| role.to_ascii_lowercase()).as_deref() {
-            Some("scale") => metadata.scale = value.parse().ok().or(Some(f64::NAN)),
-            Some("offset") => metadata.offset = value.parse().ok().or(Some(f64::NAN)),
-            Some("unittype") if !value.is_empty() => metadata.unit_type = Some(value.to_string()),
-            _ => {}
-        }
-    }
-    metadata
-}
-
-/// The heights' unit and its length in metres, from the GeoKeys or GDAL's UNITTYPE; `None`
-/// when nothing says (metres). A unit it does not know is refused.
-fn vertical_unit(
-    units_key: Option<u16>,
-    vertical_crs: Option<u16>,
-    metadata: &BandMetadata,
-) -> Result<Option<(&'static str, f64)>, Fault> {
-    if let Some(code) = units_key.filter(|&code| code != USER_DEFINED && code != 0) {
-        return match code {
-            9001 => Ok(Some(("metres", 1.0))),
-            9002 => Ok(Some(("feet", FOOT_M))),
-            9003 => Ok(Some(("US survey feet", US_FOOT_M))),
-            other => Err(Fault::Tiff(format!(
-                "the heights' unit is EPSG unit {other} (VerticalUnitsGeoKey), which agripath does not convert: write the DEM in metres (gdal_translate -scale or gdalwarp -t_srs with a metre vertical CRS)"
-            ))),
-        };
-    }
-    if let Some(unit) = &metadata.unit_type {
-        return match unit.trim().to_ascii_lowercase().as_str() {
-            "m" | "metre" | "meter" | "metres" | "meters" => Ok(Some(("metres", 1.0))),
-            "ft" | "foot" | "feet" | "international foot" => Ok(Some(("feet", FOOT_M))),
-            "us-ft" | "ftus" | "us survey foot" | "us_survey_foot" | "foot_us" => {
-                Ok(Some(("US survey feet", US_FOOT_M)))
-            }
-            other => Err(Fault::Tiff(format!(
-                "the heights' unit is '{other}' (GDAL UNITTYPE), which agripath does not convert: write the DEM in metres"
-            ))),
-        };
-    }
-    Ok(match vertical_crs {
-        Some(code) if FEET_VERTICAL_CRS.contains(&code) => Some(("feet", FOOT_M)),
-        Some(code) if US_FEET_VERTICAL_CRS.contains(&code) => Some(("US survey feet", US_FOOT_M)),
-        _ => None,
-    })
-}
-
 /// Refuses a GDAL internal mask (NewSubfileType 4, the DEM's size): its 0 cells are no data,
 /// but the `tiff` crate does not decode transparency masks, and read without it they would
 /// be taken for ground. Overviews and other images are passed over.
@@ -326,7 +281,8 @@ fn refuse_internal_mask(
     columns: u32,
     rows: u32,
 ) -> Result<(), Fault> {
-    let tiff_fault = |error: tiff::TiffError| Fault::Tiff(format!("its images: {error}"));
+    let tiff_fault =
+        |error: tiff::TiffError| Fault::Tiff(format!("its images: {}", in_words(&error)));
     while decoder.more_images() {
         decoder.next_image().map_err(tiff_fault)?;
         let subfile = decoder
@@ -337,9 +293,7 @@ fn refuse_internal_mask(
         if subfile & SUBFILE_MASK != 0
             && decoder.dimensions().map_err(tiff_fault)? == (columns, rows)
         {
-            return Err(Fault::Tiff(
-                "it carries a GDAL internal mask of no-data cells, which agripath does not read (read without it, those cells would be taken for ground): write them as a no-data value instead (gdalwarp -dstnodata -9999 IN.tif OUT.tif)".into(),
-            ));
+            return Err(Fault::Tiff(MASK_REFUSED.into()));
         }
     }
     Ok(())
@@ -560,7 +514,8 @@ mod tests {
                 4_000_000.0 - (row as f64 + 0.5) * 2.0,
             )
         };
-        let cases: [(&str, bool, fn(f64) -> f64); 3] = [
+        type Case = (&'static str, bool, fn(f64) -> f64);
+        let cases: [Case; 3] = [
             ("int16_scale_offset.tif", false, |stored| {
                 stored * 0.1 + 100.0
             }),
@@ -593,8 +548,46 @@ mod tests {
         let masked = read(&fixture("float32_internal_mask.tif"))
             .unwrap_err()
             .to_string();
-        assert!(masked.contains("internal mask"), "{masked}");
+        assert!(masked.contains("GDAL mask"), "{masked}");
         assert!(masked.contains("gdalwarp -dstnodata"), "{masked}");
+    }
+
+    /// What GDAL reads beside the file: a PAM `.aux.xml` (its scale and offset win over the
+    /// file's), a `.msk` mask (refused); a scale that overflows a height is refused.
+    #[test]
+    fn sidecars_beside_the_file_are_read_as_gdal_reads_them() {
+        let folder = std::env::temp_dir().join(format!("agripath-sidecar-{}", std::process::id()));
+        std::fs::create_dir_all(&folder).unwrap();
+        let copy = |name: &str| {
+            let path = folder.join(name);
+            std::fs::copy(fixture("float32_strips_none.tif"), &path).unwrap();
+            path
+        };
+        let pam = copy("pam.tif");
+        std::fs::write(
+            folder.join("pam.tif.aux.xml"),
+            r#"<PAMDataset><PAMRasterBand band="1"><Offset>150</Offset><UnitType>ft</UnitType></PAMRasterBand></PAMDataset>"#,
+        )
+        .unwrap();
+        let grid = read(&pam).unwrap();
+        let height = grid.height_m(500_001.0, 3_999_999.0).unwrap();
+        assert!(
+            (height - (expected(0, 0, true) + 150.0) * 0.3048).abs() < 1e-4,
+            "{height}"
+        );
+        let masked = copy("masked.tif");
+        std::fs::write(folder.join("masked.tif.msk"), b"II*\0").unwrap();
+        let refused = read(&masked).unwrap_err().to_string();
+        assert!(refused.contains("GDAL mask"), "{refused}");
+        let huge = copy("huge.tif");
+        std::fs::write(
+            folder.join("huge.tif.aux.xml"),
+            r#"<PAMDataset><PAMRasterBand band="1"><Scale>1e37</Scale></PAMRasterBand></PAMDataset>"#,
+        )
+        .unwrap();
+        let refused = read(&huge).unwrap_err().to_string();
+        assert!(refused.contains("is not a height"), "{refused}");
+        std::fs::remove_dir_all(&folder).unwrap();
     }
 
     /// A 1 × 1 raster stored in a 16 × 16 tile (the decoder's buffer is the tile's, not the
@@ -621,39 +614,6 @@ mod tests {
             "{lerc}"
         );
         assert!(unsupported(CompressionMethod::Unknown(4242)).contains("(number 4242)"));
-    }
-
-    #[test]
-    fn gdal_metadata_items_of_the_first_band_only() {
-        let xml = r#"<GDALMetadata>
-  <Item name="STATISTICS_MEAN" sample="0">12</Item>
-  <Item name="OFFSET" sample="1" role="offset">7</Item>
-  <Item name="OFFSET" sample="0" role="offset">150</Item>
-  <Item name="SCALE" sample="0" role="scale">0.10000000000000001</Item>
-  <Item name="UNITTYPE" sample="0" role="unittype">ft</Item>
-</GDALMetadata>"#;
-        let metadata = band_metadata(xml);
-        assert_eq!(metadata.offset, Some(150.0));
-        assert_eq!(metadata.scale, Some(0.1));
-        assert_eq!(metadata.unit_type.as_deref(), Some("ft"));
-        assert_eq!(
-            vertical_unit(None, None, &metadata).unwrap(),
-            Some(("feet", FOOT_M))
-        );
-        // The GeoKey wins over GDAL's unit type; a vertical CRS says feet only when nothing else does.
-        assert_eq!(
-            vertical_unit(Some(9001), None, &metadata).unwrap(),
-            Some(("metres", 1.0))
-        );
-        assert_eq!(
-            vertical_unit(None, Some(6360), &BandMetadata::default()).unwrap(),
-            Some(("US survey feet", US_FOOT_M))
-        );
-        assert_eq!(
-            vertical_unit(None, Some(5703), &BandMetadata::default()).unwrap(),
-            None
-        );
-        assert!(vertical_unit(Some(9036), None, &metadata).is_err());
     }
 
     /// The SPSO DEM is uncompressed float32 strips: its stored values can be read straight

@@ -8,6 +8,7 @@ pub mod ascii_grid;
 pub mod composite;
 pub mod flat;
 pub mod frame;
+pub mod gdal_metadata;
 pub mod geotiff;
 pub mod grid;
 pub mod hillshade;

@@ -605,7 +605,8 @@ fn validate_notes_two_launch_points() {
         fields.to_str().unwrap(),
     ]));
     assert!(
-        printed.contains("note: 2 launch points ('Gate', 'Yard'): plan needs --start"),
+        printed
+            .contains("note: 2 launch points ('Gate', 'Yard'): keep one, or choose with --start"),
         "{printed}"
     );
     let _ = std::fs::remove_dir_all(&folder);
