@@ -40,7 +40,7 @@ fn dem_coordinates(epsg: u32) -> Option<DemCoordinates> {
 }
 
 /// Whether a DEM in EPSG `epsg` can be placed under the fields (its coordinates are UTM or
-/// lon/lat on a datum [`dem_coordinates`] reads).
+/// lon/lat on a datum `dem_coordinates` reads).
 pub fn placeable(epsg: u32) -> bool {
     dem_coordinates(epsg).is_some()
 }
