@@ -50,6 +50,16 @@ impl IndexedRing {
         }
     }
 
+    /// The ring's points, closed (first = last).
+    pub fn points(&self) -> &[Coord<f64>] {
+        &self.points
+    }
+
+    /// The ring's bounding box: its lowest and highest corners.
+    pub fn bounds(&self) -> (Coord<f64>, Coord<f64>) {
+        (self.low, self.high)
+    }
+
     fn band(&self, y: f64) -> usize {
         (((y - self.low.y) / self.band_m).floor().max(0.0) as usize).min(self.bands.len() - 1)
     }

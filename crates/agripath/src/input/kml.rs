@@ -232,33 +232,20 @@ fn read_features(text: &str) -> Result<(Vec<RawFeature>, Vec<String>), Located> 
                             ));
                         }
                     }
-                    "value" | "SimpleData"
-                        if matches!(
-                            data_name.as_deref().map(str::to_ascii_lowercase).as_deref(),
-                            Some("kind") | Some("type")
-                        ) =>
-                    {
-                        if let Some(state) = placemark.as_mut() {
-                            state.kind = Some(content.trim().to_ascii_lowercase());
-                        }
-                    }
-                    "value" | "SimpleData"
-                        if data_name.as_deref().map(str::to_ascii_lowercase).as_deref()
-                            == Some("name") =>
-                    {
-                        if let Some(state) = placemark.as_mut() {
+                    // ExtendedData: the kind (or `type`), a name, an obstacle point's radius,
+                    // under Data names of any case.
+                    "value" | "SimpleData" => {
+                        let key = data_name.as_deref().map(str::to_ascii_lowercase);
+                        if let (Some(state), Some(key)) = (placemark.as_mut(), key) {
                             let text = content.trim();
-                            if !text.is_empty() {
-                                state.data_name.get_or_insert_with(|| text.to_string());
+                            match key.as_str() {
+                                "kind" | "type" => state.kind = Some(text.to_ascii_lowercase()),
+                                "name" if !text.is_empty() => {
+                                    state.data_name.get_or_insert_with(|| text.to_string());
+                                }
+                                "radius_m" => state.radius_m = Some(text.to_string()),
+                                _ => {}
                             }
-                        }
-                    }
-                    "value" | "SimpleData"
-                        if data_name.as_deref().map(str::to_ascii_lowercase).as_deref()
-                            == Some("radius_m") =>
-                    {
-                        if let Some(state) = placemark.as_mut() {
-                            state.radius_m = Some(content.trim().to_string());
                         }
                     }
                     "coordinates" => {

@@ -122,8 +122,6 @@ fn crossing(a: Coord<f64>, b: Coord<f64>, p: Coord<f64>, q: Coord<f64>) -> Optio
 pub struct Zones {
     fields: Vec<FieldRings>,
     obstacles: Vec<IndexedRing>,
-    /// The obstacles' rings as given, for the exact test of a leg.
-    obstacle_rings: Vec<Vec<Coord<f64>>>,
     field_cells: Cells,
     obstacle_cells: Cells,
     obstacle_margin_m: f64,
@@ -160,11 +158,6 @@ impl Zones {
                 .obstacles
                 .iter()
                 .map(|obstacle| IndexedRing::new(&obstacle.polygon.exterior().0))
-                .collect(),
-            obstacle_rings: farm
-                .obstacles
-                .iter()
-                .map(|obstacle| obstacle.polygon.exterior().0.clone())
                 .collect(),
             field_cells: Cells::new(&field_boxes, reach),
             obstacle_cells: Cells::new(&obstacle_boxes, reach),
@@ -213,6 +206,7 @@ impl Zones {
     /// of its ends, a crossing of an edge, or the foot of a corner on it, and a stretch inside
     /// one lies between two crossings, so those places and the middles between them are all
     /// that need asking.
+    ///
     /// Also says what the leg does there, for the failure line.
     pub fn leg_through_obstacle(
         &self,
@@ -245,8 +239,8 @@ impl Zones {
             x: a.x + t * (b.x - a.x),
             y: a.y + t * (b.y - a.y),
         };
-        for (ring, points) in self.obstacles.iter().zip(&self.obstacle_rings) {
-            let (ring_low, ring_high) = crate::geometry::bounds(points);
+        for ring in &self.obstacles {
+            let (ring_low, ring_high) = ring.bounds();
             if ring_high.x < low.x
                 || ring_low.x > high.x
                 || ring_high.y < low.y
@@ -255,7 +249,7 @@ impl Zones {
                 continue;
             }
             let mut places = vec![0.0, 1.0];
-            for edge in points.windows(2) {
+            for edge in ring.points().windows(2) {
                 places.push(crate::geometry::nearest_fraction_on_segment(edge[0], a, b));
                 if let Some(t) = crossing(a, b, edge[0], edge[1]) {
                     places.push(t);
