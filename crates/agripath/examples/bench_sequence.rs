@@ -4,10 +4,12 @@
 //! (`agripath::bench::farms::irregular_farm`); and `best` on random farms up to 5,000
 //! swaths, on the machine's cores (`RAYON_NUM_THREADS=1` for one). With `--export DIR` it
 //! also writes each open/closed instance (the full cost matrix between pass ends) and our
-//! costs as JSON, for `benches/ordering_vs_lkh.py`, which runs this and prints ours / LKH. `--lkh-only` skips the first and last parts. Run:
+//! costs as JSON, for `benches/ordering_vs_lkh.py`, which runs this and prints ours / LKH.
+//! `--lkh-only` skips the first and last parts; `--open-only` also skips the closed tours
+//! (and writes nothing). Run:
 //!
 //! ```sh
-//! cargo run --release -p agripath --example bench_sequence [-- --export DIR] [--lkh-only] [--kicks N] [--seed N] [--restarts N]
+//! cargo run --release -p agripath --example bench_sequence [-- --export DIR] [--lkh-only] [--open-only] [--kicks N] [--seed N] [--restarts N]
 //! ```
 //!
 //! `--kicks N` and `--seed N` run `best` with N kicks or seed N instead of the defaults (to
@@ -209,6 +211,15 @@ fn measure(plan: &CoveragePlan, model: &TransferModel, start: Start) -> Measured
 /// `best`'s open path and closed tour on `plan`, printed and exported.
 fn open_and_closed(name: &str, plan: &CoveragePlan, model: &TransferModel, folder: Option<&str>) {
     let open = measure(plan, model, Start::Open);
+    if std::env::args().any(|arg| arg == "--open-only") {
+        println!(
+            "  {name:<14} {:>5} passes: open {:>9.1} m {:>7.1} ms",
+            passes_of(plan).len(),
+            open.0,
+            open.1
+        );
+        return;
+    }
     let closed = measure(plan, model, Start::Closed);
     println!(
         "  {name:<14} {:>5} passes: open {:>9.1} m {:>7.1} ms   closed {:>9.1} m {:>7.1} ms",
