@@ -345,6 +345,7 @@ impl<'g> IteratedLocalSearch<'g> {
             three_opt: false,
             queue: Vec::new(),
             queued: Vec::new(),
+            gaps_costed: moves::GapMarks::for_passes(problem.passes()),
         }
     }
 

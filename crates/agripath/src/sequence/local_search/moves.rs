@@ -1,6 +1,8 @@
 //! Step 2 of `best`: local search to a local optimum of 2-opt with end flips and Or-opt on
 //! oriented passes, driven by lists of the K nearest pass ends (see the parent module).
 
+use std::cell::Cell;
+
 use super::super::tour::{End, OrderingProblem, Step};
 
 /// Marker for the start point in edge costs.
@@ -26,6 +28,48 @@ pub(super) struct Search<'a, 'b> {
     /// descents so that a kick allocates nothing).
     pub(super) queue: Vec<usize>,
     pub(super) queued: Vec<bool>,
+    /// The gaps one [`Self::best_insertion`] has costed already.
+    pub(super) gaps_costed: GapMarks,
+}
+
+/// Marks on the gaps of a tour (0..=n) for one call at a time: the near ends of a chain's two
+/// ends name many gaps twice (a neighbour at q gives gaps q and q + 1, and so does one at
+/// q + 1 for gap q + 1), and a gap costed once is enough (an equal gain never replaces
+/// the first, so the moves are the same). Cells: the move is chosen through `&self`.
+#[derive(Debug, Default)]
+pub(super) struct GapMarks {
+    call: Cell<u32>,
+    marks: Vec<Cell<u32>>,
+}
+
+impl GapMarks {
+    /// Marks for the gaps of a tour of `passes` passes.
+    pub(super) fn for_passes(passes: usize) -> Self {
+        Self {
+            call: Cell::new(0),
+            marks: (0..=passes).map(|_| Cell::new(0)).collect(),
+        }
+    }
+
+    /// Starts a call: no gap is marked.
+    fn clear(&self) {
+        let call = self.call.get().wrapping_add(1);
+        if call == 0 {
+            self.marks.iter().for_each(|mark| mark.set(0));
+            self.call.set(1);
+        } else {
+            self.call.set(call);
+        }
+    }
+
+    /// Marks gap `gap`; whether it was unmarked in this call.
+    fn first_time(&self, gap: usize) -> bool {
+        let call = self.call.get();
+        let mark = &self.marks[gap];
+        let first = mark.get() != call;
+        mark.set(call);
+        first
+    }
 }
 
 impl Search<'_, '_> {
@@ -243,9 +287,10 @@ impl Search<'_, '_> {
         let removed = self.edge(before, Some(entry)) + self.edge(Some(exit), after)
             - self.edge(before, after);
         let mut best: Option<(f64, usize, bool)> = None;
+        self.gaps_costed.clear();
         let mut consider = |k: usize, this: &Self| {
             // Insert before position k (k == n: at the end). Positions i..=j+1 change nothing.
-            if (i..=j + 1).contains(&k) {
+            if (i..=j + 1).contains(&k) || !this.gaps_costed.first_time(k) {
                 return;
             }
             let left = if k == 0 {
@@ -525,6 +570,7 @@ mod tests {
                 three_opt: true,
                 queue: Vec::new(),
                 queued: Vec::new(),
+                gaps_costed: GapMarks::for_passes(40),
             };
             search.reindex();
             let consistent = |search: &Search| {

@@ -307,6 +307,7 @@ mod tests {
             three_opt,
             queue: Vec::new(),
             queued: Vec::new(),
+            gaps_costed: crate::sequence::local_search::moves::GapMarks::for_passes(n),
         };
         search.reindex();
         search
