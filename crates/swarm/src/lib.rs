@@ -37,6 +37,7 @@ pub mod random;
 pub mod readings;
 pub mod runner;
 pub mod statistics;
+pub mod termination;
 
 pub use algorithms::Algorithm;
 pub use problem::{as_solution, Bounds, BoundsError, BoxProblem, FnProblem, Problem, SolutionOf};

@@ -15,85 +15,10 @@
 use std::time::{Duration, Instant};
 
 use rayon::prelude::*;
-use thiserror::Error;
 
 use crate::problem::{as_solution, BoxProblem, Problem, SolutionOf};
 use crate::random::{self, RunStream};
-
-/// When a run stops: at whichever configured limit comes first. At least one budget
-/// (iterations, evaluations or time) is required; a target alone might never be reached.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct Termination {
-    /// Stop after this many steps (iterations, generations).
-    pub max_iterations: Option<usize>,
-    /// Stop once this many costs have been computed.
-    pub max_evaluations: Option<u64>,
-    /// Stop as soon as the best cost is at or below this value.
-    pub target_cost: Option<f64>,
-    /// Wall-clock limit. Results then depend on the machine: not reproducible from the seed.
-    pub time_limit: Option<Duration>,
-}
-
-/// Why a termination was refused.
-#[derive(Debug, Error, PartialEq)]
-pub enum TerminationError {
-    /// No iteration, evaluation or time limit is set.
-    #[error("a run needs a budget: iterations, evaluations or a time limit")]
-    NoBudget,
-    /// A budget of zero.
-    #[error("a budget of zero iterations or evaluations runs nothing")]
-    ZeroBudget,
-}
-
-impl Termination {
-    /// Stop after `iterations` steps.
-    pub fn iterations(iterations: usize) -> Self {
-        Self {
-            max_iterations: Some(iterations),
-            ..Self::default()
-        }
-    }
-
-    /// Stop once `evaluations` costs have been computed.
-    pub fn evaluations(evaluations: u64) -> Self {
-        Self {
-            max_evaluations: Some(evaluations),
-            ..Self::default()
-        }
-    }
-
-    /// Also stop at `evaluations` (whichever limit comes first).
-    pub fn and_evaluations(mut self, evaluations: u64) -> Self {
-        self.max_evaluations = Some(evaluations);
-        self
-    }
-
-    /// Also stop when the best cost reaches `target`.
-    pub fn and_target(mut self, target: f64) -> Self {
-        self.target_cost = Some(target);
-        self
-    }
-
-    /// Also stop after `limit` of wall time (results then depend on the machine).
-    pub fn and_time_limit(mut self, limit: Duration) -> Self {
-        self.time_limit = Some(limit);
-        self
-    }
-
-    /// Refuses a termination without a budget, or with a zero budget.
-    pub fn validate(&self) -> Result<(), TerminationError> {
-        if self.max_iterations.is_none()
-            && self.max_evaluations.is_none()
-            && self.time_limit.is_none()
-        {
-            return Err(TerminationError::NoBudget);
-        }
-        if self.max_iterations == Some(0) || self.max_evaluations == Some(0) {
-            return Err(TerminationError::ZeroBudget);
-        }
-        Ok(())
-    }
-}
+pub use crate::termination::{Termination, TerminationError};
 
 /// An optimizer: it sets up its population in `start` and improves it in `step`.
 ///
@@ -172,8 +97,14 @@ impl<'a, P: Problem + ?Sized> Search<'a, P> {
         {
             return f64::INFINITY;
         }
-        self.evaluations += 1;
         let cost = self.problem.evaluate(solution);
+        self.count(solution, cost)
+    }
+
+    /// Counts an evaluation of `solution` that cost `cost` (NaN as `f64::INFINITY`), tells
+    /// the observer and keeps it when strictly cheapest so far.
+    fn count(&mut self, solution: &P::Solution, cost: f64) -> f64 {
+        self.evaluations += 1;
         let cost = if cost.is_nan() { f64::INFINITY } else { cost };
         self.observer.evaluated(solution, cost);
         if cost < self.best_cost {
@@ -181,6 +112,58 @@ impl<'a, P: Problem + ?Sized> Search<'a, P> {
             solution.clone_into(&mut self.best_solution);
         }
         cost
+    }
+
+    /// What `evaluate` on each of `solutions` in turn gives, stopping at the first whose cost
+    /// `accept` takes: that one's index and cost, or `None`. The solutions are costed a batch
+    /// at a time on the machine's cores (rayon's pool, `evaluate` called from several
+    /// threads at once: the problem keeps a cache per thread, or none), then counted in
+    /// order as `evaluate` counts; costs computed past the accepted one are dropped
+    /// uncounted. The run is left where the same calls in series leave it, on any number of
+    /// cores: a first-improvement search spends the cores on the candidates it would
+    /// try next, not on other work.
+    pub fn evaluate_until<S>(
+        &mut self,
+        solutions: &[S],
+        accept: impl Fn(f64) -> bool,
+    ) -> Option<(usize, f64)>
+    where
+        S: std::borrow::Borrow<P::Solution> + Sync,
+        P: Sync,
+    {
+        let width = rayon::current_num_threads().max(1);
+        let mut next = 0;
+        while next < solutions.len() {
+            let left = self.remaining_evaluations().unwrap_or(u64::MAX);
+            let batch = (solutions.len() - next)
+                .min(width)
+                .min(usize::try_from(left).unwrap_or(usize::MAX));
+            if batch == 0 {
+                // The budget is spent: `evaluate` gives infinity from here on, uncounted.
+                return solutions[next..]
+                    .iter()
+                    .position(|_| accept(f64::INFINITY))
+                    .map(|offset| (next + offset, f64::INFINITY));
+            }
+            let problem = self.problem;
+            let costs: Vec<f64> = if batch == 1 {
+                vec![problem.evaluate(solutions[next].borrow())]
+            } else {
+                solutions[next..next + batch]
+                    .par_iter()
+                    .with_max_len(1)
+                    .map(|solution| problem.evaluate(solution.borrow()))
+                    .collect()
+            };
+            for (offset, cost) in costs.into_iter().enumerate() {
+                let cost = self.count(solutions[next + offset].borrow(), cost);
+                if accept(cost) {
+                    return Some((next + offset, cost));
+                }
+            }
+            next += batch;
+        }
+        None
     }
 
     /// A solution drawn uniformly from the problem's space, from the run's stream.

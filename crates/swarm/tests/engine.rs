@@ -233,3 +233,71 @@ fn branches_merge_as_if_run_in_series() {
         assert!(serial.best_cost < problem.evaluate(&problem.first_solution()));
     }
 }
+
+/// First improvement over seven random neighbours per step: in series with `evaluate`, or
+/// through `Search::evaluate_until` (batches on the pool's threads).
+struct FirstImprovement {
+    batched: bool,
+}
+
+impl<'p> swarm::Optimizer<swarm::Continuous<'p>> for FirstImprovement {
+    fn name(&self) -> &'static str {
+        "first improvement (test)"
+    }
+
+    fn start(&mut self, run: &mut swarm::Search<swarm::Continuous<'p>>) {
+        let x = run.random_solution();
+        run.evaluate(&x);
+    }
+
+    fn step(&mut self, run: &mut swarm::Search<swarm::Continuous<'p>>) {
+        let best = run.best_solution().to_vec();
+        let neighbours: Vec<Vec<f64>> = (0..7)
+            .map(|_| {
+                let mut x = best.clone();
+                for value in &mut x {
+                    *value += run.uniform_in(-10.0, 10.0);
+                }
+                run.clamp(&mut x);
+                x
+            })
+            .collect();
+        let threshold = run.best_cost();
+        let accept = |cost: f64| cost < threshold;
+        if self.batched {
+            run.evaluate_until(&neighbours, accept);
+        } else {
+            for x in &neighbours {
+                if accept(run.evaluate(x)) {
+                    break;
+                }
+            }
+        }
+    }
+}
+
+/// Candidates scored side by side and counted in order leave the run where `evaluate` one
+/// after another leaves it (count, best, history), on one thread or four, with budgets that
+/// end inside a batch.
+#[test]
+fn evaluate_until_is_evaluate_in_series() {
+    let problem = FunctionProblem::new(functions::by_key("f1").unwrap(), 5).unwrap();
+    for budget in [400u64, 57] {
+        let runner = Runner::new(Termination::evaluations(budget), 3).unwrap();
+        let serial = runner.run(&mut FirstImprovement { batched: false }, &problem, 0);
+        for threads in [1, 4] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let batched =
+                pool.install(|| runner.run(&mut FirstImprovement { batched: true }, &problem, 0));
+            assert_eq!(batched.best_cost.to_bits(), serial.best_cost.to_bits());
+            assert_eq!(batched.best_solution, serial.best_solution);
+            assert_eq!(batched.evaluations, serial.evaluations);
+            assert_eq!(batched.history, serial.history);
+        }
+        assert_eq!(serial.evaluations, budget);
+        assert!(serial.best_cost < problem.evaluate(&problem.first_solution()));
+    }
+}

@@ -36,8 +36,10 @@ pub struct JointProblem<'a> {
     profiles: Vec<PassProfile>,
     limits: SplitLimits,
     speeds: Speeds,
-    /// The splits' buffers: the pinned tour and the last candidate ([`SplitCache`]).
-    cache: Mutex<SplitCache>,
+    /// The splits' buffers (the pinned tour and the last candidate, [`SplitCache`]), one set
+    /// per core: candidates scored side by side ([`swarm::Search::evaluate_until`]) each
+    /// take a free set.
+    caches: Vec<Mutex<SplitCache>>,
 }
 
 impl<'a> JointProblem<'a> {
@@ -89,7 +91,7 @@ impl<'a> JointProblem<'a> {
                 refill_max_s: model.refill_max_s,
             },
             speeds,
-            cache: Mutex::new(SplitCache::default()),
+            caches: split_caches(),
         }
     }
 
@@ -118,7 +120,7 @@ impl<'a> JointProblem<'a> {
             profiles: self.profiles.clone(),
             limits: self.limits,
             speeds: self.speeds,
-            cache: Mutex::new(SplitCache::default()),
+            caches: split_caches(),
         }
     }
 
@@ -145,6 +147,23 @@ impl<'a> JointProblem<'a> {
     }
 }
 
+/// A cache per core (at most [`SPLIT_CACHES`]).
+fn split_caches() -> Vec<Mutex<SplitCache>> {
+    (0..crate::parallel::threads().clamp(1, SPLIT_CACHES))
+        .map(|_| Mutex::new(SplitCache::default()))
+        .collect()
+}
+
+/// Most split caches of one problem: each holds two tours' layouts, and pinning a tour
+/// lays it out in each.
+const SPLIT_CACHES: usize = 4;
+
+fn lock(cache: &Mutex<SplitCache>) -> std::sync::MutexGuard<'_, SplitCache> {
+    cache
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
 fn distance_3d(a: &GroundPoint, b: &GroundPoint) -> f64 {
     ((a.x - b.x).powi(2) + (a.y - b.y).powi(2) + (a.ground_m - b.ground_m).powi(2)).sqrt()
 }
@@ -161,17 +180,24 @@ impl JointProblem<'_> {
         work(&split)
     }
 
-    /// Runs `work` with this problem's split and its shared cache.
+    /// Runs `work` with this problem's split and the first of its caches no other thread
+    /// holds (the first, waiting for it, when all are held). Any cache gives the same cost
+    /// to the bit: the buffers only save work.
     fn with_cache<T>(&self, work: impl FnOnce(&TourSplit, &mut SplitCache) -> T) -> T {
-        self.with_split(|split| {
-            work(
-                split,
-                &mut self
-                    .cache
+        let mut cache = self
+            .caches
+            .iter()
+            .find_map(|cache| match cache.try_lock() {
+                Ok(held) => Some(held),
+                Err(std::sync::TryLockError::Poisoned(poisoned)) => Some(poisoned.into_inner()),
+                Err(std::sync::TryLockError::WouldBlock) => None,
+            })
+            .unwrap_or_else(|| {
+                self.caches[0]
                     .lock()
-                    .unwrap_or_else(std::sync::PoisonError::into_inner),
-            )
-        })
+                    .unwrap_or_else(std::sync::PoisonError::into_inner)
+            });
+        self.with_split(|split| work(split, &mut cache))
     }
 
     /// The steps the split of `tour` takes ([`SplitBuffers`]' count, a split from the
@@ -197,13 +223,20 @@ impl JointProblem<'_> {
     /// Keeps `tour`'s split for the evaluations that follow to resume from (the tour a
     /// search stands on, whose neighbours it scores next): saves time, changes no cost.
     pub fn pin(&self, tour: &[Step]) {
-        self.with_cache(|split, cache| cache.pin(split, tour));
+        self.with_split(|split| {
+            for cache in &self.caches {
+                lock(cache).pin(split, tour);
+            }
+        });
     }
 
     /// Route points the evaluations so far laid out and labelled (a full split lays out
     /// [`JointProblem::points`], a resumed one fewer).
     pub fn points_labelled(&self) -> u64 {
-        self.with_cache(|_, cache| cache.points_labelled())
+        self.caches
+            .iter()
+            .map(|cache| lock(cache).points_labelled())
+            .sum()
     }
 }
 

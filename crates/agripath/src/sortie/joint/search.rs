@@ -331,29 +331,39 @@ impl Descent {
                 .collect();
             ranked.sort_by(|a, b| a.0.total_cmp(&b.0));
             ranked.dedup_by(|a, b| a.1 == b.1);
-            for &(_, change) in ranked.iter().take(SCORED_PER_POSITION) {
-                let candidate = apply(&self.tour, change);
-                let candidate_cost = run.evaluate(&candidate);
-                if candidate_cost < self.cost - 1e-9 {
-                    let (low, high) = match change {
-                        Move::Reverse { from, to } => (from, to),
-                        Move::Relocate { from, to, gap, .. } => (from.min(gap), to.max(gap)),
-                    };
-                    self.tour = candidate;
-                    self.cost = candidate_cost;
-                    run.problem().pin(&self.tour);
-                    self.reindex();
-                    for index in [
-                        low.saturating_sub(1),
-                        low,
-                        high.min(n - 1),
-                        (high + 1).min(n - 1),
-                    ] {
-                        self.push(self.tour[index].pass);
-                    }
-                    self.push(pass);
-                    break;
+            // The first that lowers the cost is made: the candidates are scored side by
+            // side on the cores, and counted as if one after another.
+            let candidates: Vec<Vec<Step>> = ranked
+                .iter()
+                .take(SCORED_PER_POSITION)
+                .map(|&(_, change)| apply(&self.tour, change))
+                .collect();
+            let better = self.cost - 1e-9;
+            if let Some((index, candidate_cost)) =
+                run.evaluate_until(&candidates, |cost| cost < better)
+            {
+                let change = ranked[index].1;
+                let candidate = candidates
+                    .into_iter()
+                    .nth(index)
+                    .expect("a scored candidate");
+                let (low, high) = match change {
+                    Move::Reverse { from, to } => (from, to),
+                    Move::Relocate { from, to, gap, .. } => (from.min(gap), to.max(gap)),
+                };
+                self.tour = candidate;
+                self.cost = candidate_cost;
+                run.problem().pin(&self.tour);
+                self.reindex();
+                for index in [
+                    low.saturating_sub(1),
+                    low,
+                    high.min(n - 1),
+                    (high + 1).min(n - 1),
+                ] {
+                    self.push(self.tour[index].pass);
                 }
+                self.push(pass);
             }
         }
     }
