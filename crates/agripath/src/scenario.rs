@@ -180,6 +180,7 @@ impl Scenario {
         farm.resolve_overlaps(parts.allow_overlap)
             .map_err(|fault| InputError::new(&farm.source, fault))?;
         let vehicle = load_vehicle(&parts)?;
+        farm.notes.extend(vehicle.short_battery_note());
         let (terrain_spec, terrain_base) = match (&parts.terrain, &farm.embedded_terrain) {
             (Some(spec), _) => (spec.clone(), parts.terrain_base.clone()),
             (None, Some(spec)) => (

@@ -187,6 +187,9 @@ impl Default for Vehicle {
     }
 }
 
+/// Battery endurance under which a vehicle file gets a note (seconds): two minutes.
+pub const SHORT_BATTERY_S: f64 = 120.0;
+
 impl Vehicle {
     /// How far above the spray height a transit flies: h, at least 5 m (decision 0012: a
     /// transit over the highest ground under it, never at crop height even when h is 0).
@@ -330,6 +333,19 @@ impl Vehicle {
         // The seed 003 tank a file without tank keys gets by default is not this vehicle's.
         self.tank_spray_time_s = None;
         Ok(())
+    }
+
+    /// A note when the battery lasts under [`SHORT_BATTERY_S`]: valid (a test rig may fly
+    /// that little), but most likely minutes typed where seconds belong (a tenth trial's
+    /// `battery_endurance_s = 12.0`, which `validate` passed and `plan` blamed on the supply
+    /// point).
+    pub fn short_battery_note(&self) -> Option<String> {
+        (self.battery_endurance_s < SHORT_BATTERY_S).then(|| {
+            let seconds = crate::error::figure(self.battery_endurance_s);
+            format!(
+                "battery_endurance_s = {seconds} gives {seconds} seconds of flight: the figure is in seconds (a spraying drone flies 8-30 minutes, 480-1800 s); minutes typed?"
+            )
+        })
     }
 
     /// Checks every figure once; afterwards the vehicle is usable everywhere.

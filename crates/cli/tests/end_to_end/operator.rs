@@ -397,12 +397,15 @@ fn a_battery_share_to_land_with_is_left_unflown_in_every_file() {
         ),
         "{message}"
     );
-    // And with the supply point to choose, the error says what the share leaves.
+    // And with the supply point to choose: no point would do, not even where the route
+    // begins, so the error names the vehicle file and what the share leaves.
     let output = plan_island_fields(&greedy, &folder.join("none"), &[]);
     assert_eq!(output.status.code(), Some(2));
     let message = String::from_utf8_lossy(&output.stderr);
     assert!(
-        message.contains("battery_reserve_percent: 60 s of 600 s usable"),
+        message.contains(
+            "greedy.toml: battery_endurance_s = 600 less battery_reserve_percent = 90 leaves 60 s, too little for this farm"
+        ),
         "{message}"
     );
     let _ = std::fs::remove_dir_all(&folder);
@@ -432,6 +435,35 @@ fn a_vehicle_too_weak_for_the_farm_is_blamed_on_its_file_with_a_lon_lat_place() 
     );
     assert!(message.contains("near lon 105.6"), "{message}");
     assert_eq!(message.lines().count(), 1, "{message}");
+    // A battery given in minutes: `validate` notes it, and `plan` blames the figure, with
+    // the supply point given or to choose (a tenth trial was told to give a nearer --supply).
+    let minutes = t16_with(&folder, "minutes.toml", &[("battery_endurance_s", "12.0")]);
+    for supply in [&["--supply", "105.6216,-10.4953"][..], &[]] {
+        let output = plan_island_fields(&minutes, &folder.join("out"), supply);
+        assert_eq!(output.status.code(), Some(2));
+        let message = String::from_utf8_lossy(&output.stderr);
+        assert!(
+            message.contains("minutes.toml: battery_endurance_s = 12 less battery_reserve_percent")
+                && message.contains("minutes typed?")
+                && !message.contains("--supply"),
+            "{message}"
+        );
+    }
+    let fields = data("christmas_island_fields.kml");
+    let output = agripath_without_browser(&[
+        "validate",
+        "--fields",
+        fields.to_str().unwrap(),
+        "--vehicle",
+        minutes.to_str().unwrap(),
+    ]);
+    assert_eq!(output.status.code(), Some(0));
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        stdout.contains("note: battery_endurance_s = 12 gives 12 seconds of flight")
+            && stdout.ends_with("valid\n"),
+        "{stdout}"
+    );
     let _ = std::fs::remove_dir_all(&folder);
 }
 
