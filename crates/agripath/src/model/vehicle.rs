@@ -64,7 +64,21 @@ pub struct Vehicle {
     pub refill_max_s: f64,
     /// A survey camera instead of a sprayer (`[camera]`); `None` for a sprayer.
     pub camera: Option<Camera>,
+    /// The most mission items the autopilot holds, its home item included: every sortie's
+    /// mission is held to it by the preflight. `None`: not checked, and the summary warns
+    /// above [`COMMON_MISSION_ITEMS`].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mission_items_max: Option<u32>,
 }
+
+/// Mission items above which the summary warns when the vehicle states no limit: ArduPilot
+/// keeps a mission in the board's FRAM, 14-15 bytes an item, which holds about 700 on a
+/// Pixhawk (ArduPilot issues #2391 and #7254; more with `BRD_SD_MISSION` on a microSD card);
+/// older firmware dropped the items beyond it silently.
+pub const COMMON_MISSION_ITEMS: usize = 700;
+
+/// Fewest mission items a limit may give: home and one waypoint.
+const FEWEST_MISSION_ITEMS: u32 = 2;
 
 /// A survey camera, triggered by distance along each swath (`MAV_CMD_DO_SET_CAM_TRIGG_DIST`).
 #[derive(Debug, Clone, PartialEq, Deserialize, Serialize)]
@@ -183,6 +197,7 @@ impl Default for Vehicle {
             refill_base_s: 20.0,
             refill_max_s: 120.0,
             camera: None,
+            mission_items_max: None,
         }
     }
 }
@@ -434,6 +449,15 @@ impl Vehicle {
                     "application_rate_l_per_ha",
                     rate,
                     "at most 10000 litres per hectare (docs/limits.md)",
+                ));
+            }
+        }
+        if let Some(items) = self.mission_items_max {
+            if items < FEWEST_MISSION_ITEMS {
+                return Err(invalid(
+                    "mission_items_max",
+                    f64::from(items),
+                    "must be at least 2: the home item and one waypoint",
                 ));
             }
         }

@@ -19,12 +19,11 @@
 //!   can reach ([`crate::coverage::region::reachable_region`]) left unsprayed; ground narrower than a swath (sharp
 //!   tips, necks) left unsprayed is reported apart as unreachable; and the **spray outside** the fields, holes and obstacles
 //!   excluded, as a share of all that is sprayed;
-//! - **tank** and **battery** per sortie, recomputed from the files and the vehicle.
+//! - **tank** and **battery** per sortie, recomputed from the files and the vehicle; the **mission size** (home included) when the vehicle gives `mission_items_max`.
 //!
-//! The parts: [`settings`] (what a plan is held to), [`verdict`] (the checks' figures and
-//! failure lines, as `report.json` carries them) and [`folder`] (the check run again on a plan
-//! folder as it is now); the flight itself in [`flown`], the measure of what it sprays in
-//! [`sprayed`].
+//! The parts: [`settings`] (what a plan is held to), [`verdict`] (the checks' figures and failure lines, as
+//! `report.json` carries them) and [`folder`] (the check run again on a plan folder as it is now); the flight
+//! itself in [`flown`], the measure of what it sprays in [`sprayed`].
 
 mod dose;
 pub mod flown;
@@ -111,6 +110,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
     // A sortie may not fly into the share of the battery the operator lands with.
     let usable_battery = vehicle.usable_battery_s() / vehicle.battery_endurance_s;
     let mut battery = Tally::new("battery", "≤", usable_battery, "batteries");
+    let mut mission_size = verdict::mission_size(vehicle.mission_items_max);
     let place = |x: f64, y: f64| frame.describe(x, y);
     let low_limit = low_legs.limit;
 
@@ -220,6 +220,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         if !fences.iter().any(|fence| fence.inclusion) {
             fence.fail(format!("sortie {sortie}: {name} has no inclusion geofence"));
         }
+        verdict::record_mission(&mut mission_size, sortie, name, plan.items.len() + 1);
         let mut figures = SortieFlown {
             sortie,
             file: name.to_string(),
@@ -542,6 +543,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         .into_iter()
         .chain(bounds)
         .chain([no_go, fence, coverage, outside, tank, battery])
+        .chain(mission_size)
     {
         tally.finish(&mut checks, &mut failures, &mut failure_places);
     }

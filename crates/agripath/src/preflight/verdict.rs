@@ -220,6 +220,32 @@ pub(super) struct Tally {
     counts: bool,
 }
 
+/// The mission size check, when the vehicle states its autopilot's limit
+/// (`mission_items_max`).
+pub(super) fn mission_size(limit: Option<u32>) -> Option<Tally> {
+    limit.map(|items| {
+        Tally::new(
+            "mission size",
+            "≤",
+            f64::from(items),
+            "items, home included",
+        )
+    })
+}
+
+/// Records sortie `sortie`'s mission, file `file`, of `items` items (its home included, as
+/// the autopilot stores it) against the autopilot's limit, when there is one.
+pub(super) fn record_mission(size: &mut Option<Tally>, sortie: usize, file: &str, items: usize) {
+    if let Some(size) = size {
+        let limit = size.limit;
+        size.record(items as f64, items as f64 > limit, || {
+            format!(
+                "sortie {sortie}: {file} has {items} mission items, home included, and the autopilot holds {limit:.0} (mission_items_max): the upload fails, or older ArduPilot drops the last items; a larger --terrain-tolerance writes fewer waypoints over the ground"
+            )
+        });
+    }
+}
+
 impl Tally {
     pub(super) fn new(
         name: &'static str,

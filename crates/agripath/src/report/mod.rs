@@ -560,6 +560,10 @@ impl Report {
         if let Some(verdict) = &self.preflight {
             text.push_str(&verdict.summary());
             text.push('\n');
+            let limit = self.vehicle_settings.mission_items_max;
+            if let Some(warning) = notes::mission_size_warning(&verdict.sorties, limit) {
+                text.push_str(&warning);
+            }
         }
         text
     }

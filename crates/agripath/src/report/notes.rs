@@ -2,7 +2,9 @@
 //! meant, or checked against less than the ground it will fly over, with what to change.
 
 use super::SortieReport;
+use crate::model::vehicle::COMMON_MISSION_ITEMS;
 use crate::model::Vehicle;
+use crate::preflight::verdict::SortieFlown;
 use crate::scenario::Scenario;
 
 /// A note where many sorties end for the battery with their tank under half used: their
@@ -24,6 +26,29 @@ pub(super) fn far_fields_note(sorties: &[SortieReport], usable_percent: f64) -> 
     (ended_by_battery >= 3 && 5 * ended_by_battery >= count).then(|| {
         format!(
             "note: {ended_by_battery} of {count} sorties end for the battery with their tank less than half used: most of their flight goes on the legs to fields far from the supply point; a supply point nearer those fields, or planning them as a farm of their own, flies fewer sorties\n"
+        )
+    })
+}
+
+/// A warning where a sortie's mission (home included) holds more items than
+/// [`COMMON_MISSION_ITEMS`] and the vehicle states no limit of its own (`limit`): many
+/// autopilots cannot store it (a tenth trial's survey drone wrote 705-922 items a sortie and
+/// nothing said so). With a limit the preflight holds every sortie to it instead.
+pub(super) fn mission_size_warning(sorties: &[SortieFlown], limit: Option<u32>) -> Option<String> {
+    if limit.is_some() {
+        return None;
+    }
+    let largest = sorties.iter().max_by_key(|sortie| sortie.items)?;
+    let items = largest.items + 1;
+    (items > COMMON_MISSION_ITEMS).then(|| {
+        let over = sorties
+            .iter()
+            .filter(|sortie| sortie.items + 1 > COMMON_MISSION_ITEMS)
+            .count();
+        format!(
+            "warning: {over} of {} sorties have more than {COMMON_MISSION_ITEMS} mission items, home included (sortie {}: {items}): ArduPilot on a board that keeps the mission in FRAM holds about {COMMON_MISSION_ITEMS}; give the vehicle's mission_items_max to have every sortie checked against your autopilot, or a larger --terrain-tolerance for fewer waypoints\n",
+            sorties.len(),
+            largest.sortie
         )
     })
 }
@@ -94,6 +119,31 @@ mod tests {
             battery_percent,
             return_point: None,
         }
+    }
+
+    #[test]
+    fn missions_above_what_common_autopilots_hold_are_warned_of_without_a_limit() {
+        let sortie = |sortie: usize, items: usize| SortieFlown {
+            sortie,
+            file: format!("sortie_{sortie:02}.plan"),
+            items,
+            spray_m: 0.0,
+            tank_fraction: None,
+            flight_time_s: 0.0,
+            battery_fraction: 0.0,
+            worst_spray_height_error_m: 0.0,
+            least_transit_margin_m: None,
+            pump_stopped_m: 0.0,
+        };
+        let sorties = [sortie(1, 400), sortie(2, 921), sortie(3, 705)];
+        let warning = mission_size_warning(&sorties, None).expect("two above 700");
+        assert!(
+            warning.starts_with("warning: 2 of 3 sorties have more than 700 mission items, home included (sortie 2: 922)"),
+            "{warning}"
+        );
+        // A limit of the vehicle's own: the preflight checks it instead.
+        assert!(mission_size_warning(&sorties, Some(1000)).is_none());
+        assert!(mission_size_warning(&sorties[..1], None).is_none());
     }
 
     #[test]

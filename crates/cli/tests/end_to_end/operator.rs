@@ -825,3 +825,44 @@ fn a_bearing_in_lon_lat_is_true_not_the_grids() {
     assert!(swaths > 10, "{swaths} swaths");
     std::fs::remove_dir_all(&folder).unwrap();
 }
+
+/// An autopilot that holds fewer mission items than a sortie has: the preflight fails the
+/// plan (exit 3, no mission file), naming the sortie and the limit; one that holds them all
+/// passes, with the check in `report.json` (a tenth trial: 705-922 items a sortie and no
+/// word of it).
+#[test]
+fn a_sortie_larger_than_the_autopilot_holds_is_not_written() {
+    let folder = scratch("mission_size");
+    let small = t16_with(&folder, "small.toml", &[("mission_items_max", "30")]);
+    let out = folder.join("small_out");
+    let output = plan_island_fields(&small, &out, &["--supply", "105.6216,-10.4953"]);
+    assert_eq!(output.status.code(), Some(3));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains(
+            "mission items, home included, and the autopilot holds 30 (mission_items_max)"
+        ),
+        "{stderr}"
+    );
+    assert!(!out.join("sortie_01.plan").exists());
+    let large = t16_with(&folder, "large.toml", &[("mission_items_max", "5000")]);
+    let out = folder.join("large_out");
+    let output = plan_island_fields(&large, &out, &["--supply", "105.6216,-10.4953"]);
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let report: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("report.json")).unwrap()).unwrap();
+    let check = report["preflight"]["checks"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|check| check["name"] == "mission size")
+        .expect("the mission size check");
+    assert!(check["figure"].as_f64().unwrap() > 30.0, "{check}");
+    assert_eq!(report["vehicle_settings"]["mission_items_max"], 5000);
+    let _ = std::fs::remove_dir_all(&folder);
+}
