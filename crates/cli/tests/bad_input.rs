@@ -777,7 +777,7 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
         (
             fields("unclosed.geojson"),
             bad("unclosed.geojson"),
-            "not closed",
+            "unclosed.geojson: feature 1 (North): ring is not closed",
         ),
         (
             fields("degenerate.geojson"),

@@ -268,13 +268,14 @@ pub fn sheet_html(parts: &SheetParts) -> String {
         term("Warning", format!("<strong>{}</strong>", escape(warning)));
     }
     if let Some(supply) = &report.supply {
-        let at = supply
-            .at
-            .lon_lat
-            .map_or_else(|| place(supply.at.point_m, false), |p| place(p, true));
+        // Said which is which: a pilot typing it into a phone's map expects lat, lon.
+        let at = supply.at.lon_lat.map_or_else(
+            || place(supply.at.point_m, false),
+            |p| format!("{} (lon, lat)", place(p, true)),
+        );
         term(
             "Supply point",
-            format!("{at} (ground {:.1} m; {})", supply.ground_m, supply.rule),
+            format!("{at}, ground {:.1} m; {}", supply.ground_m, supply.rule),
         );
     }
     if let Some(home) = parts.home_lon_lat {
@@ -337,7 +338,7 @@ pub fn sheet_html(parts: &SheetParts) -> String {
 fn sortie_table(html: &mut String, rows: &[SortieRow], lon_lat: bool, survey: bool) {
     let _ = writeln!(
         html,
-        "<h2>Sorties</h2>\n<table>\n<tr><th>#</th><th>fields (passes begun)</th><th class=\"number\">strip ha (overlaps counted)</th><th class=\"number\">{}</th><th class=\"number\">time</th><th class=\"number\">battery used as flown</th><th class=\"number\">distance km</th><th>return point</th></tr>",
+        "<h2>Sorties</h2>\n<table>\n<tr><th>#</th><th>fields: passes begun</th><th class=\"number\">strip ha (overlaps counted)</th><th class=\"number\">{}</th><th class=\"number\">time</th><th class=\"number\">battery used as flown</th><th class=\"number\">distance km</th><th>return point</th></tr>",
         if survey { "photos" } else { "litres as flown" }
     );
     // A survey's column is its photos; a sprayer's its litres.
@@ -357,7 +358,7 @@ fn sortie_table(html: &mut String, rows: &[SortieRow], lon_lat: bool, survey: bo
             row.sortie,
             row.fields
                 .iter()
-                .map(|(name, passes)| format!("{} ({passes})", escape(name)))
+                .map(|(name, passes)| format!("{}: {passes}", escape(name)))
                 .collect::<Vec<_>>()
                 .join(", "),
             row.sprayed_area_ha,
