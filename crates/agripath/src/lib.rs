@@ -22,6 +22,7 @@ pub mod parallel;
 pub mod pipeline;
 pub mod plot;
 pub mod preflight;
+pub mod progress;
 pub mod report;
 pub mod repro;
 pub mod request;

@@ -389,11 +389,14 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
         &settings.coverage,
     )?;
     let model = TransferModel::new(&scenario.farm, scenario.vehicle.safe_height_m);
+    crate::progress::stage(|| "choosing the supply point".into());
     let SupplyPlan {
         choice: supply,
         closed_tour,
     } = choose_supply(scenario, settings, &coverage, &model, given)?;
     let start = supply.as_ref().map(|choice| choice.point);
+    let passes = crate::sequence::passes_of(&coverage).len();
+    crate::progress::stage(|| format!("ordering {passes} passes"));
     let route = if settings.sorties.planner == Some(SortiePlanner::Joint) {
         joint_route(
             scenario,
@@ -407,6 +410,7 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
         // From and back to the supply point, else an open path (decision 0018).
         route(&coverage, &model, start_of(start), &settings.sequencer)
     };
+    crate::progress::stage(|| "splitting the route into sorties".into());
     let sorties = split_into_sorties(scenario, &route, start, &settings.sorties)?;
     let runtime_s = crate::numbers::round(started.elapsed().as_secs_f64(), 1e-4);
     let mut report = Report::new(

@@ -116,22 +116,23 @@ impl<'a, P: Problem + ?Sized> Search<'a, P> {
 
     /// What `evaluate` on each of `solutions` in turn gives, stopping at the first whose cost
     /// `accept` takes: that one's index and cost, or `None`. The solutions are costed a batch
-    /// at a time on the machine's cores (rayon's pool, `evaluate` called from several
-    /// threads at once: the problem keeps a cache per thread, or none), then counted in
-    /// order as `evaluate` counts; costs computed past the accepted one are dropped
-    /// uncounted. The run is left where the same calls in series leave it, on any number of
-    /// cores: a first-improvement search spends the cores on the candidates it would
-    /// try next, not on other work.
+    /// at a time on the machine's cores (rayon's pool; at most `at_once` at a time, what the
+    /// problem serves at once: one whose evaluations share a cache keeps one per thread, or
+    /// none), then counted in order as `evaluate` counts; costs computed past the accepted one
+    /// are dropped uncounted. The run is left where the same calls in series leave it, on any
+    /// number of cores: a first-improvement search spends the cores on the candidates it
+    /// would try next, not on other work.
     pub fn evaluate_until<S>(
         &mut self,
         solutions: &[S],
+        at_once: usize,
         accept: impl Fn(f64) -> bool,
     ) -> Option<(usize, f64)>
     where
         S: std::borrow::Borrow<P::Solution> + Sync,
         P: Sync,
     {
-        let width = rayon::current_num_threads().max(1);
+        let width = rayon::current_num_threads().min(at_once).max(1);
         let mut next = 0;
         while next < solutions.len() {
             let left = self.remaining_evaluations().unwrap_or(u64::MAX);

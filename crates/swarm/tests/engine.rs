@@ -265,7 +265,7 @@ impl<'p> swarm::Optimizer<swarm::Continuous<'p>> for FirstImprovement {
         let threshold = run.best_cost();
         let accept = |cost: f64| cost < threshold;
         if self.batched {
-            run.evaluate_until(&neighbours, accept);
+            run.evaluate_until(&neighbours, usize::MAX, accept);
         } else {
             for x in &neighbours {
                 if accept(run.evaluate(x)) {

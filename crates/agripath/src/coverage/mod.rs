@@ -242,6 +242,7 @@ pub fn plan_coverage(
     // Fields are laid out independently, on every core (the demo's five fields took 0.1 s of
     // its 0.5 s plan on one core with `--heading dose` and the corner cuts): the results in
     // the fields' order, and the first fault by field is the one reported (decision 0025).
+    let laid_out = crate::progress::Counter::new("laying out the fields", farm.fields.len());
     let fields = crate::parallel::try_map_in_order(&farm.fields, |index, field| {
         let sprayable = sprayable_region(
             field,
@@ -274,6 +275,7 @@ pub fn plan_coverage(
                 field.name, vehicle.swath_width_m
             )));
         }
+        laid_out.one_done();
         Ok(coverage)
     })?;
     Ok(CoveragePlan {

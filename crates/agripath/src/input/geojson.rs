@@ -176,17 +176,18 @@ fn read_feature(value: &Value, place: &str) -> Result<Option<RawFeature>, Fault>
     }))
 }
 
-/// `place` with the feature's name when it has one as text ("feature 25 (North)"): the
+/// `place` with the feature's name when it has one ("feature 25 (North)"): the
 /// faults found while reading a feature name it as those found later do (a tenth trial's
 /// unclosed ring was refused as "feature 25" alone, a self-intersection as "feature 19 (F17)").
 fn named(feature: &Value, place: &str) -> String {
     match feature
         .get("properties")
         .and_then(|properties| properties.get("name"))
-        .and_then(Value::as_str)
     {
-        Some(name) => format!("{place} ({name})"),
-        None => place.to_string(),
+        Some(Value::String(name)) => format!("{place} ({name})"),
+        // A number is a name too, as `read_feature` takes it.
+        Some(Value::Number(number)) => format!("{place} ({number})"),
+        _ => place.to_string(),
     }
 }
 

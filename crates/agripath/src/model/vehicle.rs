@@ -358,7 +358,7 @@ impl Vehicle {
         (self.battery_endurance_s < SHORT_BATTERY_S).then(|| {
             let seconds = crate::error::figure(self.battery_endurance_s);
             format!(
-                "battery_endurance_s = {seconds} gives {seconds} seconds of flight: the figure is in seconds (a spraying drone flies 8-30 minutes, 480-1800 s); minutes typed?"
+                "battery_endurance_s = {seconds} gives {seconds} seconds of flight: the figure is in seconds (a multirotor flies 8-30 minutes, 480-1800 s); minutes typed?"
             )
         })
     }

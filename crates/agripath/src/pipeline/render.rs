@@ -176,6 +176,7 @@ pub fn render_flyable(scenario: &Scenario, mission: &PlannedMission) -> Result<R
 pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered, Fault> {
     let vehicle = &scenario.vehicle;
     let settings = &mission.settings.mission;
+    crate::progress::stage(|| "writing the mission files".into());
     let missions = build_missions(scenario, &mission.route, mission.sorties.as_ref(), settings)?;
     let mut mission_files = Vec::new();
     for sortie in &missions {
@@ -217,6 +218,7 @@ pub fn render(scenario: &Scenario, mission: &PlannedMission) -> Result<Rendered,
         vehicle,
     };
     let verdict = crate::preflight::check(&world, &preflight_settings(mission), &mission_files);
+    crate::progress::stage(|| "drawing the maps and the sheet".into());
     let mut report = mission.report.clone();
     report.preflight = Some(verdict.clone());
     if mission.sorties.is_none() {

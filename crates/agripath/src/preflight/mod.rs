@@ -39,14 +39,12 @@ mod zones;
 use geo::Coord;
 
 use crate::coverage::region::GroundPatches;
-use crate::geometry::rings;
 use crate::limits::MIN_GROUND_CLEARANCE_M;
 use crate::mission::flight::GeoFrame;
 use crate::mission::flight::{highest_ground_near, TRANSIT_CORRIDOR_M};
 use crate::mission::mavlink::Command;
 use crate::terrain::nearness::GroundNearness;
 use flown::Motion;
-use sprayed::Rings;
 use verdict::Tally;
 
 pub use dose::MAX_SPRAY_SPEED_SHARE;
@@ -120,7 +118,9 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
     let mut strips = Vec::new();
     let mut sorties = Vec::new();
     let names = read_back::sortie_files(files, &mut read);
+    let flown_sorties = crate::progress::Counter::new("flying the mission files", names.len());
     for (number, name) in names.iter().enumerate() {
+        flown_sorties.one_done();
         let sortie = number + 1;
         let bytes = |file: &str| {
             files
@@ -467,25 +467,7 @@ pub fn check(world: &World, settings: &PreflightSettings, files: &[(String, Vec<
         settings.obstacle_margin_m,
         world.vehicle.swath_width_m,
     );
-    // Each field's own ground: with --allow-overlap a shared part belongs to the earlier
-    // field only (the rings are read even-odd, so a part in two fields would count as off).
-    let own_grounds: Vec<geo::MultiPolygon<f64>> = world
-        .farm
-        .fields
-        .iter()
-        .map(|field| field.own_ground())
-        .collect();
-    let ground = Rings::new(
-        own_grounds
-            .iter()
-            .flat_map(|ground| ground.0.iter().flat_map(rings)),
-    );
-    let excluded: Vec<Rings> = world
-        .farm
-        .obstacles
-        .iter()
-        .map(|obstacle| Rings::of_polygon(&obstacle.polygon))
-        .collect();
+    let (ground, excluded) = sprayed::farm_rings(world.farm);
     let mut measured = sprayed::measure(&strips, &regions, &ground, &excluded, ROW_M);
     let mut coverage = Tally::new("coverage", "≥", 0.0, "share of the ground a swath reaches");
     let mut field_figures = Vec::new();

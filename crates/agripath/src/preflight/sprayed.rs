@@ -412,6 +412,25 @@ pub struct Sprayed {
     pub missed: Vec<geo::MultiPolygon<f64>>,
 }
 
+/// The farm's rings the measure reads: every field's own ground (with --allow-overlap a
+/// shared part belongs to the earlier field only: the rings are read even-odd, so a part in
+/// two fields would count as off), and each obstacle's.
+pub fn farm_rings(farm: &crate::model::Farm) -> (Rings, Vec<Rings>) {
+    let own_grounds: Vec<geo::MultiPolygon<f64>> =
+        farm.fields.iter().map(|field| field.own_ground()).collect();
+    let ground = Rings::new(
+        own_grounds
+            .iter()
+            .flat_map(|ground| ground.0.iter().flat_map(crate::geometry::rings)),
+    );
+    let excluded = farm
+        .obstacles
+        .iter()
+        .map(|obstacle| Rings::of_polygon(&obstacle.polygon))
+        .collect();
+    (ground, excluded)
+}
+
 /// Measures `strips` against `regions`, and their spray outside `ground` (fields with their
 /// holes) less `excluded` (obstacles), on rows `row_m` apart.
 pub fn measure(

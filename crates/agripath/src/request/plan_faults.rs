@@ -142,7 +142,7 @@ pub fn planning_error(scenario: &Scenario, settings: &PlanSettings, fault: Fault
             // Under two minutes no supply point helps: the figure is the fault (a tenth
             // trial's battery typed in minutes was told to give a nearer --supply).
             let advice = if endurance_s < crate::model::vehicle::SHORT_BATTERY_S {
-                "battery_endurance_s is in seconds (a spraying drone flies 8-30 minutes, 480-1800 s): minutes typed?"
+                "battery_endurance_s is in seconds (a multirotor flies 8-30 minutes, 480-1800 s): minutes typed?"
             } else {
                 "the farm is too spread out for one supply point for this vehicle (plan the far fields as a farm of their own, or give a nearer --supply)"
             };

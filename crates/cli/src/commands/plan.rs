@@ -26,13 +26,15 @@ pub(super) fn plan(
     let spinner = indicatif::ProgressBar::new_spinner();
     spinner.set_message(format!("planning {} field(s)", scenario.farm.fields.len()));
     spinner.enable_steady_tick(std::time::Duration::from_millis(120));
-    let mission = agripath::pipeline::plan_mission(&scenario, &settings)
-        .map_err(|fault| agripath::request::plan::planning_error(&scenario, &settings, fault))?;
-    spinner.set_message("writing mission files, checking them as flown, maps");
-    let source = &scenario.farm.source;
-    let result = outcome(&scenario, &mission, files, source)
-        .map_err(Failure::from)
-        .and_then(|outcome| finish(Some(out), outcome));
+    // The library's stages, and its counts of fields laid out and sorties flown, as they come.
+    let shown = spinner.clone();
+    agripath::progress::set_sink(Some(Box::new(move |stage: &str| {
+        shown.set_message(stage.to_string());
+    })));
+    let result = agripath::pipeline::plan_mission(&scenario, &settings)
+        .map_err(|fault| agripath::request::plan::planning_error(&scenario, &settings, fault))
+        .and_then(|mission| outcome(&scenario, &mission, files, &scenario.farm.source));
+    agripath::progress::set_sink(None);
     spinner.finish_and_clear();
-    result
+    finish(Some(out), result?)
 }

@@ -309,6 +309,7 @@ struct Workspace {
     position: Vec<usize>,
     queue: Vec<usize>,
     queued: Vec<bool>,
+    gaps_costed: moves::GapMarks,
     saved: Vec<Step>,
 }
 
@@ -345,7 +346,7 @@ impl<'g> IteratedLocalSearch<'g> {
             three_opt: false,
             queue: Vec::new(),
             queued: Vec::new(),
-            gaps_costed: moves::GapMarks::for_passes(problem.passes()),
+            gaps_costed: moves::GapMarks::default(),
         }
     }
 
@@ -438,6 +439,7 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
         // helped by them (decision 0018, fourth step) and keep their routes.
         search.three_opt = open;
         (search.queue, search.queued) = (workspace.queue, workspace.queued);
+        search.gaps_costed = workspace.gaps_costed;
         if fresh {
             search.reindex();
         }
@@ -476,6 +478,7 @@ impl<'a> Optimizer<OrderingProblem<'a>> for IteratedLocalSearch<'_> {
             position: search.position,
             queue: search.queue,
             queued: search.queued,
+            gaps_costed: search.gaps_costed,
             saved: workspace.saved,
         };
     }

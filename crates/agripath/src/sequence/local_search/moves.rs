@@ -1,7 +1,7 @@
 //! Step 2 of `best`: local search to a local optimum of 2-opt with end flips and Or-opt on
 //! oriented passes, driven by lists of the K nearest pass ends (see the parent module).
 
-use std::cell::Cell;
+use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
 
 use super::super::tour::{End, OrderingProblem, Step};
 
@@ -35,39 +35,40 @@ pub(super) struct Search<'a, 'b> {
 /// Marks on the gaps of a tour (0..=n) for one call at a time: the near ends of a chain's two
 /// ends name many gaps twice (a neighbour at q gives gaps q and q + 1, and so does one at
 /// q + 1 for gap q + 1), and a gap costed once is enough (an equal gain never replaces
-/// the first, so the moves are the same). Cells: the move is chosen through `&self`.
+/// the first, so the moves are the same). Atomics with relaxed order, as plain as cells on
+/// one thread: the move is chosen through `&self`, and the kick loop's buffers, which keep
+/// them between descents, are shared with the threads of the constructions' descents.
 #[derive(Debug, Default)]
 pub(super) struct GapMarks {
-    call: Cell<u32>,
-    marks: Vec<Cell<u32>>,
+    call: AtomicU32,
+    marks: Vec<AtomicU32>,
 }
 
 impl GapMarks {
-    /// Marks for the gaps of a tour of `passes` passes.
-    pub(super) fn for_passes(passes: usize) -> Self {
-        Self {
-            call: Cell::new(0),
-            marks: (0..=passes).map(|_| Cell::new(0)).collect(),
+    /// Marks for `passes` passes at least (kept between descents: a kick allocates nothing).
+    fn cover(&mut self, passes: usize) {
+        if self.marks.len() <= passes {
+            self.marks.resize_with(passes + 1, || AtomicU32::new(0));
         }
     }
 
     /// Starts a call: no gap is marked.
     fn clear(&self) {
-        let call = self.call.get().wrapping_add(1);
+        let call = self.call.load(Relaxed).wrapping_add(1);
         if call == 0 {
-            self.marks.iter().for_each(|mark| mark.set(0));
-            self.call.set(1);
+            self.marks.iter().for_each(|mark| mark.store(0, Relaxed));
+            self.call.store(1, Relaxed);
         } else {
-            self.call.set(call);
+            self.call.store(call, Relaxed);
         }
     }
 
     /// Marks gap `gap`; whether it was unmarked in this call.
     fn first_time(&self, gap: usize) -> bool {
-        let call = self.call.get();
-        let mark = &self.marks[gap];
-        let first = mark.get() != call;
-        mark.set(call);
+        let (call, mark) = (self.call.load(Relaxed), &self.marks[gap]);
+        // A load and a store, not a swap: no other thread touches these marks meanwhile.
+        let first = mark.load(Relaxed) != call;
+        mark.store(call, Relaxed);
         first
     }
 }
@@ -342,6 +343,7 @@ impl Search<'_, '_> {
         mut budget: usize,
     ) -> f64 {
         let n = self.tour.len();
+        self.gaps_costed.cover(n);
         let (mut queue, mut queued) = (
             std::mem::take(&mut self.queue),
             std::mem::take(&mut self.queued),
@@ -570,7 +572,7 @@ mod tests {
                 three_opt: true,
                 queue: Vec::new(),
                 queued: Vec::new(),
-                gaps_costed: GapMarks::for_passes(40),
+                gaps_costed: GapMarks::default(),
             };
             search.reindex();
             let consistent = |search: &Search| {

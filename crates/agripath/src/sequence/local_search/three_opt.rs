@@ -307,7 +307,7 @@ mod tests {
             three_opt,
             queue: Vec::new(),
             queued: Vec::new(),
-            gaps_costed: crate::sequence::local_search::moves::GapMarks::for_passes(n),
+            gaps_costed: crate::sequence::local_search::moves::GapMarks::default(),
         };
         search.reindex();
         search

@@ -230,6 +230,11 @@ impl JointProblem<'_> {
         });
     }
 
+    /// Evaluations this problem serves at once, each with split buffers of its own.
+    pub fn caches(&self) -> usize {
+        self.caches.len()
+    }
+
     /// Route points the evaluations so far laid out and labelled (a full split lays out
     /// [`JointProblem::points`], a resumed one fewer).
     pub fn points_labelled(&self) -> u64 {

@@ -339,8 +339,9 @@ impl Descent {
                 .map(|&(_, change)| apply(&self.tour, change))
                 .collect();
             let better = self.cost - 1e-9;
+            let at_once = run.problem().caches();
             if let Some((index, candidate_cost)) =
-                run.evaluate_until(&candidates, |cost| cost < better)
+                run.evaluate_until(&candidates, at_once, |cost| cost < better)
             {
                 let change = ranked[index].1;
                 let candidate = candidates
