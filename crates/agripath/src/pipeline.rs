@@ -395,8 +395,10 @@ pub fn plan_mission(scenario: &Scenario, settings: &PlanSettings) -> Result<Plan
         closed_tour,
     } = choose_supply(scenario, settings, &coverage, &model, given)?;
     let start = supply.as_ref().map(|choice| choice.point);
-    let passes = crate::sequence::passes_of(&coverage).len();
-    crate::progress::stage(|| format!("ordering {passes} passes"));
+    crate::progress::stage(|| {
+        let passes = crate::sequence::passes_of(&coverage).len();
+        format!("ordering {passes} passes")
+    });
     let route = if settings.sorties.planner == Some(SortiePlanner::Joint) {
         joint_route(
             scenario,
