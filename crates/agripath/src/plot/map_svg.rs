@@ -51,8 +51,12 @@ pub struct Underlay<'a> {
 const WIDTH_PX: f64 = 1200.0;
 const PAD_PX: f64 = 40.0;
 const LEGEND_PX: f64 = 95.0;
-/// Sortie swatches per legend row.
-const LEGEND_PER_ROW: usize = 50;
+/// Sortie swatches per legend row: the row and the words after it fit the width.
+const LEGEND_PER_ROW: usize = 25;
+/// Most sortie swatches the legend draws (two rows, within the legend's band): above, their
+/// colours repeat and a grid of them overran the map and pushed its words off the picture (a
+/// tenth trial's 201 sorties), so only the count and the numbering are said.
+const LEGEND_MOST_SWATCHES: usize = 2 * LEGEND_PER_ROW;
 
 struct Canvas {
     min_x: f64,
@@ -455,8 +459,13 @@ pub fn plan_svg(map: &PlanMap) -> String {
     // Legend, scale bar, north arrow along the bottom.
     let base = height_px - LEGEND_PX + 55.0;
     // One numbered swatch per sortie, in rows of LEGEND_PER_ROW (so 35 sorties read as 35).
-    let rows = sortie_count.div_ceil(LEGEND_PER_ROW).max(1);
-    for sortie in 0..sortie_count {
+    let listed = if sortie_count <= LEGEND_MOST_SWATCHES {
+        sortie_count
+    } else {
+        0
+    };
+    let rows = listed.div_ceil(LEGEND_PER_ROW).max(1);
+    for sortie in 0..listed {
         let (row, column) = (sortie / LEGEND_PER_ROW, sortie % LEGEND_PER_ROW);
         let x = PAD_PX + 60.0 + column as f64 * 18.0;
         let y = base - 36.0 - (rows - 1 - row) as f64 * 13.0;
@@ -469,11 +478,16 @@ pub fn plan_svg(map: &PlanMap) -> String {
             sortie + 1
         );
     }
+    let count_words = if listed == sortie_count {
+        format!("{sortie_count} (numbered at each sortie's first pass; swaths solid, edge passes dashed)")
+    } else {
+        format!("{sortie_count}, each numbered at its first pass (too many to list by colour); swaths solid, edge passes dashed")
+    };
     let _ = writeln!(
         svg,
-        r##"<text x="{PAD_PX}" y="{:.0}" font-size="12" fill="#222">sorties</text><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">{sortie_count} (numbered at each sortie's first pass; swaths solid, edge passes dashed)</text>"##,
+        r##"<text x="{PAD_PX}" y="{:.0}" font-size="12" fill="#222">sorties</text><text x="{:.0}" y="{:.0}" font-size="12" fill="#222">{count_words}</text>"##,
         base - 27.0,
-        PAD_PX + 66.0 + sortie_count.min(LEGEND_PER_ROW) as f64 * 18.0,
+        PAD_PX + 66.0 + listed.min(LEGEND_PER_ROW) as f64 * 18.0,
         base - 27.0,
     );
     // The bottom row: each entry's swatch (a dashed line or a filled box), then its words;
