@@ -318,6 +318,14 @@ impl<'a> OrderingProblem<'a> {
         }
     }
 
+    /// The same problem with its costs computed on demand, as above 2,000 ends (for tests of
+    /// the paths that run without the matrix, on small instances).
+    #[cfg(test)]
+    pub(crate) fn without_cost_matrix(mut self) -> Self {
+        self.matrix = None;
+        self
+    }
+
     /// Number of passes.
     pub fn passes(&self) -> usize {
         self.ends.len()
@@ -358,10 +366,17 @@ impl<'a> OrderingProblem<'a> {
     /// Whether the transfer from `from` to `to` climbs out of the field: eq. (8) adds 2h to
     /// its 3D length exactly then.
     pub fn climbs(&self, from: End, to: End) -> bool {
+        self.cost_and_climbs(from, to).1
+    }
+
+    /// Eq. (8) between two ends and whether that transfer climbs out of the field, with
+    /// one cost: above 2,000 ends a cost is computed (a polygon test), not looked up.
+    pub fn cost_and_climbs(&self, from: End, to: End) -> (f64, bool) {
         let (a, b) = (self.point(from), self.point(to));
         let straight =
             ((a.x - b.x).powi(2) + (a.y - b.y).powi(2) + (a.ground_m - b.ground_m).powi(2)).sqrt();
-        self.cost(from, to) > straight + 1e-6
+        let cost = self.cost(from, to);
+        (cost, cost > straight + 1e-6)
     }
 
     /// Between the start point and an end, either way (eq. 8 is symmetric); 0 when there is

@@ -22,6 +22,8 @@ pub(super) type Placed = (usize, usize);
 
 /// What the block search needs to know of the blocks it orders.
 pub(super) trait Blocks {
+    /// How many blocks there are (numbered from 0).
+    fn count(&self) -> usize;
     /// The end the placed block is entered by.
     fn entry(&self, placed: Placed) -> End;
     /// The end the placed block is left by.
@@ -39,15 +41,35 @@ pub(super) struct BlockSearch<'a, 'p, B> {
     blocks: &'a B,
     closed: bool,
     home: bool,
+    /// Without the problem's cost matrix (above 2,000 ends) a cost is computed, not looked
+    /// up: the costs between every placed block's exit and every other's entry, computed once
+    /// here (the same values), when there are at most [`LINK_TABLE_BLOCKS`] blocks.
+    links: Option<Vec<f64>>,
 }
 
-impl<'a, 'p, B: Blocks> BlockSearch<'a, 'p, B> {
+/// Most blocks whose links are tabled: 4 variants each, (4 × 300)² costs, 11.5 MB.
+const LINK_TABLE_BLOCKS: usize = 300;
+
+impl<'a, 'p, B: Blocks + Sync> BlockSearch<'a, 'p, B> {
     pub(super) fn new(problem: &'a OrderingProblem<'p>, blocks: &'a B) -> Self {
+        let count = blocks.count();
+        let links = (!problem.has_cost_matrix() && count <= LINK_TABLE_BLOCKS).then(|| {
+            let placed = |index: usize| (index / 4, index % 4);
+            let rows: Vec<usize> = (0..4 * count).collect();
+            crate::parallel::map_in_order(&rows, |&from| {
+                let exit = blocks.exit(placed(from));
+                (0..4 * count)
+                    .map(|to| problem.cost(exit, blocks.entry(placed(to))))
+                    .collect::<Vec<f64>>()
+            })
+            .concat()
+        });
         Self {
             problem,
             blocks,
             closed: problem.start.is_closed(),
             home: problem.start.returns_home(),
+            links,
         }
     }
 
@@ -56,7 +78,10 @@ impl<'a, 'p, B: Blocks> BlockSearch<'a, 'p, B> {
     fn link(&self, from: Option<Placed>, to: Option<Placed>) -> f64 {
         let blocks = self.blocks;
         match (from, to) {
-            (Some(a), Some(b)) => self.problem.cost(blocks.exit(a), blocks.entry(b)),
+            (Some(a), Some(b)) => match &self.links {
+                Some(links) => links[(4 * a.0 + a.1) * 4 * blocks.count() + 4 * b.0 + b.1],
+                None => self.problem.cost(blocks.exit(a), blocks.entry(b)),
+            },
             (None, Some(b)) if !self.closed => self.problem.cost_from_start(blocks.entry(b)),
             (Some(a), None) if self.home => self.problem.cost_from_start(blocks.exit(a)),
             _ => 0.0,

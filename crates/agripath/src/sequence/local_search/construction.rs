@@ -231,6 +231,10 @@ impl FieldBlocks {
 }
 
 impl Blocks for FieldBlocks {
+    fn count(&self) -> usize {
+        self.0.len()
+    }
+
     fn entry(&self, (field, variant): Placed) -> End {
         self.0[field][variant].0[0].entry()
     }

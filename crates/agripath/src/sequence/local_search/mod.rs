@@ -540,6 +540,38 @@ mod tests {
         }
     }
 
+    /// Without the cost matrix (farms above 2,000 ends) the block search reads its links from
+    /// a table of its own: the same links, so the same order as with the matrix.
+    #[test]
+    fn the_block_search_orders_alike_with_and_without_the_cost_matrix() {
+        let farm = crate::demo::scenario().unwrap().farm;
+        let model = TransferModel::new(&farm, 10.0);
+        let (mut ends, mut groups) = (Vec::new(), Vec::new());
+        for field in 0..40_usize {
+            let (column, row) = ((field * 7) % 9, field / 9);
+            let mut group = Vec::new();
+            for line in 0..3 {
+                let x = 3000.0 + 70.0 * column as f64 + 5.0 * line as f64;
+                let y = 2000.0 + 90.0 * row as f64 + (field % 4) as f64 * 7.0;
+                group.push(ends.len());
+                ends.push([y, y + 30.0 + (field % 5) as f64].map(|y| GroundPoint {
+                    x,
+                    y,
+                    ground_m: 0.0,
+                }));
+            }
+            groups.push(group);
+        }
+        for start in [Start::Closed, Start::Open] {
+            let problem = OrderingProblem::new(ends.clone(), start, &model);
+            let with_matrix = block_local_search(&problem, &groups, true, 3).unwrap();
+            let problem = problem.without_cost_matrix();
+            assert!(!problem.has_cost_matrix());
+            let without = block_local_search(&problem, &groups, true, 3).unwrap();
+            assert_eq!(with_matrix, without);
+        }
+    }
+
     /// A farm of more fields than the exact constructions take: the grid construction flies
     /// each field once as a block, and stays within a few per cent of the all-pairs one.
     #[test]

@@ -34,6 +34,10 @@ impl Runs {
 }
 
 impl Blocks for Runs {
+    fn count(&self) -> usize {
+        self.0.len()
+    }
+
     fn entry(&self, placed: Placed) -> End {
         self.steps(placed)[0].entry()
     }

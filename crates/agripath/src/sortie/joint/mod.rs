@@ -138,8 +138,8 @@ impl<'a> JointProblem<'a> {
     /// [`super::route::WorkRoute::from_route`] times it.
     pub fn transfer_s(&self, from: Step, to: Step) -> f64 {
         let (exit, entry) = (from.exit(), to.entry());
-        let cost = self.ordering.cost(exit, entry);
-        if self.ordering.climbs(exit, entry) {
+        let (cost, climbs) = self.ordering.cost_and_climbs(exit, entry);
+        if climbs {
             cost / self.speeds.transit_mps + self.speeds.transfer_climb_s
         } else {
             cost / self.speeds.turn_mps
