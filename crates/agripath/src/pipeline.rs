@@ -131,7 +131,11 @@ fn joint_route(
     let (problem, _) = ordering_problem(coverage, model, Start::Fixed(supply));
     // The same passes, numbered alike, with no supply point: its open path.
     let (open_problem, groups) = ordering_problem(coverage, model, Start::Open);
-    let open = settings.sequencer.sequencer().order(&open_problem, &groups);
+    let open = settings
+        .sequencer
+        .for_joint_start()
+        .sequencer()
+        .order(&open_problem, &groups);
     let vehicle = &scenario.vehicle;
     let points = crate::sequence::passes_of(coverage)
         .into_iter()

@@ -322,28 +322,32 @@ impl TourSplit<'_> {
             let profile = &self.profiles[step.pass];
             let (length, seconds) = (profile.length(), profile.seconds());
             let count = profile.spray_m.len();
-            for index in 0..count {
-                let (along, along_s, one_way) = if step.reversed {
-                    let mirrored = count - 1 - index;
-                    (
-                        length - profile.spray_m[mirrored],
-                        seconds - profile.spray_s[mirrored],
-                        profile.leg_s[mirrored],
-                    )
-                } else {
-                    (
-                        profile.spray_m[index],
-                        profile.spray_s[index],
-                        profile.leg_s[index],
-                    )
-                };
-                spray.push(spray_before + along);
-                spray_time.push(seconds_before + along_s);
-                transfer.push(transfer_before);
-                leg.push(one_way);
-                between.push(false);
-                owner.push(position);
+            // A vector at a time (tight loops, one capacity check each): the same sums as a
+            // point at a time, so the same bits.
+            if step.reversed {
+                spray.extend(
+                    profile
+                        .spray_m
+                        .iter()
+                        .rev()
+                        .map(|m| spray_before + (length - m)),
+                );
+                spray_time.extend(
+                    profile
+                        .spray_s
+                        .iter()
+                        .rev()
+                        .map(|s| seconds_before + (seconds - s)),
+                );
+                leg.extend(profile.leg_s.iter().rev());
+            } else {
+                spray.extend(profile.spray_m.iter().map(|m| spray_before + m));
+                spray_time.extend(profile.spray_s.iter().map(|s| seconds_before + s));
+                leg.extend(&profile.leg_s);
             }
+            transfer.resize(transfer.len() + count, transfer_before);
+            between.resize(between.len() + count, false);
+            owner.resize(owner.len() + count, position);
             spray_before += length;
             seconds_before += seconds;
             if let Some(next) = tour.get(position + 1) {
