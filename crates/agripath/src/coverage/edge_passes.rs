@@ -5,19 +5,37 @@ use geo::{Area, Coord, MultiPolygon};
 
 use super::drape::{path_length_3d, GroundPoint};
 use super::region::rings;
-use super::{edge_corners, EdgePass};
+use super::{edge_corners, sliver, EdgePass};
 use crate::error::Fault;
 use crate::terrain::Terrain;
 
+/// The ground an edge pass covers and where it may spray.
+pub(super) struct EdgeLayout<'a> {
+    /// The field's number.
+    pub field: usize,
+    /// Its sprayable region ([`super::region::sprayable_region`]).
+    pub sprayable: &'a MultiPolygon<f64>,
+    /// The pass regions, whose rings the passes fly.
+    pub pass_regions: &'a [MultiPolygon<f64>],
+    /// The swath width, metres.
+    pub width_m: f64,
+}
+
 /// Edge passes along every ring of each pass region, sampled every `spacing_m`: closed, or,
-/// with `corner_width_m`, opened where a corner is cut ([`edge_corners`]); and the corners cut.
+/// with `corner_width_m`, opened where a corner is cut ([`edge_corners`]); a ring round a
+/// sliver once along its middle ([`sliver`]); and the corners cut.
 pub(super) fn edge_passes(
-    field: usize,
-    pass_regions: &[MultiPolygon<f64>],
+    layout: &EdgeLayout,
     terrain: &dyn Terrain,
     spacing_m: f64,
     corner_width_m: Option<f64>,
 ) -> Result<(Vec<EdgePass>, edge_corners::CornerCuts), Fault> {
+    let EdgeLayout {
+        field,
+        sprayable,
+        pass_regions,
+        width_m,
+    } = *layout;
     let mut passes = Vec::new();
     let mut all_cuts = edge_corners::CornerCuts::default();
     for (pass, region) in pass_regions.iter().enumerate() {
@@ -26,14 +44,16 @@ pub(super) fn edge_passes(
             {
                 continue;
             }
-            let paths = match corner_width_m {
-                Some(width_m) => {
+            let midline = sliver::sliver_midline(&ring, width_m, sprayable);
+            let paths = match (midline, corner_width_m) {
+                (Some(midline), _) => vec![midline],
+                (None, Some(width_m)) => {
                     let cuts = edge_corners::cut_corners(&ring, region, width_m);
                     all_cuts.corners += cuts.corners;
                     all_cuts.double_saved_m2 += cuts.double_saved_m2;
                     cuts.paths
                 }
-                None => vec![ring],
+                (None, None) => vec![ring],
             };
             for path in paths.into_iter().map(start_mid_side) {
                 let mut points = Vec::new();

@@ -9,6 +9,7 @@ pub mod heading;
 pub mod measure;
 pub mod region;
 pub mod scan_lines;
+pub mod sliver;
 
 use geo::{Area, MapCoords, MultiPolygon};
 use serde::Serialize;
@@ -19,7 +20,7 @@ use crate::model::{Farm, Vehicle};
 use crate::terrain::Terrain;
 use drape::{drape, draped_length, path_length_3d, GroundPoint};
 pub use edge_cut::EdgeCut;
-use edge_passes::edge_passes;
+use edge_passes::{edge_passes, EdgeLayout};
 use heading::{
     choose_heading, near_best_headings, HeadingChoice, HeadingObjective, HeadingSample,
     DOSE_CANDIDATES, DOSE_TOLERANCE,
@@ -488,8 +489,12 @@ pub fn cover_field(
     // `--edge-cut overlap` is the layout before decision 0019: passes round their corners.
     let corner_width_m = (settings.edge_cut != EdgeCut::Overlap).then_some(width_m);
     let (edges, corner_cuts) = edge_passes(
-        index,
-        &pass_regions,
+        &EdgeLayout {
+            field: index,
+            sprayable,
+            pass_regions: &pass_regions,
+            width_m,
+        },
         terrain,
         settings.drape_spacing_m,
         corner_width_m,
