@@ -760,6 +760,13 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "hole 1 touches or crosses the outer boundary",
         ),
         (
+            // Lon/lat input: the place where holes touch in lon/lat too (the eleventh trial
+            // was given UTM metres here, lon/lat everywhere else).
+            fields("holes_touch_lonlat.geojson"),
+            bad("holes_touch_lonlat.geojson"),
+            "holes 1 and 2 touch along their edges near lon 105.6",
+        ),
+        (
             fields("holes_overlap.geojson"),
             bad("holes_overlap.geojson"),
             "overlap",

@@ -431,6 +431,15 @@ fn in_input_terms(fault: Fault, frame: CoordinateSystem) -> Fault {
             "hole {hole} touches or crosses the outer boundary {} (a hole must lie inside it: redraw the boundary round the gap if the hole opens onto the edge)",
             lon_lat(x, y)
         )),
+        Fault::HolesTouch {
+            first,
+            second,
+            x,
+            y,
+        } => Fault::Structure(format!(
+            "holes {first} and {second} touch along their edges {} without overlapping: draw them as one hole, or leave a gap between them",
+            lon_lat(x, y)
+        )),
         other => other,
     }
 }
