@@ -211,6 +211,12 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             bad("thin.geojson"),
             "field 'thin' is narrower than one swath (5 m)",
         ),
+        (
+            // `validate` refuses what `plan` would (it said `valid`: the eleventh trial).
+            vec!["validate".to_string(), "--fields".into(), bad("thin.geojson")],
+            bad("thin.geojson"),
+            "field 'thin' is narrower than one swath (5 m)",
+        ),
         flag(
             &["--terrain", "flat:9001"],
             "--terrain",

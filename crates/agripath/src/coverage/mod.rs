@@ -271,10 +271,7 @@ pub fn plan_coverage(
             && coverage.edges.is_empty()
             && sprayable.unsigned_area() >= vehicle.swath_width_m.powi(2)
         {
-            return Err(Fault::Structure(format!(
-                "field '{}' is narrower than one swath ({} m) everywhere: no swath fits inside it, and every footprint is kept inside its field (decision 0023)",
-                field.name, vehicle.swath_width_m
-            )));
+            return Err(narrower_than_a_swath(&field.name, vehicle.swath_width_m));
         }
         laid_out.one_done();
         Ok(coverage)
@@ -284,6 +281,37 @@ pub fn plan_coverage(
         swath_width_m: vehicle.swath_width_m,
         fields,
     })
+}
+
+/// What `validate` can tell of the layout without laying it out: every field has ground to
+/// spray at the default margins, and a line one swath in from its edges (the eleventh
+/// trial's 3 m strip read `valid`, then `plan` refused the farm for it). The faults are
+/// `plan`'s own, word for word.
+pub fn check_fields_can_be_laid_out(farm: &Farm, vehicle: &Vehicle) -> Result<(), Fault> {
+    let settings = CoverageSettings::default();
+    let width_m = vehicle.swath_width_m;
+    for field in &farm.fields {
+        let sprayable = sprayable_region(
+            field,
+            &farm.obstacles,
+            settings.boundary_margin_m,
+            settings.obstacle_margin_m,
+        );
+        check_something_to_spray(field, &sprayable, width_m)?;
+        if field.sprayed_with_others.is_empty()
+            && sprayable.unsigned_area() >= width_m.powi(2)
+            && edge_pass_regions(&sprayable, 1, width_m).is_empty()
+        {
+            return Err(narrower_than_a_swath(&field.name, width_m));
+        }
+    }
+    Ok(())
+}
+
+fn narrower_than_a_swath(name: &str, width_m: f64) -> Fault {
+    Fault::Structure(format!(
+        "field '{name}' is narrower than one swath ({width_m} m) everywhere: no swath fits inside it, and every footprint is kept inside its field (decision 0023)"
+    ))
 }
 
 /// Refuses, before any layout, a farm whose coverage would not finish in bounded time and

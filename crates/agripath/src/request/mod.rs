@@ -235,6 +235,8 @@ pub fn check(inputs: &ScenarioInputs, folder: &Path) -> Result<Outcome, InputErr
 /// `agripath validate`: what the inputs hold, as text ending in `valid`, or as JSON.
 pub fn validate(inputs: &ScenarioInputs, json: bool) -> Result<String, InputError> {
     let scenario = inputs.load()?;
+    crate::coverage::check_fields_can_be_laid_out(&scenario.farm, &scenario.vehicle)
+        .map_err(|fault| InputError::new(&scenario.farm.source, fault))?;
     let mut summary = crate::summary::ScenarioSummary::of(&scenario);
     // `plan` refuses two launch markers unless --start or --supply chooses (trial 9: validate
     // said `valid` with no word of it).
