@@ -55,7 +55,8 @@ pub(super) fn edge_passes(
                 }
                 (None, None) => vec![ring],
             };
-            for path in paths.into_iter().map(start_mid_side) {
+            let thin = |path| thinned(path, THIN_SHARE * width_m);
+            for path in paths.into_iter().map(start_mid_side).map(thin) {
                 let mut points = Vec::new();
                 for pair in path.windows(2) {
                     let (start, end) = (pair[0], pair[1]);
@@ -117,6 +118,24 @@ fn start_mid_side(path: Vec<Coord<f64>>) -> Vec<Coord<f64>> {
     turned
 }
 
+/// The vertices of an edge pass's line that bend it by more than `tolerance_m`:
+/// Douglas-Peucker, the line's ends kept. A boundary walked with a phone's GPS, grown
+/// inwards, bends every 0.15 m, and each bend was a waypoint (the eleventh trial: 807 mission
+/// items for a 0.29 ha field, 1,374 for a rectangle drawn with 2,000 points; 380 and 48 now;
+/// decision 0039).
+fn thinned(path: Vec<Coord<f64>>, tolerance_m: f64) -> Vec<Coord<f64>> {
+    use geo::Simplify;
+    if path.len() <= 3 {
+        return path;
+    }
+    geo::LineString::new(path).simplify(tolerance_m).0
+}
+
+/// How far an edge pass's line may move when its vertices are thinned, as a share of the
+/// swath: its spray strip's edge moves as far (5 cm of a 5 m swath; on the trial's walked
+/// field 0.004 % of the spray fell outside, against 0.000 % before).
+const THIN_SHARE: f64 = 0.01;
+
 fn ground_point(point: Coord<f64>, terrain: &dyn Terrain) -> Result<GroundPoint, Fault> {
     Ok(GroundPoint {
         x: point.x,
@@ -154,5 +173,27 @@ mod tests {
         // An open path (a corner cut) is kept as it is.
         let open = ring[..4].to_vec();
         assert_eq!(start_mid_side(open.clone()), open);
+    }
+
+    /// A side walked with a phone (2 cm of jitter every 0.15 m, and a point repeated) is one
+    /// leg; the corners stay, and no vertex moves the line by more than the tolerance.
+    #[test]
+    fn thinning_drops_the_jitter_of_a_walked_side_and_keeps_the_corners() {
+        let mut path = Vec::new();
+        for step in 0..=200 {
+            let x = 0.15 * step as f64;
+            let jitter = if step % 2 == 0 { 0.02 } else { -0.02 };
+            path.push(Coord { x, y: jitter * 0.5 });
+            if step == 100 {
+                path.push(Coord { x, y: jitter * 0.5 });
+            }
+        }
+        path.push(Coord { x: 30.0, y: 20.0 });
+        path.push(Coord { x: 0.0, y: 20.0 });
+        let thin = thinned(path.clone(), 0.05);
+        assert_eq!(thin.len(), 4, "{thin:?}");
+        assert_eq!(thin.first(), path.first());
+        assert_eq!(thin.last(), path.last());
+        assert!((thin[1].x - 30.0).abs() < 1e-9 && (thin[2].y - 20.0).abs() < 1e-9);
     }
 }

@@ -154,7 +154,7 @@ pub fn edge_pass_regions(
 }
 
 /// How much nearer the edge than w/2 a pass line may lie where the field is a strip
-/// ([`pass_region`], [`reachable_region`]), metres: a strip drawn one swath wide measures
+/// (the pass regions, [`reachable_region`]), metres: a strip drawn one swath wide measures
 /// a hair either side of it once projected.
 pub const STRIP_SNAP_M: f64 = 0.001;
 
