@@ -773,6 +773,18 @@ fn corpus(special: &Path) -> Vec<(Vec<String>, String, &'static str)> {
             "holes 1 and 2 touch along their edges near lon 105.6",
         ),
         (
+            // Latitude first: the pair swapped is a place, and the message says so.
+            fields("latlon_swapped.geojson"),
+            bad("latlon_swapped.geojson"),
+            "are longitude and latitude swapped?",
+        ),
+        (
+            // A boundary walked as a track: what was skipped is named, not only "no field".
+            fields("walked_track.kml"),
+            bad("walked_track.kml"),
+            "no field polygons found; skipped Placemark 1 (Boundary walk): a LineString is not planned",
+        ),
+        (
             fields("holes_overlap.geojson"),
             bad("holes_overlap.geojson"),
             "overlap",

@@ -487,9 +487,15 @@ fn zone_of(path: &Path, features: &[RawFeature]) -> Result<UtmZone, InputError> 
                 return Err(InputError::new(path, Fault::NonFinite).at(feature.place.clone()));
             }
             if !(-180.0..=180.0).contains(&lon) || !(-90.0..=90.0).contains(&lat) {
+                // Swapped, the pair would be a place: say so (the eleventh trial's file).
+                let hint = if (-90.0..=90.0).contains(&lon) && (-180.0..=180.0).contains(&lat) {
+                    "; are longitude and latitude swapped? GeoJSON and KML give longitude first"
+                } else {
+                    ""
+                };
                 return Err(
                     InputError::new(path, Fault::OutOfRange { lon, lat }).at(format!(
-                        "{} (coordinates are read as WGS84 lon/lat; for metres in a local frame use \"crs\": \"local\" or --crs local)",
+                        "{} (coordinates are read as WGS84 lon/lat; for metres in a local frame use \"crs\": \"local\" or --crs local{hint})",
                         feature.place
                     )),
                 );

@@ -34,7 +34,21 @@ pub fn parse(path: &Path, text: &str, choice: CoordinateChoice) -> Result<Farm, 
             None => error,
         }
     })?;
-    let mut farm = build(path, features, choice == CoordinateChoice::FromFile, None)?;
+    let built = build(path, features, choice == CoordinateChoice::FromFile, None);
+    // A file of drawn paths only (a walked boundary saved as a track): say what was skipped,
+    // not only that no field was found (the eleventh trial).
+    let mut farm = match built {
+        Err(error) if error.fault == Fault::NoFields && !skipped.is_empty() => {
+            return Err(InputError::new(
+                path,
+                Fault::Structure(format!(
+                    "no field polygons found; skipped {} (a boundary walked as a track must be closed into a Polygon to be a field)",
+                    skipped.join("; ")
+                )),
+            ));
+        }
+        other => other?,
+    };
     farm.notes.extend(skipped);
     Ok(farm)
 }
