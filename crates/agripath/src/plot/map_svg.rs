@@ -49,6 +49,8 @@ pub struct Underlay<'a> {
 }
 
 const WIDTH_PX: f64 = 1200.0;
+/// Tallest the map's drawing of the farm gets, pixels (the frame widens beyond).
+const MOST_MAP_HEIGHT_PX: f64 = 1600.0;
 const PAD_PX: f64 = 40.0;
 const LEGEND_PX: f64 = 95.0;
 /// Sortie swatches per legend row: the row and the words after it fit the width.
@@ -175,12 +177,19 @@ pub fn plan_svg(map: &PlanMap) -> String {
             },
         );
     }
-    let span_x = bounds.width().max(1.0);
     let span_y = bounds.height().max(1.0);
+    // A farm much taller than wide (a strip, a row of terraces) is drawn at most
+    // `MOST_MAP_HEIGHT_PX` tall, centred in a wider frame (the eleventh trial's 400 m strip
+    // drew 1,600 × 20,143 px).
+    let span_x = bounds
+        .width()
+        .max(1.0)
+        .max(span_y * (WIDTH_PX - 2.0 * PAD_PX) / MOST_MAP_HEIGHT_PX);
+    let min_x = bounds.center().x - span_x / 2.0;
     let scale = (WIDTH_PX - 2.0 * PAD_PX) / span_x;
     let height_px = span_y * scale + 2.0 * PAD_PX + LEGEND_PX;
     let canvas = Canvas {
-        min_x: bounds.min().x,
+        min_x,
         max_y: bounds.max().y,
         scale,
     };
