@@ -70,6 +70,78 @@ fn points_along(line: &[(f64, f64)], step: f64) -> Vec<(f64, f64)> {
     points
 }
 
+/// A field's label, where it would go (pixels) and the field's size in pixels.
+pub(super) type Labelled = (String, (f64, f64), (f64, f64));
+
+/// How a field's name is written on the map.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(super) enum FieldLabel {
+    /// Across, centred at the point.
+    Across(f64, f64),
+    /// Up the field (rotated a quarter turn), centred at the point: the name is wider than
+    /// its field, which is taller than wide (terraces, strips).
+    Up(f64, f64),
+}
+
+impl FieldLabel {
+    /// Its SVG `transform`.
+    pub(super) fn transform(&self) -> String {
+        match self {
+            Self::Across(x, y) => format!("translate({x:.2} {y:.2})"),
+            Self::Up(x, y) => format!("translate({x:.2} {y:.2}) rotate(-90)"),
+        }
+    }
+}
+
+/// A map label's font size, px, and the width of one of its characters, about.
+const FIELD_LABEL_PX: f64 = 13.0;
+const CHARACTER_PX: f64 = 8.0;
+
+/// Where each field's label goes: at its inner point (pixels), the field's pixel size
+/// beside it; up the field where the name is wider than the field and the field taller
+/// than wide; a label across that would overlap one already placed moves down a line at a
+/// time (at most five) until it is clear (ten terraces' names printed over each other on
+/// one row: the eleventh trial).
+pub(super) fn field_label_places(fields: &[Labelled]) -> Vec<FieldLabel> {
+    let mut boxes: Vec<[f64; 4]> = Vec::new();
+    let overlaps =
+        |a: &[f64; 4], b: &[f64; 4]| a[0] < b[2] && b[0] < a[2] && a[1] < b[3] && b[1] < a[3];
+    fields
+        .iter()
+        .map(|(text, (x, y), (width_px, height_px))| {
+            let (x, y, width_px, height_px) = (*x, *y, *width_px, *height_px);
+            let text_px = CHARACTER_PX * text.chars().count() as f64;
+            if text_px > width_px && height_px > width_px {
+                let half = text_px / 2.0;
+                boxes.push([
+                    x - FIELD_LABEL_PX / 2.0,
+                    y - half,
+                    x + FIELD_LABEL_PX / 2.0,
+                    y + half,
+                ]);
+                return FieldLabel::Up(x, y);
+            }
+            let at = |y: f64| {
+                [
+                    x - text_px / 2.0,
+                    y - FIELD_LABEL_PX,
+                    x + text_px / 2.0,
+                    y + 3.0,
+                ]
+            };
+            let mut placed_y = y;
+            for step in 0..6 {
+                placed_y = y + step as f64 * (FIELD_LABEL_PX + 3.0);
+                if !boxes.iter().any(|other| overlaps(&at(placed_y), other)) {
+                    break;
+                }
+            }
+            boxes.push(at(placed_y));
+            FieldLabel::Across(x, placed_y)
+        })
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -108,5 +180,22 @@ mod tests {
             points_along(&[(0.0, 0.0), (10.0, 0.0), (10.0, 30.0)], 18.0),
             vec![(0.0, 0.0), (10.0, 8.0), (10.0, 26.0)]
         );
+    }
+
+    #[test]
+    fn names_wider_than_narrow_tall_fields_run_up_them_and_others_step_clear() {
+        // Two terraces 40 px wide and 600 tall, side by side; two wide fields whose names
+        // would print over each other on one row.
+        let name = |characters: usize| "n".repeat(characters);
+        let places = field_label_places(&[
+            (name(14), (20.0, 300.0), (40.0, 600.0)),
+            (name(14), (60.0, 300.0), (40.0, 600.0)),
+            (name(20), (500.0, 100.0), (300.0, 200.0)),
+            (name(20), (560.0, 100.0), (300.0, 200.0)),
+        ]);
+        assert_eq!(places[0], FieldLabel::Up(20.0, 300.0));
+        assert_eq!(places[1], FieldLabel::Up(60.0, 300.0));
+        assert_eq!(places[2], FieldLabel::Across(500.0, 100.0));
+        assert_eq!(places[3], FieldLabel::Across(560.0, 116.0));
     }
 }

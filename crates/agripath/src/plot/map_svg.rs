@@ -449,20 +449,27 @@ pub fn plan_svg(map: &PlanMap) -> String {
         svg,
         r##"<g id="labels" font-size="13" fill="#111" text-anchor="middle">"##
     );
-    for (index, field) in farm.fields.iter().enumerate() {
-        // A point inside the field, away from its edges: a concave field's centroid can lie in
-        // its notch, outside it, where the label would name the wrong ground.
-        let inside = geo::InteriorPoint::interior_point(&field.polygon);
-        if let (Some(centre), Some(coverage)) = (inside, plan.fields.get(index)) {
-            let _ = writeln!(
-                svg,
-                r##"<text x="{:.2}" y="{:.2}" stroke="#fbfbf8" stroke-width="3" paint-order="stroke">{} {:.1}°</text>"##,
-                canvas.x(centre.x()),
-                canvas.y(centre.y()),
-                escape(&field.name),
-                coverage.swath_bearing_deg()
-            );
-        }
+    // Inside each field, off its edges (a concave field's centroid can lie in its notch).
+    let labels: Vec<super::map_labels::Labelled> = farm
+        .fields
+        .iter()
+        .zip(&plan.fields)
+        .filter_map(|(field, coverage)| {
+            let centre = geo::InteriorPoint::interior_point(&field.polygon)?;
+            let size = geo::BoundingRect::bounding_rect(&field.polygon)?;
+            let text = format!("{} {:.1}°", field.name, coverage.swath_bearing_deg());
+            let at = (canvas.x(centre.x()), canvas.y(centre.y()));
+            Some((text, at, (size.width() * scale, size.height() * scale)))
+        })
+        .collect();
+    let places = super::map_labels::field_label_places(&labels);
+    for ((text, ..), place) in labels.iter().zip(places) {
+        let _ = writeln!(
+            svg,
+            r##"<text transform="{}" stroke="#fbfbf8" stroke-width="3" paint-order="stroke">{}</text>"##,
+            place.transform(),
+            escape(text)
+        );
     }
     let _ = writeln!(svg, "</g>");
     // Legend, scale bar, north arrow along the bottom.
