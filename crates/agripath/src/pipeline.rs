@@ -297,7 +297,13 @@ fn choose_supply(
             }
             other => other,
         })?;
-    // The old rule's point is scored as it is, level or not: the saving stays like for like.
+    // The old rule's point is scored as it is, level or not: the saving stays like for like;
+    // but a moved point the level search refused is named for what it is.
+    if slope_warning.is_none() {
+        auto.first_point_moved_unlevel = auto
+            .first_point_moved
+            .and_then(|moved| crate::supply::level::unlevel(&ground, moved.point));
+    }
     for old_rule in std::iter::once(&mut auto.first_point).chain(auto.first_point_moved.as_mut()) {
         if !old_rule.cost_s.is_finite() {
             old_rule.cost_s = crate::supply::SupplyCost::cost_s(&evaluator, old_rule.point);

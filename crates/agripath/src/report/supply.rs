@@ -69,6 +69,10 @@ pub struct MovedReport {
     pub saving_s: Option<f64>,
     /// The saving as a share of its cost, percent (`null` with `saving_s`).
     pub saving_percent: Option<f64>,
+    /// Why no vehicle stands level there (its slope above what `auto` stands on, decision
+    /// 0029), when the chosen point is level and it is not; `null` otherwise. The summary
+    /// then calls it the nearest place outside the fields, not the nearest place one can.
+    pub unlevel: Option<String>,
 }
 
 /// `old - best` in seconds and as a share of `old`, percent, rounded for the report; `None`
@@ -149,6 +153,7 @@ impl SupplyReport {
                 first_point_moved: auto.first_point_moved.map(|moved| {
                     let moved_saving = saving(moved.cost_s, best);
                     MovedReport {
+                        unlevel: auto.first_point_moved_unlevel.clone(),
                         scored: CandidateReport::new(&moved, frame),
                         saving_s: moved_saving.map(|(seconds, _)| seconds),
                         saving_percent: moved_saving.map(|(_, percent)| percent),
@@ -222,8 +227,12 @@ impl SupplyReport {
                     .map(|moved| format!(
                         "; {}",
                         against(
-                            "the nearest place one can",
-                            "",
+                            if moved.unlevel.is_some() {
+                                "the nearest place outside the fields"
+                            } else {
+                                "the nearest place one can"
+                            },
+                            moved.unlevel.as_deref().unwrap_or(""),
                             &moved.scored,
                             moved.saving_s.zip(moved.saving_percent)
                         )

@@ -180,6 +180,11 @@ pub struct AutoChoice {
     /// operator could follow it (docs/decisions/0031). `None` when the point stands, or when
     /// no place is found.
     pub first_point_moved: Option<ScoredPoint>,
+    /// Why a vehicle cannot stand level at `first_point_moved` (its slope, decision 0029),
+    /// when the search kept to level ground and it is not level: then it is only the nearest
+    /// place outside the fields, and the summary says so (the eleventh trial read "the
+    /// nearest place one can" of a point on a slope `auto` refuses). Set by the pipeline.
+    pub first_point_moved_unlevel: Option<String>,
     /// Times the evaluator's cost was computed.
     pub evaluations: usize,
     /// Whether the candidates stood on access features.
@@ -289,6 +294,7 @@ pub fn choose_auto(
         } else {
             ranked.settled_references[1]
         },
+        first_point_moved_unlevel: None,
         evaluations: ranked.evaluations,
         ranked: ranked.points,
         listed,
