@@ -290,6 +290,7 @@ pub fn plan_coverage(
 pub fn check_fields_can_be_laid_out(farm: &Farm, vehicle: &Vehicle) -> Result<(), Fault> {
     let settings = CoverageSettings::default();
     let width_m = vehicle.swath_width_m;
+    check_work_size(farm, width_m)?;
     for field in &farm.fields {
         let sprayable = sprayable_region(
             field,
@@ -298,8 +299,7 @@ pub fn check_fields_can_be_laid_out(farm: &Farm, vehicle: &Vehicle) -> Result<()
             settings.obstacle_margin_m,
         );
         check_something_to_spray(field, &sprayable, width_m)?;
-        if field.sprayed_with_others.is_empty()
-            && sprayable.unsigned_area() >= width_m.powi(2)
+        if sprayable.unsigned_area() >= width_m.powi(2)
             && edge_pass_regions(&sprayable, 1, width_m).is_empty()
         {
             return Err(narrower_than_a_swath(&field.name, width_m));

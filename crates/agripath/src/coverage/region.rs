@@ -165,12 +165,16 @@ pub const STRIP_SNAP_M: f64 = 0.001;
 fn pass_region(sprayable: &MultiPolygon<f64>, inset_m: f64, width_m: f64) -> MultiPolygon<f64> {
     let strict = offset(sprayable, -inset_m);
     let snapped = offset(sprayable, -(inset_m - STRIP_SNAP_M));
+    // The edge passes' own test (`sliver_midline`), on a piece without holes: a ring at a
+    // time.
     let is_sliver = |polygon: &Polygon<f64>| {
         use geo::{Euclidean, Length};
-        let perimeter = Euclidean.length(polygon.exterior());
-        perimeter > 0.0
-            && 2.0 * polygon.unsigned_area() / perimeter
-                <= crate::coverage::sliver::SLIVER_SHARE * width_m
+        polygon.interiors().is_empty()
+            && crate::coverage::sliver::is_sliver(
+                polygon.unsigned_area(),
+                Euclidean.length(polygon.exterior()),
+                width_m,
+            )
     };
     if !snapped.0.iter().any(is_sliver) {
         return strict;

@@ -16,7 +16,7 @@
 //! along its length: resampled evenly, the tip `a` minimises the largest distance between
 //! the points k samples before and after it; the midline is the midpoints of those pairs.
 
-use geo::{Area, Contains, Coord, Line, LineString, MultiPolygon, Polygon, Simplify};
+use geo::{Area, Contains, Coord, LineString, MultiPolygon, Polygon, Simplify};
 
 /// Largest mean width of a ring flown once along its middle, as a share of the swath.
 pub const SLIVER_SHARE: f64 = 0.005;
@@ -29,6 +29,12 @@ const MOST_SAMPLES: usize = 4000;
 
 /// How far the midline may stray from the midpoints when its vertices are thinned, metres.
 const SIMPLIFY_M: f64 = 0.01;
+
+/// Whether a ring of `area` and `perimeter` is a sliver for a swath `width_m` wide: its mean
+/// width, 2·area / perimeter, at most [`SLIVER_SHARE`] of the swath (false for NaN).
+pub fn is_sliver(area: f64, perimeter: f64, width_m: f64) -> bool {
+    perimeter > 0.0 && 2.0 * area / perimeter <= SLIVER_SHARE * width_m
+}
 
 /// The midline of `ring` (closed, first point repeated last) when it is a sliver for a swath
 /// `width_m` wide, its ends carried on inside `sprayable`; `None` for any other ring.
@@ -43,7 +49,7 @@ pub fn sliver_midline(
     }
     let area = Polygon::new(LineString::new(ring.to_vec()), vec![]).unsigned_area();
     let mean_width_m = 2.0 * area / perimeter;
-    if mean_width_m > SLIVER_SHARE * width_m {
+    if !is_sliver(area, perimeter, width_m) {
         return None;
     }
     let count = ((perimeter * SAMPLES_PER_M) as usize).clamp(LEAST_SAMPLES, MOST_SAMPLES) & !1;
@@ -67,6 +73,13 @@ pub fn sliver_midline(
             (tip, least) = (candidate, mismatch);
         }
     }
+    // One strip folds onto itself about its tips, each sample within the sliver's width and
+    // a sample's spacing of its mirror; a fork (a Y of terraces) or a bulge does not: flown as
+    // the loop it is, not down a "middle" that would leave the field between the arms.
+    let step = perimeter / count as f64;
+    if !(least <= 2.0 * mean_width_m + 2.0 * step) {
+        return None;
+    }
     let midpoints: Vec<Coord<f64>> = (0..=half as isize)
         .map(|k| {
             let (a, b) = (at(tip as isize + k), at(tip as isize - k));
@@ -84,6 +97,8 @@ pub fn sliver_midline(
     let footprint = Footprint {
         width_m,
         slack_m: mean_width_m + SLACK_M,
+        // The tip is a sample: up to a spacing short of the sliver's end.
+        reach_m: width_m / 2.0 + step,
     };
     midline[0] = footprint.carried_on(midline[0], midline[1], sprayable);
     midline[last] = footprint.carried_on(midline[last], midline[last - 1], sprayable);
@@ -99,12 +114,15 @@ struct Footprint {
     /// How far the footprint's end may reach past the strip's sides: the midline's tip is a
     /// point of the ring, up to the sliver's width off the strip's middle.
     slack_m: f64,
+    /// The farthest the tip is carried on.
+    reach_m: f64,
 }
 
 impl Footprint {
-    /// `tip` moved away from `inner` along their line by the most, up to w/2, that keeps
-    /// the footprint's end (a segment w long across the line, less the slack at each end)
-    /// inside `sprayable`.
+    /// `tip` moved away from `inner` along their line by the most, up to `reach_m`, that
+    /// keeps the ground the footprint sweeps on the way (a rectangle w wide, less the slack
+    /// at each side, from the tip to where it stops) inside `sprayable`: not only its end,
+    /// which would let a neck or a pole between be sprayed over (the review of 2026-12-08).
     fn carried_on(
         &self,
         tip: Coord<f64>,
@@ -124,11 +142,22 @@ impl Footprint {
             x: -along.y * half,
             y: along.x * half,
         };
+        // The swept rectangles nest as t grows: the test is monotone, so bisection holds.
         let inside = |t: f64| {
             let centre = tip + along * t;
-            sprayable.contains(&Line::new(centre - across, centre + across))
+            let swept = Polygon::new(
+                LineString::new(vec![
+                    tip - across,
+                    centre - across,
+                    centre + across,
+                    tip + across,
+                    tip - across,
+                ]),
+                vec![],
+            );
+            sprayable.contains(&swept)
         };
-        let (mut low, mut high) = (0.0, self.width_m / 2.0);
+        let (mut low, mut high) = (0.0, self.reach_m);
         if inside(high) {
             return tip + along * high;
         }
@@ -266,5 +295,71 @@ mod tests {
         // The footprint's end, 5 m across less the slack, stays under the slant: its corner
         // near x = 0 under y = 100 (up to the slack's centimetre).
         assert!(north <= 100.02 && north > 97.0, "{north}");
+    }
+
+    #[test]
+    fn a_strip_exactly_one_swath_wide_is_flown_end_to_end_whatever_the_rings_first_point() {
+        // Drawn from the middle of a long side: the ring's first point is no corner.
+        let strip = MultiPolygon::new(vec![Polygon::new(
+            LineString::from(vec![
+                (5.0, 60.0),
+                (5.0, 120.0),
+                (0.0, 120.0),
+                (0.0, 0.0),
+                (5.0, 0.0),
+                (5.0, 60.0),
+            ]),
+            vec![],
+        )]);
+        let midline = sliver_midline(&first_ring(&strip, 5.0), 5.0, &strip).unwrap();
+        let ys: Vec<f64> = [midline[0], midline[midline.len() - 1]]
+            .iter()
+            .map(|point| point.y)
+            .collect();
+        let (low, high) = (ys[0].min(ys[1]), ys[0].max(ys[1]));
+        assert!(low < 0.05 && high > 119.95, "{midline:?}");
+    }
+
+    #[test]
+    fn a_forked_sliver_is_no_strip_and_keeps_its_loop() {
+        // A T of terraces one swath wide (three ends): no middle line flies every arm.
+        let arm = |points: Vec<(f64, f64)>| Polygon::new(LineString::from(points), vec![]);
+        let fork = geo::BooleanOps::union(
+            &MultiPolygon::new(vec![arm(vec![
+                (0.0, 0.0),
+                (5.01, 0.0),
+                (5.01, 60.0),
+                (0.0, 60.0),
+                (0.0, 0.0),
+            ])]),
+            &MultiPolygon::new(vec![arm(vec![
+                (4.0, 27.5),
+                (45.0, 27.5),
+                (45.0, 32.51),
+                (4.0, 32.51),
+                (4.0, 27.5),
+            ])]),
+        );
+        let regions = edge_pass_regions(&fork, 1, 5.0);
+        for ring in rings(&regions[0]) {
+            assert!(sliver_midline(&ring, 5.0, &fork).is_none());
+        }
+    }
+
+    #[test]
+    fn the_end_stops_short_of_a_pole_beside_the_strips_end() {
+        // A pole (a hole of 0.3 m) 0.5 m from the side, 2 m from the end: the footprint's end
+        // alone would clear it at the end line, but it sweeps over it on the way.
+        let mut strip = rectangle(5.01, 120.0);
+        let pole: Vec<(f64, f64)> = (0..=16)
+            .map(|k| {
+                let angle = std::f64::consts::TAU * f64::from(k % 16) / 16.0;
+                (0.5 + 0.3 * angle.cos(), 2.0 + 0.3 * angle.sin())
+            })
+            .collect();
+        strip.0[0].interiors_push(LineString::from(pole));
+        let midline = sliver_midline(&first_ring(&strip, 5.0), 5.0, &strip).unwrap();
+        let south = midline.iter().map(|point| point.y).fold(f64::MAX, f64::min);
+        assert!(south >= 2.3 - 1e-6 && south < 2.5, "{south}");
     }
 }

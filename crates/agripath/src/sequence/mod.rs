@@ -225,7 +225,8 @@ impl Sequencer {
     /// The sequencer of the joint search's start (the sortie planner `joint`): `best` with a
     /// quarter of its kicks. The joint search reworks the order through the split anyway: on
     /// `bench_joint`'s 11 farms the plans' non-spray time moved by −0.74 … +0.46 % by farm
-    /// (mean −0.01 %), and the demo's plan saves about a fifth of its time (decision 0039).
+    /// (mean −0.01 %), and the demo's planning takes about a fifth less time (decision
+    /// 0039).
     pub fn for_joint_start(&self) -> Sequencer {
         match self {
             Sequencer::Best(settings) => Sequencer::Best(LocalSearchSettings {

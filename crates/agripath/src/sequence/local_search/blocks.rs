@@ -50,19 +50,18 @@ pub(super) struct BlockSearch<'a, 'p, B> {
 /// Most blocks whose links are tabled: 4 variants each, (4 × 300)² costs, 11.5 MB.
 const LINK_TABLE_BLOCKS: usize = 300;
 
-impl<'a, 'p, B: Blocks + Sync> BlockSearch<'a, 'p, B> {
+impl<'a, 'p, B: Blocks> BlockSearch<'a, 'p, B> {
     pub(super) fn new(problem: &'a OrderingProblem<'p>, blocks: &'a B) -> Self {
         let count = blocks.count();
         let links = (!problem.has_cost_matrix() && count <= LINK_TABLE_BLOCKS).then(|| {
             let placed = |index: usize| (index / 4, index % 4);
-            let rows: Vec<usize> = (0..4 * count).collect();
-            crate::parallel::map_in_order(&rows, |&from| {
-                let exit = blocks.exit(placed(from));
-                (0..4 * count)
-                    .map(|to| problem.cost(exit, blocks.entry(placed(to))))
-                    .collect::<Vec<f64>>()
-            })
-            .concat()
+            // In series: the block searches already run side by side (the constructions).
+            (0..4 * count)
+                .flat_map(|from| {
+                    let exit = blocks.exit(placed(from));
+                    (0..4 * count).map(move |to| problem.cost(exit, blocks.entry(placed(to))))
+                })
+                .collect()
         });
         Self {
             problem,
