@@ -121,7 +121,7 @@ fn start_mid_side(path: Vec<Coord<f64>>) -> Vec<Coord<f64>> {
 /// The vertices of an edge pass's line that bend it by more than `tolerance_m`:
 /// Douglas-Peucker, the line's ends kept. A boundary walked with a phone's GPS, grown
 /// inwards, bends every 0.15 m, and each bend was a waypoint (the eleventh trial: 807 mission
-/// items for a 0.29 ha field, 1,374 for a rectangle drawn with 2,000 points; 380 and 48 now;
+/// items for a 0.29 ha field, 1,374 for a rectangle drawn with 2,000 points; 427 and 48 now;
 /// decision 0039).
 fn thinned(path: Vec<Coord<f64>>, tolerance_m: f64) -> Vec<Coord<f64>> {
     use geo::Simplify;

@@ -7,10 +7,11 @@
 //! double-sprayed); and on a strip of exactly one swath the rounding of the offsets leaves
 //! stray pieces of ring that cover part of it (62.7 % of a 5 m terrace; decision 0039).
 //! A ring whose mean width, 2·area / perimeter, is under [`SLIVER_SHARE`] of the swath is
-//! flown once instead: along its midline, from tip to tip, each end carried on towards the
-//! field's end as far as the spray footprint stays inside the sprayable region (up to w/2,
-//! where the loop's turn would have sprayed). The ground it leaves is the sliver's own
-//! width, at most [`SLIVER_SHARE`] of the strip.
+//! flown once instead, when it folds onto itself about two tips (one strip, not a fork):
+//! along its midline, from tip to tip, each end carried on towards the field's end as far
+//! as the ground the footprint sweeps stays inside the sprayable region (up to w/2, where
+//! the loop's turn would have sprayed, plus a sample's spacing, since the tip is a sample).
+//! The ground it leaves is the sliver's own width, at most [`SLIVER_SHARE`] of the strip.
 //!
 //! The tips are found as the point about which the ring is most nearly mirror-symmetric
 //! along its length: resampled evenly, the tip `a` minimises the largest distance between
