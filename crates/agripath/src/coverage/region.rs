@@ -164,7 +164,6 @@ pub const STRIP_SNAP_M: f64 = 0.001;
 /// offsets' rounding decides (a trial's 5 m terrace: 62.7 % of it covered; decision 0039).
 fn pass_region(sprayable: &MultiPolygon<f64>, inset_m: f64, width_m: f64) -> MultiPolygon<f64> {
     let strict = offset(sprayable, -inset_m);
-    let snapped = offset(sprayable, -(inset_m - STRIP_SNAP_M));
     // The edge passes' own test (`sliver_midline`), on a piece without holes: a ring at a
     // time.
     let is_sliver = |polygon: &Polygon<f64>| {
@@ -176,6 +175,12 @@ fn pass_region(sprayable: &MultiPolygon<f64>, inset_m: f64, width_m: f64) -> Mul
                 width_m,
             )
     };
+    // A strip about one swath wide leaves nothing or a sliver shrunk strictly: only then is
+    // the region shrunk again, snapped (no second offset per pass on other fields).
+    if !strict.0.is_empty() && !strict.0.iter().any(is_sliver) {
+        return strict;
+    }
+    let snapped = offset(sprayable, -(inset_m - STRIP_SNAP_M));
     if !snapped.0.iter().any(is_sliver) {
         return strict;
     }
